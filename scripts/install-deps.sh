@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package dqskin needs to build, test and run. Idempotent: packages already
+# present are left alone, and apt-get is only asked when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libglm-dev                                   # vector math and glm::dualquat
+  libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF loading (tinygltf's header needs json + stb)
+  libopenimageio-dev                           # EXR/PNG/GIF images
+  libcli11-dev                                 # command line
+  libegl-dev libgl-dev libosmesa6-dev libgl1-mesa-dri  # headless GL: EGL, OSMesa, Mesa llvmpipe
+  libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
