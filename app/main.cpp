@@ -1,4 +1,5 @@
-// dqskin command line: CLI11 fills the settings, one function per command runs it.
+// dqskin command line: CLI11 fills one settings struct per command, one function runs it.
+#include "commands.hpp"
 #include "exit_codes.hpp"
 
 #include "dqskin/version.hpp"
@@ -16,8 +17,14 @@ int main(int argc, char** argv) {
       "headless, for asset builds and CI.",
       "dqskin"};
   app.set_version_flag("--version", std::string("dqskin ") + dqskin::kVersion, "Print the version and exit");
-  app.footer(
-      "Exit status: 0 success, 1 some inputs failed, 2 usage or input error, 3 no OpenGL context.");
+  app.footer("Exit status: 0 success, 1 some inputs failed, 2 usage or input error, 3 no OpenGL context.\n"
+             "Run 'dqskin COMMAND --help' for the options of a command.");
+
+  InfoSettings info;
+  CLI::App* info_cmd = app.add_subcommand(
+      "info", "Print scenes, skinned meshes, skins, animations, morph targets and warnings of glTF files");
+  info_cmd->add_option("FILE", info.inputs, ".gltf or .glb files")->required();
+  info_cmd->add_flag("--json", info.json, "Print one JSON document instead of text");
 
   try {
     app.parse(argc, argv);
@@ -31,6 +38,8 @@ int main(int argc, char** argv) {
     std::cerr << "dqskin: " << e.what() << " (see dqskin --help)\n";
     return kUsageOrInputError;
   }
+
+  if (info_cmd->parsed()) return run_info(info);
 
   // No command given: show what there is to run.
   std::cout << app.help();

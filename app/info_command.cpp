@@ -1,0 +1,119 @@
+// `dqskin info FILE…`: scenes, skinned meshes, skins, animations, morph targets and warnings per file,
+// as text or one JSON document.
+#include "commands.hpp"
+#include "exit_codes.hpp"
+
+#include "dqskin/error.hpp"
+#include "dqskin/info.hpp"
+#include "dqskin/load.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+namespace dqskin::cli {
+namespace {
+
+std::string seconds(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f s", s);
+  return buf;
+}
+
+std::string join(const std::vector<std::string>& items, const char* separator) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : separator) + s;
+  return out;
+}
+
+void print_text(const std::string& path, const AssetFacts& f) {
+  std::cout << path << '\n';
+  std::cout << "  scenes: " << f.scenes;
+  if (f.default_scene >= 0) std::cout << " (default " << f.default_scene << ")";
+  std::cout << "\n  vertices: " << f.vertices << "\n  skinned meshes: " << f.skinned_meshes.size() << '\n';
+  for (const SkinnedMeshFacts& m : f.skinned_meshes)
+    std::cout << "    " << (m.name.empty() ? "(unnamed)" : m.name) << " (node " << m.node << ", mesh " << m.mesh
+              << ", skin " << m.skin << "): " << m.vertices << " vertices, " << m.triangles << " triangles, up to "
+              << m.max_influences << (m.max_influences == 1 ? " influence" : " influences") << " per vertex (" << (m.influence_sets > 1 ? "JOINTS_0, JOINTS_1" : "JOINTS_0")
+              << ")\n";
+  std::cout << "  skins: " << f.skins.size() << " (" << f.joint_nodes << " distinct joints)\n";
+  for (size_t i = 0; i < f.skins.size(); ++i) {
+    const SkinFacts& s = f.skins[i];
+    std::cout << "    " << i << (s.name.empty() ? "" : " " + s.name) << ": " << s.joints << " joints, "
+              << (s.non_rigid_in_bind_pose || s.non_rigid_in_animation
+                      ? std::string("non-rigid (scale or shear) ") +
+                            (s.non_rigid_in_bind_pose && s.non_rigid_in_animation ? "in the bind pose and animated"
+                             : s.non_rigid_in_bind_pose                           ? "in the bind pose"
+                                                                                  : "in animation")
+                      : std::string("rigid"))
+              << '\n';
+  }
+  std::cout << "  animations: " << f.clips.size() << '\n';
+  for (size_t i = 0; i < f.clips.size(); ++i) {
+    const ClipFacts& c = f.clips[i];
+    std::cout << "    " << i << " " << c.name << ": " << seconds(c.duration);
+    if (c.first_key > 0) std::cout << " (keys from " << seconds(c.first_key) << ")";
+    std::cout << ", " << c.channels << " channels, " << join(c.interpolations, ", ") << '\n';
+  }
+  std::cout << "  morph targets: " << (f.morph_targets.empty() ? "none" : "") << '\n';
+  for (const MorphFacts& m : f.morph_targets)
+    std::cout << "    mesh " << m.mesh << (m.name.empty() ? "" : " " + m.name) << ": " << m.targets << " targets\n";
+  std::cout << "  warnings: " << (f.warnings.empty() ? "none" : "") << '\n';
+  for (const std::string& w : f.warnings) std::cout << "    " << w << '\n';
+}
+
+nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
+  nlohmann::ordered_json j;
+  j["path"] = path;
+  j["scenes"] = f.scenes;
+  j["default_scene"] = f.default_scene;
+  j["vertices"] = f.vertices;
+  j["skinned_meshes"] = nlohmann::ordered_json::array();
+  for (const SkinnedMeshFacts& m : f.skinned_meshes)
+    j["skinned_meshes"].push_back({{"name", m.name}, {"node", m.node}, {"mesh", m.mesh}, {"skin", m.skin},
+                                   {"vertices", m.vertices}, {"triangles", m.triangles},
+                                   {"max_influences", m.max_influences}, {"influence_sets", m.influence_sets}});
+  j["joint_nodes"] = f.joint_nodes;
+  j["skins"] = nlohmann::ordered_json::array();
+  for (const SkinFacts& s : f.skins)
+    j["skins"].push_back({{"name", s.name}, {"joints", s.joints}, {"non_rigid_in_bind_pose", s.non_rigid_in_bind_pose},
+                          {"non_rigid_in_animation", s.non_rigid_in_animation}});
+  j["animations"] = nlohmann::ordered_json::array();
+  for (const ClipFacts& c : f.clips)
+    j["animations"].push_back({{"name", c.name}, {"duration", c.duration}, {"first_key", c.first_key},
+                               {"channels", c.channels}, {"interpolations", c.interpolations}});
+  j["morph_targets"] = nlohmann::ordered_json::array();
+  for (const MorphFacts& m : f.morph_targets)
+    j["morph_targets"].push_back({{"mesh", m.mesh}, {"name", m.name}, {"targets", m.targets}});
+  j["warnings"] = f.warnings;
+  return j;
+}
+
+}  // namespace
+
+int run_info(const InfoSettings& settings) {
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  size_t failed = 0;
+  for (size_t i = 0; i < settings.inputs.size(); ++i) {
+    const std::string& path = settings.inputs[i];
+    try {
+      const AssetFacts facts = describe(load_asset(path));
+      if (settings.json) {
+        files.push_back(to_json(path, facts));
+      } else {
+        if (i > 0) std::cout << '\n';
+        print_text(path, facts);
+      }
+    } catch (const InputError& e) {
+      ++failed;
+      std::cerr << "dqskin: " << path << ": " << e.what() << '\n';
+      if (settings.json) files.push_back({{"path", path}, {"error", e.what()}});
+    }
+  }
+  if (settings.json) std::cout << nlohmann::ordered_json{{"files", files}}.dump(2) << '\n';
+  if (failed == 0) return kSuccess;
+  return failed == settings.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
+}
+
+}  // namespace dqskin::cli

@@ -1,0 +1,80 @@
+// Frame times of a bake (shared/DESIGN.md "Determinism": frame i samples start + i / fps).
+#include "dqskin/animation.hpp"
+
+#include "dqskin/error.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+namespace dqskin {
+namespace {
+
+[[noreturn]] void fail(const std::string& message) { throw InputError(message); }
+
+int parse_int(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || v < 0 || v > 100000000)
+    fail(what + " '" + text + "' is not a frame number");
+  return int(v);
+}
+
+}  // namespace
+
+void parse_frame_range(const std::string& text, FrameSpec& spec) {
+  const size_t a = text.find(':');
+  if (a == std::string::npos) fail("--frames '" + text + "' is not A:B or A:B:step");
+  const size_t b = text.find(':', a + 1);
+  spec.first = parse_int(text.substr(0, a), "--frames start");
+  spec.last = parse_int(text.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1), "--frames end");
+  spec.step = b == std::string::npos ? 1 : parse_int(text.substr(b + 1), "--frames step");
+  if (spec.step < 1) fail("--frames step must be at least 1");
+  if (*spec.last < *spec.first) fail("--frames '" + text + "' ends before it starts");
+}
+
+std::vector<double> parse_times(const std::string& text) {
+  std::vector<double> times;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const double t = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(t) || t < 0)
+      fail("--times item '" + item + "' is not a non-negative number of seconds");
+    times.push_back(t);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return times;
+}
+
+std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec) {
+  if (!spec.times.empty()) return spec.times;
+  if (spec.keys) {
+    std::set<float> keys;
+    for (const Channel& ch : clip.channels) keys.insert(ch.times.begin(), ch.times.end());
+    return std::vector<double>(keys.begin(), keys.end());
+  }
+  if (!(spec.fps > 0) || !std::isfinite(spec.fps)) fail("--fps must be a positive number");
+  const double start = spec.from_first_key ? clip.first_key : 0.0;
+  // Frames whose time start + i/fps is at most the last key; the 1e-9 absorbs rounding of durations
+  // that are whole frames (2 s at 30 fps is 61 frames, not 60).
+  const double span = std::max(0.0, clip.last_key - start);
+  const double frames = std::floor(span * spec.fps + 1e-9) + 1;
+  if (frames > 1e7) fail("the clip would have " + std::to_string(uint64_t(frames)) + " frames at this fps");
+  const int count = int(frames);
+  const int first = spec.first.value_or(0);
+  const int last = spec.last.value_or(count - 1);
+  if (first >= count || last >= count)
+    fail("--frames asks for frame " + std::to_string(std::max(first, last)) + ", but the clip has frames 0.." +
+         std::to_string(count - 1));
+  std::vector<double> times;
+  for (int i = first; i <= last; i += spec.step) times.push_back(start + double(i) / spec.fps);
+  return times;
+}
+
+}  // namespace dqskin

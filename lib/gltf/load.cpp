@@ -1,0 +1,279 @@
+// tinygltf::Model → Asset: structure (scenes, node hierarchy, skins, animations) with every reference
+// checked (glTF 2.0 §3.5-3.11). Mesh primitives are decoded in mesh.cpp.
+#include "dqskin/load.hpp"
+
+#include "accessor.hpp"
+#include "dqskin/error.hpp"
+#include "mesh.hpp"
+#include "model_io.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace dqskin {
+namespace {
+
+using gltf::AccessorReader;
+using gltf::AccessorShape;
+
+[[noreturn]] void fail(const std::string& message) { throw InputError(message); }
+
+std::string at(const char* kind, size_t index) { return std::string(kind) + " " + std::to_string(index); }
+
+// Extensions that change what the geometry or animation data mean; without them a file must not be
+// loaded (§3.12: a required extension the loader does not support makes the asset unusable).
+bool is_supported_extension(const std::string& name) {
+  static const std::set<std::string> supported = {
+      "KHR_mesh_quantization",  // integer attributes: the accessor reader decodes every component type
+      // Appearance only: the deformation does not depend on them.
+      "KHR_materials_emissive_strength", "KHR_materials_unlit", "KHR_materials_pbrSpecularGlossiness",
+      "KHR_materials_clearcoat", "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_transmission",
+      "KHR_materials_volume", "KHR_materials_sheen", "KHR_materials_iridescence", "KHR_materials_variants",
+      "KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp", "KHR_lights_punctual"};
+  return supported.count(name) > 0;
+}
+
+LocalTransform read_local(const tinygltf::Node& n, const std::string& what) {
+  LocalTransform t;
+  auto finite = [&](const std::vector<double>& v, const char* field) {
+    for (double x : v)
+      if (!std::isfinite(x)) fail(what + ": " + field + " is not finite");
+  };
+  if (!n.matrix.empty()) {
+    if (n.matrix.size() != 16) fail(what + ": matrix must have 16 numbers");
+    finite(n.matrix, "matrix");
+    t.has_matrix = true;
+    t.matrix = glm::make_mat4(n.matrix.data());  // column-major, as glTF stores it
+    // §5.25: the matrix must be decomposable to TRS, so its last row is (0, 0, 0, 1).
+    if (t.matrix[0][3] != 0 || t.matrix[1][3] != 0 || t.matrix[2][3] != 0 || t.matrix[3][3] != 1)
+      fail(what + ": matrix is not affine (its last row must be 0, 0, 0, 1)");
+    if (!n.translation.empty() || !n.rotation.empty() || !n.scale.empty())
+      fail(what + ": has both matrix and translation/rotation/scale");
+  }
+  if (!n.translation.empty()) {
+    if (n.translation.size() != 3) fail(what + ": translation must have 3 numbers");
+    finite(n.translation, "translation");
+    t.translation = {n.translation[0], n.translation[1], n.translation[2]};
+  }
+  if (!n.rotation.empty()) {
+    if (n.rotation.size() != 4) fail(what + ": rotation must have 4 numbers");
+    finite(n.rotation, "rotation");
+    const Quat<double> q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+    const double length = glm::length(q);
+    if (!(length > 1e-6)) fail(what + ": rotation is a zero quaternion");
+    t.rotation = q / length;  // §5.25 asks for unit quaternions; writers round, so renormalise
+  }
+  if (!n.scale.empty()) {
+    if (n.scale.size() != 3) fail(what + ": scale must have 3 numbers");
+    finite(n.scale, "scale");
+    t.scale = {n.scale[0], n.scale[1], n.scale[2]};
+  }
+  return t;
+}
+
+void read_nodes(const tinygltf::Model& m, Asset& asset) {
+  asset.nodes.resize(m.nodes.size());
+  for (size_t i = 0; i < m.nodes.size(); ++i) {
+    const tinygltf::Node& n = m.nodes[i];
+    Node& node = asset.nodes[i];
+    const std::string what = at("node", i);
+    node.name = n.name;
+    node.local = read_local(n, what);
+    if (n.mesh >= 0 && size_t(n.mesh) >= m.meshes.size()) fail(what + ": mesh " + std::to_string(n.mesh) + " does not exist");
+    if (n.skin >= 0 && size_t(n.skin) >= m.skins.size()) fail(what + ": skin " + std::to_string(n.skin) + " does not exist");
+    if (n.skin >= 0 && n.mesh < 0) fail(what + ": has a skin but no mesh");
+    node.mesh = n.mesh;
+    node.skin = n.skin;
+    for (double w : n.weights) {
+      if (!std::isfinite(w)) fail(what + ": weights are not finite");
+      node.weights.push_back(float(w));
+    }
+    for (int c : n.children) {
+      if (c < 0 || size_t(c) >= m.nodes.size()) fail(what + ": child " + std::to_string(c) + " does not exist");
+      if (asset.nodes[size_t(c)].parent >= 0)
+        fail(at("node", size_t(c)) + ": has two parents (nodes " + std::to_string(asset.nodes[size_t(c)].parent) +
+             " and " + std::to_string(i) + ")");
+      asset.nodes[size_t(c)].parent = int(i);
+      node.children.push_back(c);
+    }
+  }
+  // §3.5.3: the hierarchy is a set of disjoint trees. With one parent each, a cycle is the only way to
+  // fail that; walk up from every node with a step limit.
+  for (size_t i = 0; i < asset.nodes.size(); ++i) {
+    int p = asset.nodes[i].parent;
+    for (size_t steps = 0; p >= 0; ++steps, p = asset.nodes[size_t(p)].parent)
+      if (steps > asset.nodes.size()) fail(at("node", i) + ": is its own ancestor (the hierarchy has a cycle)");
+  }
+}
+
+void read_scenes(const tinygltf::Model& m, Asset& asset) {
+  for (size_t i = 0; i < m.scenes.size(); ++i) {
+    Scene scene{m.scenes[i].name, {}};
+    for (int r : m.scenes[i].nodes) {
+      if (r < 0 || size_t(r) >= asset.nodes.size()) fail(at("scene", i) + ": node " + std::to_string(r) + " does not exist");
+      if (asset.nodes[size_t(r)].parent >= 0) fail(at("scene", i) + ": node " + std::to_string(r) + " is not a root node");
+      scene.roots.push_back(r);
+    }
+    asset.scenes.push_back(std::move(scene));
+  }
+  if (m.defaultScene >= 0 && size_t(m.defaultScene) >= asset.scenes.size())
+    fail("scene " + std::to_string(m.defaultScene) + " (the default scene) does not exist");
+  asset.default_scene = m.defaultScene;
+}
+
+void read_skins(const tinygltf::Model& m, const AccessorReader& reader, Asset& asset) {
+  for (size_t i = 0; i < m.skins.size(); ++i) {
+    const tinygltf::Skin& s = m.skins[i];
+    const std::string what = at("skin", i);
+    Skin skin;
+    skin.name = s.name;
+    if (s.joints.empty()) fail(what + ": has no joints");
+    std::set<int> seen;
+    for (int j : s.joints) {
+      if (j < 0 || size_t(j) >= asset.nodes.size()) fail(what + ": joint node " + std::to_string(j) + " does not exist");
+      if (!seen.insert(j).second) fail(what + ": lists node " + std::to_string(j) + " twice");
+      skin.joints.push_back(j);
+    }
+    if (s.skeleton >= 0 && size_t(s.skeleton) >= asset.nodes.size())
+      fail(what + ": skeleton node " + std::to_string(s.skeleton) + " does not exist");
+    skin.skeleton = s.skeleton;
+    if (s.inverseBindMatrices >= 0) {
+      const std::vector<float> ibm = reader.floats(
+          s.inverseBindMatrices, {{TINYGLTF_TYPE_MAT4}, {TINYGLTF_COMPONENT_TYPE_FLOAT}}, what + " inverseBindMatrices");
+      if (ibm.size() / 16 < skin.joints.size())
+        fail(what + ": has " + std::to_string(ibm.size() / 16) + " inverse bind matrices for " +
+             std::to_string(skin.joints.size()) + " joints");
+      for (size_t j = 0; j < skin.joints.size(); ++j) skin.inverse_bind.push_back(Mat4<double>(glm::make_mat4(&ibm[16 * j])));
+    } else {
+      skin.inverse_bind.assign(skin.joints.size(), Mat4<double>(1.0));  // §3.7.3.1: identity when absent
+    }
+    asset.skins.push_back(std::move(skin));
+  }
+}
+
+Interpolation parse_interpolation(const std::string& name, const std::string& what) {
+  if (name.empty() || name == "LINEAR") return Interpolation::kLinear;
+  if (name == "STEP") return Interpolation::kStep;
+  if (name == "CUBICSPLINE") return Interpolation::kCubicSpline;
+  fail(what + ": unknown interpolation '" + name + "'");
+}
+
+int morph_target_count(const Asset& asset, int node) {
+  const int mesh = asset.nodes[size_t(node)].mesh;
+  if (mesh < 0) return 0;
+  const Mesh& m = asset.meshes[size_t(mesh)];
+  return m.primitives.empty() ? int(m.weights.size()) : int(m.primitives.front().targets.size());
+}
+
+void read_animations(const tinygltf::Model& m, const AccessorReader& reader, Asset& asset) {
+  for (size_t a = 0; a < m.animations.size(); ++a) {
+    const tinygltf::Animation& anim = m.animations[a];
+    Clip clip;
+    clip.name = anim.name.empty() ? "animation" + std::to_string(a) : anim.name;
+    bool first = true;
+    std::set<std::pair<int, int>> targets;
+    for (size_t c = 0; c < anim.channels.size(); ++c) {
+      const tinygltf::AnimationChannel& ch = anim.channels[c];
+      const std::string what = at("animation", a) + " channel " + std::to_string(c);
+      if (ch.target_node < 0) continue;  // §3.11: no node means the channel is ignored (an extension may use it)
+      if (size_t(ch.target_node) >= asset.nodes.size())
+        fail(what + ": target node " + std::to_string(ch.target_node) + " does not exist");
+      if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
+        fail(what + ": sampler " + std::to_string(ch.sampler) + " does not exist");
+      Channel channel;
+      channel.node = ch.target_node;
+      if (ch.target_path == "translation") channel.path = TargetPath::kTranslation, channel.components = 3;
+      else if (ch.target_path == "rotation") channel.path = TargetPath::kRotation, channel.components = 4;
+      else if (ch.target_path == "scale") channel.path = TargetPath::kScale, channel.components = 3;
+      else if (ch.target_path == "weights") {
+        channel.path = TargetPath::kWeights;
+        channel.components = morph_target_count(asset, ch.target_node);
+        if (channel.components == 0) fail(what + ": animates weights of a node without morph targets");
+      } else {
+        fail(what + ": unknown target path '" + ch.target_path + "'");
+      }
+      if (!targets.insert({ch.target_node, int(channel.path)}).second)
+        fail(what + ": a second channel for the same node and path");
+      if (channel.path != TargetPath::kWeights && asset.nodes[size_t(ch.target_node)].local.has_matrix)
+        fail(what + ": animates node " + std::to_string(ch.target_node) + ", which has a matrix (§3.11 forbids it)");
+
+      const tinygltf::AnimationSampler& s = anim.samplers[size_t(ch.sampler)];
+      const std::string swhat = at("animation", a) + " sampler " + std::to_string(ch.sampler);
+      channel.interpolation = parse_interpolation(s.interpolation, swhat);
+      channel.times = reader.floats(s.input, {{TINYGLTF_TYPE_SCALAR}, {TINYGLTF_COMPONENT_TYPE_FLOAT}}, swhat + " input");
+      for (size_t k = 0; k < channel.times.size(); ++k) {
+        if (channel.times[k] < 0) fail(swhat + ": key time " + std::to_string(channel.times[k]) + " is negative");
+        if (k > 0 && !(channel.times[k] > channel.times[k - 1]))
+          fail(swhat + ": key times do not increase (key " + std::to_string(k) + ")");
+      }
+      // Rotations and weights may be normalized integers (§3.11, "Animation samplers" table).
+      const bool int_ok = channel.path == TargetPath::kRotation || channel.path == TargetPath::kWeights;
+      const AccessorShape vshape =
+          int_ok ? AccessorShape{{channel.path == TargetPath::kRotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_SCALAR},
+                                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                 true}
+                 : AccessorShape{{TINYGLTF_TYPE_VEC3}, {TINYGLTF_COMPONENT_TYPE_FLOAT}};
+      channel.values = reader.floats(s.output, vshape, swhat + " output");
+      const size_t per_key = size_t(channel.components) * (channel.interpolation == Interpolation::kCubicSpline ? 3 : 1);
+      if (channel.values.size() != channel.times.size() * per_key)
+        fail(swhat + ": output has " + std::to_string(channel.values.size()) + " values for " +
+             std::to_string(channel.times.size()) + " keys (expected " +
+             std::to_string(channel.times.size() * per_key) + ")");
+      if (channel.interpolation == Interpolation::kCubicSpline && channel.times.size() < 2)
+        fail(swhat + ": CUBICSPLINE needs at least 2 keys");
+      if (first || double(channel.times.front()) < clip.first_key) clip.first_key = channel.times.front();
+      if (first || double(channel.times.back()) > clip.last_key) clip.last_key = channel.times.back();
+      first = false;
+      clip.channels.push_back(std::move(channel));
+    }
+    asset.clips.push_back(std::move(clip));
+  }
+}
+
+Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptions& options) {
+  for (const std::string& ext : m.extensionsRequired)
+    if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
+
+  Asset asset;
+  asset.path = path;
+  const AccessorReader reader{m, options.max_unbacked_elements};
+  read_nodes(m, asset);
+  read_scenes(m, asset);
+  read_skins(m, reader, asset);
+  gltf::read_meshes(m, reader, asset);
+  read_animations(m, reader, asset);
+  return asset;
+}
+
+std::string directory_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
+}  // namespace
+
+Mat4<double> LocalTransform::to_matrix() const {
+  if (has_matrix) return matrix;
+  // T * R * S (§3.5.2)
+  return glm::scale(glm::translate(Mat4<double>(1.0), translation) * glm::mat4_cast(rotation), scale);
+}
+
+Asset load_asset(const std::string& path, const LoadOptions& options) {
+  const std::vector<uint8_t> bytes = gltf::read_regular_file(path, options.max_file_bytes);
+  // read_regular_file names the path in its messages; the caller adds it to ours.
+  return load_asset_from_memory(bytes, path, directory_of(path), options);
+}
+
+Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& base_dir,
+                             const LoadOptions& options) {
+  if (bytes.empty()) fail("the file is empty");
+  return convert(gltf::parse_model(bytes, base_dir, options.max_file_bytes), name, options);
+}
+
+}  // namespace dqskin

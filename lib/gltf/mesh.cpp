@@ -1,0 +1,239 @@
+#include "mesh.hpp"
+
+#include "dqskin/error.hpp"
+
+#include <cmath>
+
+namespace dqskin::gltf {
+namespace {
+
+[[noreturn]] void fail(const std::string& message) { throw InputError(message); }
+
+constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
+constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+
+template <typename V>
+std::vector<V> to_vectors(const std::vector<float>& f) {
+  constexpr size_t n = sizeof(V) / sizeof(float);
+  std::vector<V> out(f.size() / n);
+  for (size_t i = 0; i < out.size(); ++i)
+    for (size_t c = 0; c < n; ++c) out[i][int(c)] = f[i * n + c];
+  return out;
+}
+
+// Attribute shapes of glTF 2.0 §3.7.2.1; KHR_mesh_quantization widens them to every integer type.
+struct Shapes {
+  AccessorShape position, normal, tangent, texcoord, joints, weights, target;
+};
+
+Shapes shapes_for(bool quantized) {
+  if (quantized)
+    return {{{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kUByte, kShort, kUShort}},
+            {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, true},
+            {{TINYGLTF_TYPE_VEC4}, {kFloat, kByte, kShort}, true},
+            {{TINYGLTF_TYPE_VEC2}, {kFloat, kByte, kUByte, kShort, kUShort}},
+            {{TINYGLTF_TYPE_VEC4}, {kUByte, kUShort}},
+            {{TINYGLTF_TYPE_VEC4}, {kFloat, kUByte, kUShort}, true},
+            {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, true}};
+  return {{{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          {{TINYGLTF_TYPE_VEC3}, {kFloat}},
+          {{TINYGLTF_TYPE_VEC4}, {kFloat}},
+          {{TINYGLTF_TYPE_VEC2}, {kFloat, kUByte, kUShort}, true},
+          {{TINYGLTF_TYPE_VEC4}, {kUByte, kUShort}},
+          {{TINYGLTF_TYPE_VEC4}, {kFloat, kUByte, kUShort}, true},
+          {{TINYGLTF_TYPE_VEC3}, {kFloat}}};
+}
+
+int find_attribute(const std::map<std::string, int>& attributes, const std::string& name) {
+  const auto it = attributes.find(name);
+  return it == attributes.end() ? -1 : it->second;
+}
+
+Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& reader, const Shapes& shape,
+                         const std::string& what) {
+  Primitive prim;
+  if (p.mode < 0 || p.mode > 6) fail(what + ": mode " + std::to_string(p.mode) + " is not a glTF primitive mode");
+  prim.mode = PrimitiveMode(p.mode);
+  prim.material = p.material;
+
+  const int position = find_attribute(p.attributes, "POSITION");
+  if (position < 0) fail(what + ": has no POSITION");
+  prim.position_accessor = position;
+  prim.positions = to_vectors<glm::vec3>(reader.floats(position, shape.position, what + " POSITION"));
+  const size_t n = prim.positions.size();
+  auto same_count = [&](int accessor, const std::string& name) {
+    const size_t c = reader.count(accessor, what + " " + name);
+    if (c != n) fail(what + ": " + name + " has " + std::to_string(c) + " elements, POSITION has " + std::to_string(n));
+  };
+
+  if (const int a = find_attribute(p.attributes, "NORMAL"); a >= 0) {
+    same_count(a, "NORMAL");
+    prim.normals = to_vectors<glm::vec3>(reader.floats(a, shape.normal, what + " NORMAL"));
+  }
+  if (const int a = find_attribute(p.attributes, "TANGENT"); a >= 0) {
+    same_count(a, "TANGENT");
+    prim.tangents = to_vectors<glm::vec4>(reader.floats(a, shape.tangent, what + " TANGENT"));
+  }
+  if (const int a = find_attribute(p.attributes, "TEXCOORD_0"); a >= 0) {
+    same_count(a, "TEXCOORD_0");
+    prim.uv0 = to_vectors<glm::vec2>(reader.floats(a, shape.texcoord, what + " TEXCOORD_0"));
+  }
+  if (p.indices >= 0) {
+    prim.indices = reader.uints(p.indices, {{TINYGLTF_TYPE_SCALAR}, {kUByte, kUShort, kUInt}}, what + " indices");
+    for (size_t i = 0; i < prim.indices.size(); ++i)
+      if (prim.indices[i] >= n)
+        fail(what + ": index " + std::to_string(i) + " is " + std::to_string(prim.indices[i]) + ", but there are " +
+             std::to_string(n) + " vertices");
+  }
+
+  // Skin influences: JOINTS_0/WEIGHTS_0 and, for up to 8, JOINTS_1/WEIGHTS_1 (§3.7.3.3).
+  for (int set = 0; set < 3; ++set) {
+    const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+    const int ja = find_attribute(p.attributes, js), wa = find_attribute(p.attributes, ws);
+    if (ja < 0 && wa < 0) break;
+    if (ja < 0 || wa < 0) fail(what + ": has " + (ja < 0 ? ws : js) + " without " + (ja < 0 ? js : ws));
+    if (set == 2) fail(what + ": has more than 8 influences per vertex (JOINTS_2), which dqskin does not support");
+    same_count(ja, js);
+    same_count(wa, ws);
+    const std::vector<uint32_t> j = reader.uints(ja, shape.joints, what + " " + js);
+    const std::vector<float> w = reader.floats(wa, shape.weights, what + " " + ws);
+    const size_t old = size_t(prim.influences);
+    const size_t now = old + 4;
+    std::vector<uint16_t> joints(n * now);
+    std::vector<float> weights(n * now);
+    for (size_t v = 0; v < n; ++v) {
+      for (size_t k = 0; k < old; ++k) {
+        joints[v * now + k] = prim.joints[v * old + k];
+        weights[v * now + k] = prim.weights[v * old + k];
+      }
+      for (size_t k = 0; k < 4; ++k) {
+        if (w[v * 4 + k] < 0) fail(what + ": " + ws + " of vertex " + std::to_string(v) + " is negative");
+        joints[v * now + old + k] = uint16_t(j[v * 4 + k]);
+        weights[v * now + old + k] = w[v * 4 + k];
+      }
+    }
+    prim.joints = std::move(joints);
+    prim.weights = std::move(weights);
+    prim.influences = int(now);
+  }
+
+  for (size_t t = 0; t < p.targets.size(); ++t) {
+    MorphTarget target;
+    const std::string twhat = what + " target " + std::to_string(t);
+    for (const auto& [name, accessor] : p.targets[t]) {
+      std::vector<glm::vec3>* dest = name == "POSITION" ? &target.positions
+                                     : name == "NORMAL" ? &target.normals
+                                     : name == "TANGENT" ? &target.tangents
+                                                         : nullptr;
+      if (!dest) continue;  // other attributes (TEXCOORD_n, COLOR_n) do not move the surface
+      same_count(accessor, "target " + std::to_string(t) + " " + name);
+      *dest = to_vectors<glm::vec3>(reader.floats(accessor, shape.target, twhat + " " + name));
+    }
+    prim.targets.push_back(std::move(target));
+  }
+
+  const bool triangles = prim.mode == PrimitiveMode::kTriangles || prim.mode == PrimitiveMode::kTriangleStrip ||
+                         prim.mode == PrimitiveMode::kTriangleFan;
+  if (prim.normals.empty() && triangles) {
+    prim.normals = smooth_normals(prim);
+    prim.normals_generated = true;
+  }
+  return prim;
+}
+
+}  // namespace
+
+std::vector<uint32_t> triangle_list(const Primitive& prim) {
+  const size_t count = prim.indices.empty() ? prim.vertex_count() : prim.indices.size();
+  auto vertex = [&](size_t i) { return prim.indices.empty() ? uint32_t(i) : prim.indices[i]; };
+  std::vector<uint32_t> out;
+  switch (prim.mode) {
+    case PrimitiveMode::kTriangles:
+      for (size_t i = 0; i + 2 < count; i += 3) out.insert(out.end(), {vertex(i), vertex(i + 1), vertex(i + 2)});
+      break;
+    case PrimitiveMode::kTriangleStrip:
+      for (size_t i = 0; i + 2 < count; ++i) {
+        if (i % 2 == 0) out.insert(out.end(), {vertex(i), vertex(i + 1), vertex(i + 2)});
+        else out.insert(out.end(), {vertex(i + 1), vertex(i), vertex(i + 2)});
+      }
+      break;
+    case PrimitiveMode::kTriangleFan:
+      for (size_t i = 1; i + 1 < count; ++i) out.insert(out.end(), {vertex(0), vertex(i), vertex(i + 1)});
+      break;
+    default: break;
+  }
+  return out;
+}
+
+std::vector<glm::vec3> smooth_normals(const Primitive& prim) {
+  std::vector<glm::dvec3> sum(prim.vertex_count(), glm::dvec3(0));
+  const std::vector<uint32_t> tris = triangle_list(prim);
+  for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+    const glm::dvec3 a(prim.positions[tris[t]]), b(prim.positions[tris[t + 1]]), c(prim.positions[tris[t + 2]]);
+    const glm::dvec3 n = glm::cross(b - a, c - a);  // length = 2 × area: area weighting for free
+    for (size_t k = 0; k < 3; ++k) sum[tris[t + k]] += n;
+  }
+  std::vector<glm::vec3> out(sum.size());
+  for (size_t i = 0; i < sum.size(); ++i) {
+    const double length = glm::length(sum[i]);
+    out[i] = length > 0 ? glm::vec3(sum[i] / length) : glm::vec3(0, 0, 1);
+  }
+  return out;
+}
+
+void read_meshes(const tinygltf::Model& model, const AccessorReader& reader, Asset& asset) {
+  bool quantized = false;
+  for (const std::string& e : model.extensionsUsed) quantized = quantized || e == "KHR_mesh_quantization";
+  const Shapes shape = shapes_for(quantized);
+
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const tinygltf::Mesh& mesh = model.meshes[m];
+    const std::string what = "mesh " + std::to_string(m);
+    Mesh out;
+    out.name = mesh.name;
+    if (mesh.primitives.empty()) fail(what + ": has no primitives");
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      out.primitives.push_back(read_primitive(mesh.primitives[p], reader, shape, what + " primitive " + std::to_string(p)));
+      if (out.primitives.back().targets.size() != out.primitives.front().targets.size())
+        fail(what + ": its primitives have different numbers of morph targets");
+    }
+    const size_t targets = out.primitives.front().targets.size();
+    if (!mesh.weights.empty() && mesh.weights.size() != targets)
+      fail(what + ": has " + std::to_string(mesh.weights.size()) + " weights for " + std::to_string(targets) + " morph targets");
+    for (double w : mesh.weights) {
+      if (!std::isfinite(w)) fail(what + ": weights are not finite");
+      out.weights.push_back(float(w));
+    }
+    out.weights.resize(targets, 0.0f);
+    asset.meshes.push_back(std::move(out));
+  }
+
+  // Node-level checks that need the meshes: morph weight counts, and joint indices against the skin.
+  for (size_t i = 0; i < asset.nodes.size(); ++i) {
+    const Node& node = asset.nodes[i];
+    if (node.mesh < 0) continue;
+    const Mesh& mesh = asset.meshes[size_t(node.mesh)];
+    if (!node.weights.empty() && node.weights.size() != mesh.weights.size())
+      fail("node " + std::to_string(i) + ": has " + std::to_string(node.weights.size()) + " weights for " +
+           std::to_string(mesh.weights.size()) + " morph targets");
+    if (node.skin < 0) continue;
+    const size_t joints = asset.skins[size_t(node.skin)].joints.size();
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const Primitive& prim = mesh.primitives[p];
+      if (prim.influences == 0)
+        fail("node " + std::to_string(i) + ": is skinned, but mesh " + std::to_string(node.mesh) + " primitive " +
+             std::to_string(p) + " has no JOINTS_0/WEIGHTS_0");
+      for (size_t k = 0; k < prim.joints.size(); ++k)
+        if (prim.joints[k] >= joints)
+          fail("mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p) + ": vertex " +
+               std::to_string(k / size_t(prim.influences)) + " uses joint " + std::to_string(prim.joints[k]) +
+               ", but skin " + std::to_string(node.skin) + " has " + std::to_string(joints) + " joints");
+    }
+  }
+}
+
+}  // namespace dqskin::gltf

@@ -1,0 +1,118 @@
+// The Asset: what dqskin keeps of a glTF 2.0 file (shared/DESIGN.md "load"). Plain data, no tinygltf
+// types; every index in it has been checked against the array it indexes, every float is finite.
+#pragma once
+
+#include "dqskin/dual_quat.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dqskin {
+
+// glTF primitive.mode values.
+enum class PrimitiveMode : int { kPoints = 0, kLines, kLineLoop, kLineStrip, kTriangles, kTriangleStrip, kTriangleFan };
+
+// Per-vertex offsets of one morph target; an attribute the target does not move is empty.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec3> tangents;
+};
+
+// One mesh primitive with its attributes decoded to float, in accessor order.
+struct Primitive {
+  PrimitiveMode mode = PrimitiveMode::kTriangles;
+  int material = -1;                 // index into the file's materials, or -1
+  int position_accessor = -1;        // the file's POSITION accessor (primitives may share one)
+  std::vector<glm::vec3> positions;  // POSITION; its size is the vertex count
+  std::vector<glm::vec3> normals;    // NORMAL, or generated (see normals_generated); empty for non-triangles without
+  std::vector<glm::vec4> tangents;   // TANGENT (xyz, w = handedness ±1), or empty
+  std::vector<glm::vec2> uv0;        // TEXCOORD_0, or empty
+  std::vector<uint32_t> indices;     // empty when not indexed
+  bool normals_generated = false;    // NORMAL was absent: smooth normals were computed (see load.hpp)
+
+  // Skin influences, `influences` per vertex (0, 4 or 8: JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1),
+  // vertex-major. Weights are as stored (normalized integers decoded), not renormalised.
+  int influences = 0;
+  std::vector<uint16_t> joints;
+  std::vector<float> weights;
+
+  std::vector<MorphTarget> targets;
+
+  size_t vertex_count() const { return positions.size(); }
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Primitive> primitives;
+  std::vector<float> weights;  // default morph weights, one per target (zeros when the file has none)
+};
+
+// A node's local transform as glTF stores it: a matrix, or translation/rotation/scale.
+struct LocalTransform {
+  bool has_matrix = false;
+  Mat4<double> matrix{1.0};
+  Vec3<double> translation{0.0};
+  Quat<double> rotation{1.0, 0.0, 0.0, 0.0};
+  Vec3<double> scale{1.0};
+
+  Mat4<double> to_matrix() const;
+};
+
+struct Node {
+  std::string name;
+  int parent = -1;
+  std::vector<int> children;
+  LocalTransform local;
+  int mesh = -1;
+  int skin = -1;
+  std::vector<float> weights;  // the node's morph weights, overriding the mesh's, or empty
+};
+
+struct Skin {
+  std::string name;
+  std::vector<int> joints;                // node indices
+  std::vector<Mat4<double>> inverse_bind; // one per joint; identity when the file has none
+  int skeleton = -1;                      // node index, or -1
+};
+
+enum class TargetPath { kTranslation, kRotation, kScale, kWeights };
+enum class Interpolation { kStep, kLinear, kCubicSpline };
+
+// One animation channel with its sampler's data. times are strictly increasing. values holds, per key,
+// `components` floats (3 for translation/scale, 4 for rotation as x, y, z, w, the morph target count for
+// weights), and for CUBICSPLINE three such groups per key: in-tangent, value, out-tangent.
+struct Channel {
+  int node = -1;
+  TargetPath path = TargetPath::kTranslation;
+  Interpolation interpolation = Interpolation::kLinear;
+  std::vector<float> times;
+  std::vector<float> values;
+  int components = 0;
+};
+
+struct Clip {
+  std::string name;
+  std::vector<Channel> channels;
+  double first_key = 0;  // smallest key time over all channels
+  double last_key = 0;   // largest key time: the clip's duration, as glTF time 0 is the clip's start
+};
+
+struct Scene {
+  std::string name;
+  std::vector<int> roots;
+};
+
+struct Asset {
+  std::string path;  // as given to the loader, for messages
+  std::vector<Node> nodes;
+  std::vector<Mesh> meshes;
+  std::vector<Skin> skins;
+  std::vector<Clip> clips;
+  std::vector<Scene> scenes;
+  int default_scene = -1;
+  std::vector<std::string> warnings;  // things that are allowed but worth telling the user
+};
+
+}  // namespace dqskin

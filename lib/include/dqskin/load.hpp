@@ -1,0 +1,37 @@
+// Loading glTF 2.0 files into an Asset (shared/DESIGN.md "load").
+#pragma once
+
+#include "dqskin/asset.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace dqskin {
+
+struct LoadOptions {
+  // Largest element count accepted for an accessor that has no buffer behind it (a sparse accessor
+  // without bufferView is "all zeros plus a few values": its count costs memory, not file bytes).
+  uint64_t max_unbacked_elements = uint64_t(1) << 26;
+  // Largest file, and largest external buffer, that is read (bytes).
+  uint64_t max_file_bytes = uint64_t(4) << 30;
+};
+
+// Loads a .gltf (external or data-URI buffers) or .glb file. Images are not decoded. Throws InputError
+// with a one-line message naming the problem (not the file) when the file is not a valid glTF 2.0 asset
+// that dqskin can deform: unreadable or truncated, malformed JSON, indices out of range, data that does
+// not fit its buffer, NaN or infinite values, mismatched counts, non-increasing key times, unsupported
+// required extensions.
+//
+// Primitives without NORMAL get smooth, area-weighted vertex normals. The specification asks viewers for
+// flat normals; those split every vertex, which would break dqskin's promise that its outputs keep the
+// accessor's vertex order and count (vertex-animation textures, per-vertex comparisons). A renderer can
+// still shade such primitives flat; Primitive::normals_generated says which they are.
+Asset load_asset(const std::string& path, const LoadOptions& options = {});
+
+// The same from bytes in memory (a .glb when they start with the GLB magic, else .gltf JSON). External
+// buffers are looked up in base_dir; name is only used in messages.
+Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& base_dir,
+                             const LoadOptions& options = {});
+
+}  // namespace dqskin
