@@ -56,10 +56,10 @@ void print_text(const std::string& path, const AssetFacts& f) {
     if (c.first_key > 0) std::cout << " (keys from " << seconds(c.first_key) << ")";
     std::cout << ", " << c.channels << " channels, " << join(c.interpolations, ", ") << '\n';
   }
-  std::cout << "  morph targets: " << (f.morph_targets.empty() ? "none" : "") << '\n';
+  std::cout << "  morph targets:" << (f.morph_targets.empty() ? " none" : "") << '\n';
   for (const MorphFacts& m : f.morph_targets)
     std::cout << "    mesh " << m.mesh << (m.name.empty() ? "" : " " + m.name) << ": " << m.targets << " targets\n";
-  std::cout << "  warnings: " << (f.warnings.empty() ? "none" : "") << '\n';
+  std::cout << "  warnings:" << (f.warnings.empty() ? " none" : "") << '\n';
   for (const std::string& w : f.warnings) std::cout << "    " << w << '\n';
 }
 

@@ -9,8 +9,11 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF loading (tinygltf's header needs json + stb)
   libopenimageio-dev                           # EXR/PNG/GIF images
   libcli11-dev                                 # command line
-  libegl-dev libgl-dev libosmesa6-dev libgl1-mesa-dri  # headless GL: EGL, OSMesa, Mesa llvmpipe
+  libegl-dev libgl-dev libosmesa6-dev          # headless GL headers: EGL, GL, OSMesa
+  libegl-mesa0 libgl1-mesa-dri                 # Mesa's EGL and its drivers (llvmpipe without a GPU)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
+  python3                                      # generators of the test inputs (scripts/make_*.py)
+  clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
 )
 
 missing=()

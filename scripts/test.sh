@@ -1,16 +1,26 @@
 #!/usr/bin/env bash
-# Installs what dqskin needs, builds it twice (Release, and ASan+UBSan) with warnings as errors, and runs
-# every test of both builds. Exit status: 0 when everything passed.
+# Installs what dqskin needs, builds it with warnings as errors and runs every test: the Release build,
+# 60 s of fuzzing the loader (clang, libFuzzer), and the ASan+UBSan build. Exit status 0 when all passed.
+#
+#   scripts/test.sh            everything, as CI runs it
+#   FUZZ_SECONDS=0 scripts/test.sh   without the fuzzing step
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/install-deps.sh
 
 jobs=$(nproc)
-for preset in release sanitize; do
-  echo "== $preset: configure and build"
-  cmake --preset "$preset" >/dev/null
-  cmake --build --preset "$preset" -j "$jobs"
-  echo "== $preset: test"
-  ctest --preset "$preset" -j "$jobs"
-done
+build_and_test() {
+  echo "== $1: configure and build"
+  cmake --preset "$1" >/dev/null
+  cmake --build --preset "$1" -j "$jobs"
+  echo "== $1: test"
+  ctest --preset "$1" -j "$jobs"
+}
+
+build_and_test release
+if [ "${FUZZ_SECONDS:-60}" -gt 0 ]; then
+  echo "== fuzz: ${FUZZ_SECONDS:-60} s"
+  FUZZ_JOBS=$jobs bash scripts/fuzz.sh "${FUZZ_SECONDS:-60}"
+fi
+build_and_test sanitize

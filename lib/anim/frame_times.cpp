@@ -52,6 +52,23 @@ std::vector<double> parse_times(const std::string& text) {
   return times;
 }
 
+std::vector<size_t> select_clips(const Asset& asset, const std::string& which) {
+  std::vector<size_t> out;
+  if (which == "all") {
+    for (size_t i = 0; i < asset.clips.size(); ++i) out.push_back(i);
+    return out;
+  }
+  for (size_t i = 0; i < asset.clips.size(); ++i)  // a name first: clips may be named "1"
+    if (asset.clips[i].name == which) return {i};
+  if (!which.empty() && which.find_first_not_of("0123456789") == std::string::npos && which.size() < 9) {
+    const size_t index = size_t(std::stoul(which));
+    if (index < asset.clips.size()) return {index};
+  }
+  std::string names;
+  for (const Clip& c : asset.clips) names += (names.empty() ? "" : ", ") + c.name;
+  fail("no animation '" + which + "' (the file has " + (names.empty() ? std::string("none") : names) + ")");
+}
+
 std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec) {
   if (!spec.times.empty()) return spec.times;
   if (spec.keys) {

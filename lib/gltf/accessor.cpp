@@ -116,7 +116,7 @@ const char* component_name(int component_type) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "unsigned short";
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "unsigned int";
     case TINYGLTF_COMPONENT_TYPE_FLOAT: return "float";
-    default: return "an unknown component type";
+    default: return nullptr;
   }
 }
 
@@ -132,7 +132,10 @@ std::vector<double> decode_all(const AccessorReader& reader, int index, const Ac
     fail(what, std::string("has type ") + type_name(a.type) + ", which is not allowed here");
   if (std::find(shape.component_types.begin(), shape.component_types.end(), a.componentType) ==
       shape.component_types.end())
-    fail(what, std::string("has component type ") + component_name(a.componentType) + ", which is not allowed here");
+    fail(what, "has component type " +
+                   (component_name(a.componentType) ? std::string(component_name(a.componentType))
+                                                    : std::to_string(a.componentType) + " (not a glTF component type)") +
+                   ", which is not allowed here");
   const size_t csize = component_size(a.componentType);
   const bool is_float = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
   if (a.normalized && (is_float || a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
@@ -151,8 +154,9 @@ std::vector<double> decode_all(const AccessorReader& reader, int index, const Ac
       for (size_t c = 0; c < size_t(comps); ++c)
         out[i * size_t(comps) + c] = decode(v.data + i * v.stride + c * csize, a.componentType, a.normalized);
   } else {
-    if (count > reader.max_unbacked_elements)
+    if (count > reader.max_unbacked_elements / size_t(comps))
       fail(what, "has count " + std::to_string(count) + " without a bufferView, more than dqskin accepts (" +
+                     std::to_string(count) + " × " + std::to_string(comps) + " values; the limit is " +
                      std::to_string(reader.max_unbacked_elements) + ")");
     out.assign(count * size_t(comps), 0.0);  // §3.6.2.3: no bufferView means zeros
   }

@@ -102,11 +102,21 @@ void read_nodes(const tinygltf::Model& m, Asset& asset) {
     }
   }
   // §3.5.3: the hierarchy is a set of disjoint trees. With one parent each, a cycle is the only way to
-  // fail that; walk up from every node with a step limit.
+  // fail that. Walk up from every node, marking the path; each node is walked once (linear time even for
+  // a chain of a million nodes).
+  enum : char { kUnseen, kOnPath, kRooted };
+  std::vector<char> state(asset.nodes.size(), kUnseen);
+  std::vector<size_t> path;
   for (size_t i = 0; i < asset.nodes.size(); ++i) {
-    int p = asset.nodes[i].parent;
-    for (size_t steps = 0; p >= 0; ++steps, p = asset.nodes[size_t(p)].parent)
-      if (steps > asset.nodes.size()) fail(at("node", i) + ": is its own ancestor (the hierarchy has a cycle)");
+    path.clear();
+    int p = int(i);
+    while (p >= 0 && state[size_t(p)] == kUnseen) {
+      state[size_t(p)] = kOnPath;
+      path.push_back(size_t(p));
+      p = asset.nodes[size_t(p)].parent;
+    }
+    if (p >= 0 && state[size_t(p)] == kOnPath) fail(at("node", size_t(p)) + ": is its own ancestor (the hierarchy has a cycle)");
+    for (size_t n : path) state[n] = kRooted;
   }
 }
 
@@ -227,8 +237,8 @@ void read_animations(const tinygltf::Model& m, const AccessorReader& reader, Ass
              std::to_string(channel.times.size() * per_key) + ")");
       if (channel.interpolation == Interpolation::kCubicSpline && channel.times.size() < 2)
         fail(swhat + ": CUBICSPLINE needs at least 2 keys");
-      if (first || double(channel.times.front()) < clip.first_key) clip.first_key = channel.times.front();
-      if (first || double(channel.times.back()) > clip.last_key) clip.last_key = channel.times.back();
+      if (first || double(channel.times.front()) < clip.first_key) clip.first_key = double(channel.times.front());
+      if (first || double(channel.times.back()) > clip.last_key) clip.last_key = double(channel.times.back());
       first = false;
       clip.channels.push_back(std::move(channel));
     }

@@ -1,6 +1,7 @@
 #include "model_io.hpp"
 
 #include "dqskin/error.hpp"
+#include "precheck.hpp"
 
 #include <sys/stat.h>
 
@@ -13,9 +14,14 @@ namespace {
 
 struct FsLimits {
   uint64_t max_file_bytes;
+  std::string base_dir;
 };
 
-bool file_exists(const std::string& path, void*) {
+// tinygltf looks for external files in the asset's folder and then in the current directory; a glTF
+// file's relative URIs mean its own folder only.
+bool file_exists(const std::string& path, void* user) {
+  const std::string& base = static_cast<FsLimits*>(user)->base_dir;
+  if (path.compare(0, base.size() + 1, base + "/") != 0) return false;
   struct stat st {};
   return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
@@ -70,21 +76,27 @@ std::vector<uint8_t> read_regular_file(const std::string& path, uint64_t max_byt
 }
 
 tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& base_dir, uint64_t max_file_bytes) {
-  FsLimits limits{max_file_bytes};
+  const bool glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  if (bytes.size() > UINT32_MAX) throw InputError("larger than 4 GiB, the most glTF allows");
+  precheck_json(json_chunk(bytes, glb), max_file_bytes);
+
+  FsLimits limits{max_file_bytes, base_dir};
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &limits});
   loader.SetImageLoader(&keep_encoded_image, nullptr);
 
   tinygltf::Model model;
   std::string err, warn;
-  const bool glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  if (bytes.size() > UINT32_MAX) throw InputError("larger than 4 GiB, the most glTF allows");
   bool ok;
-  if (glb) {
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
-  } else {
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                    unsigned(bytes.size()), base_dir);
+  try {  // tinygltf reports most problems in `err`, but some as standard exceptions
+    if (glb) {
+      ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
+    } else {
+      ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                      unsigned(bytes.size()), base_dir);
+    }
+  } catch (const std::exception& e) {
+    throw InputError(std::string("cannot be parsed (") + e.what() + ")");
   }
   if (!ok) throw InputError(err.empty() ? std::string("not a glTF file") : first_line(err));
   return model;

@@ -25,6 +25,10 @@ Pose sample_pose(const Asset& asset, const Clip* clip, double time);
 // One channel's value at `time`: components() floats widened to double (rotation as x, y, z, w).
 std::vector<double> sample_channel(const Channel& channel, double time);
 
+// The clips a command works on: "all" (every clip, in file order), a clip name, or a clip index. Throws
+// InputError naming the clips there are when nothing matches.
+std::vector<size_t> select_clips(const Asset& asset, const std::string& which);
+
 // Which times to sample. Frame i of the default grid is start + i / fps, never an accumulated sum; the
 // grid runs from the clip start (0 s, or the first key with from_first_key) to its last key inclusive.
 struct FrameSpec {

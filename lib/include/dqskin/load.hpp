@@ -10,8 +10,8 @@
 namespace dqskin {
 
 struct LoadOptions {
-  // Largest element count accepted for an accessor that has no buffer behind it (a sparse accessor
-  // without bufferView is "all zeros plus a few values": its count costs memory, not file bytes).
+  // Most values (count × components) accepted for an accessor that has no buffer behind it (a sparse
+  // accessor without bufferView is "all zeros plus a few values": its count costs memory, not file bytes).
   uint64_t max_unbacked_elements = uint64_t(1) << 26;
   // Largest file, and largest external buffer, that is read (bytes).
   uint64_t max_file_bytes = uint64_t(4) << 30;

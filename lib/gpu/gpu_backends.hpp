@@ -1,0 +1,17 @@
+// The backends behind create_gpu_context, one file each (internal). Each returns a current 4.3 core
+// context, or null after appending "backend: what it offered; " to `report`.
+#pragma once
+
+#include "dqskin/gpu_context.hpp"
+
+#include <memory>
+#include <string>
+
+namespace dqskin::gpu {
+
+std::unique_ptr<GpuContext> create_egl_context(std::string& report);
+#ifdef DQSKIN_HAVE_OSMESA
+std::unique_ptr<GpuContext> create_osmesa_context(std::string& report);
+#endif
+
+}  // namespace dqskin::gpu

@@ -1,0 +1,13 @@
+// The shaders of glsl/, embedded into the library at build time by glsl/embed.cmake (internal).
+#pragma once
+
+namespace dqskin::gpu {
+
+struct ShaderSource {
+  const char* file;  // as in the repository, for error messages
+  const char* text;
+};
+
+extern const ShaderSource kSkinComp;  // glsl/skin.comp
+
+}  // namespace dqskin::gpu

@@ -1,0 +1,51 @@
+// Headless OpenGL contexts (shared/DESIGN.md: "The GPU context (EGL or OSMesa) is a resource that deform
+// and render borrow; nothing above them knows which backend runs"). No EGL, OSMesa or GL type appears here.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace dqskin {
+
+enum class GpuBackend { kAuto, kEgl, kOsMesa };
+const char* to_string(GpuBackend backend);
+bool parse_gpu_backend(const std::string& text, GpuBackend& backend);
+
+// What was created, for --verbose and bake manifests.
+struct GpuContextInfo {
+  std::string backend;   // "egl-device", "egl-surfaceless" or "osmesa"
+  std::string version;   // GL_VERSION
+  std::string renderer;  // GL_RENDERER
+};
+
+// An OpenGL 4.3 core context, current on the creating thread, needing no display. Not copyable; the
+// context is destroyed with the object.
+class GpuContext {
+public:
+  virtual ~GpuContext() = default;
+  GpuContext(const GpuContext&) = delete;
+  GpuContext& operator=(const GpuContext&) = delete;
+
+  virtual void make_current() = 0;
+  // The backend's own get-proc-address (eglGetProcAddress, OSMesaGetProcAddress).
+  virtual void* proc_address(const char* name) const = 0;
+  const GpuContextInfo& info() const { return info_; }
+
+protected:
+  GpuContext() = default;
+  GpuContextInfo info_;
+};
+
+// Thrown when no backend offers an OpenGL 4.3 core context; the message says which backends were tried
+// and what each offered (exit status 3 in the CLI).
+class NoGpuContext : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+// kAuto tries EGL (the device platform, hardware devices first, then Mesa's surfaceless platform), then
+// OSMesa when it was built in.
+std::unique_ptr<GpuContext> create_gpu_context(GpuBackend backend);
+
+}  // namespace dqskin

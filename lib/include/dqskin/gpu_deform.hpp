@@ -1,0 +1,72 @@
+// GPU deformation (shared/DESIGN.md "pack" and "deform"): joint dual quaternions of every frame packed
+// into a BoneTexture, and the compute shader glsl/skin.comp deforming every vertex of every frame of a
+// batch in one dispatch. Library users never touch GL.
+#pragma once
+
+#include "dqskin/gpu_context.hpp"
+#include "dqskin/skinning.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace dqskin {
+
+// The BoneTexture of DESIGN.md: RGBA32F, one row per frame, T texels per joint (T = 2: real, dual;
+// T = 5 when any joint of any frame is non-rigid: real, dual, then the three rows of S with w = 0).
+// Texel (T·j + k, f) is component k of joint j at frame f, joints in the skin's order.
+struct BoneTexture {
+  int texels_per_joint = 2;
+  size_t joints = 0;
+  size_t frames = 0;
+  std::vector<float> rgba;  // frames × joints × T × 4, row-major
+
+  size_t width() const { return joints * size_t(texels_per_joint); }
+};
+
+// Packs one skin's JointTransforms, one per frame.
+BoneTexture pack_bone_texture(std::span<const JointTransforms> frames);
+
+// The deformed vertices of several consecutive frames, for every primitive of every instance (in the
+// order of deform_frame). Arrays are frame-major: positions[(f · vertices + v) · 3 + c].
+struct DeformedBatch {
+  size_t first_frame = 0;
+  size_t frame_count = 0;
+  struct Primitive {
+    size_t vertices = 0;
+    std::vector<float> positions;  // 3 per vertex
+    std::vector<float> normals;    // 3 per vertex, or empty
+    std::vector<float> tangents;   // 4 per vertex (w handedness), or empty
+  };
+  std::vector<Primitive> primitives;
+};
+
+struct GpuDeformOptions {
+  BlendMode mode = BlendMode::kDqs;                // lbs or dqs; dib is CPU-only (InputError)
+  size_t memory_budget = size_t(512) << 20;        // bytes of GPU output buffers per batch (--gpu-memory)
+};
+
+// Deforms an asset's mesh instances on the GPU. Uploads the rest data once; each run() samples the clip,
+// packs the bone textures and dispatches batch after batch. Not thread-safe; the context must be current.
+class GpuDeformer {
+public:
+  GpuDeformer(GpuContext& context, const Asset& asset, std::vector<MeshInstance> instances,
+              const GpuDeformOptions& options);
+  ~GpuDeformer();
+  GpuDeformer(const GpuDeformer&) = delete;
+  GpuDeformer& operator=(const GpuDeformer&) = delete;
+
+  // Frames per batch under the memory budget (at least 1).
+  size_t frames_per_batch() const;
+
+  // Calls `sink` once per batch, in frame order. `clip` may be null (rest pose).
+  void run(const Clip* clip, std::span<const double> times, const std::function<void(const DeformedBatch&)>& sink);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dqskin

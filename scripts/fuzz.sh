@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Fuzzes the loader for SECONDS seconds: configures and builds the "fuzz" preset (clang, libFuzzer,
+# ASan + UBSan), makes a seed corpus under build/fuzz/, checks every truncated prefix of the seeds, then
+# runs dqskin_fuzz_load with the glTF dictionary. Exits non-zero on any finding: crash, sanitizer report,
+# uncaught exception, hang (-timeout), leak, or out-of-memory (-rss_limit_mb / -malloc_limit_mb).
+#
+#   scripts/fuzz.sh SECONDS            (from the repository root or anywhere)
+#
+# Environment: FUZZ_JOBS (build parallelism, default 1), FUZZ_MAX_LEN (largest generated input, default
+# 65536), FUZZ_ARTIFACTS (where crashing inputs are written, default build/fuzz/artifacts), FUZZ_ARGS
+# (more libFuzzer flags). The corpus (build/fuzz/corpus) grows across runs; seeds are re-added each run.
+set -euo pipefail
+
+if [ $# -ne 1 ] || ! [[ $1 =~ ^[0-9]+$ ]]; then
+  echo "usage: $0 SECONDS" >&2
+  exit 2
+fi
+seconds=$1
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+build=$root/build/fuzz
+
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz -j "${FUZZ_JOBS:-1}"
+fuzzer=$build/fuzz/dqskin_fuzz_load
+
+# Seed corpus: the valid files of the malformed catalogue and the project's test data, each at most 1 MiB.
+seeds=$build/seeds
+corpus=$build/corpus
+artifacts=${FUZZ_ARTIFACTS:-$build/artifacts}
+mkdir -p "$corpus" "$artifacts"
+rm -rf "$seeds"
+python3 scripts/make_malformed.py "$build/malformed" >/dev/null
+mkdir -p "$seeds"
+cp "$build/malformed/valid.gltf" "$build/malformed/valid.glb" "$seeds/"
+shopt -s nullglob
+for f in testdata/*.gltf testdata/*.glb; do
+  [ "$(stat -c %s "$f")" -le 1048576 ] && cp "$f" "$seeds/"
+done
+shopt -u nullglob
+echo "fuzz: $(ls "$seeds" | wc -l) seeds, $(ls "$corpus" | wc -l) inputs already in the corpus"
+
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:${ASAN_OPTIONS:-}"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:${UBSAN_OPTIONS:-}"
+
+# The loader also looks for external buffers in the current directory (tinygltf searches "."): run in
+# an empty one so that the results do not depend on where the script was started.
+workdir=$(mktemp -d)
+trap 'rm -rf "$workdir"' EXIT
+cd "$workdir"
+
+# Truncated-input idiom: the prefixes of every seed (all of them up to 8 KiB), each in an allocation of
+# exactly its size.
+prefix_list=$(printf '%s:' "$seeds"/*)
+DQSKIN_FUZZ_PREFIXES=${prefix_list%:} "$fuzzer" 2>&1 | tail -n 20
+
+log=$build/fuzz-$(date +%Y%m%d-%H%M%S).log
+status=0
+# -rss_limit_mb also sets -malloc_limit_mb: one allocation of more than 2 GiB is an out-of-memory finding.
+# shellcheck disable=SC2086
+"$fuzzer" "$corpus" "$seeds" \
+  -dict="$root/fuzz/glTF.dict" \
+  -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
+  -max_len="${FUZZ_MAX_LEN:-65536}" -print_final_stats=1 \
+  -artifact_prefix="$artifacts/" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
+
+grep -E "^(==[0-9]+==|SUMMARY|artifact_prefix|Test unit written|INFO: seed|Done)" "$log" | tail -n 20 || true
+executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+echo "fuzz: ${executions:-unknown} executions in ${seconds} s; log: $log"
+if [ "$status" -ne 0 ]; then
+  echo "fuzz: FINDING (libFuzzer exit status $status); reproduce with: $fuzzer <the input written above>" >&2
+  exit "$status"
+fi
+echo "fuzz: no finding"

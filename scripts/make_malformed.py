@@ -1,0 +1,623 @@
+#!/usr/bin/env python3
+"""Writes the catalogue of malformed glTF inputs that `dqskin info` must reject.
+
+Usage: make_malformed.py OUTDIR
+
+Starts from one small, valid, skinned and animated asset (4 vertices, 2 triangles, NORMAL,
+JOINTS_0/WEIGHTS_0, a 2-joint skin with inverseBindMatrices, one clip animating a joint's translation and
+rotation) written three ways: valid.gltf (base64 data-URI buffer), valid.glb, valid_external.gltf + .bin.
+Every other file breaks exactly one thing. OUTDIR/cases.txt has one line per broken file:
+
+    <file name> TAB <regex>
+
+where the regex (CMake syntax: no \\d, no {n}, no ';') must match the start of the one-line message that
+`dqskin info` prints after "dqskin: <path>: ". OUTDIR/valid.txt lists the files that must load: the
+three above and valid_deep_hierarchy.gltf (a 200000-node chain that must load within the test timeout).
+The tests run with OUTDIR/cwd as the current directory (one case checks that a buffer there is ignored).
+The last group of cases are inputs the loader mishandles today: their expectations are the correct
+behaviour. Only the Python standard library is used; the output is the same on every run.
+"""
+
+import base64
+import copy
+import json
+import math
+import os
+import shutil
+import struct
+import sys
+
+# glTF constants (glTF 2.0 §5.1.3, §5.24.4).
+BYTE, UBYTE, SHORT, USHORT, UINT, FLOAT = 5120, 5121, 5122, 5123, 5125, 5126
+ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
+GLB_MAGIC, GLB_JSON, GLB_BIN = 0x46546C67, 0x4E4F534A, 0x004E4942
+
+
+class Asset:
+    """A glTF document (dict) and its one binary buffer (bytearray), edited together."""
+
+    def __init__(self, gltf, binary):
+        self.gltf = gltf
+        self.bin = binary
+
+    def copy(self):
+        return Asset(copy.deepcopy(self.gltf), bytearray(self.bin))
+
+    def add_view(self, data, target=None, stride=None):
+        """Appends data (4-byte aligned) to the buffer as a new bufferView; returns its index."""
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        view = {"buffer": 0, "byteOffset": len(self.bin), "byteLength": len(data)}
+        if target is not None:
+            view["target"] = target
+        if stride is not None:
+            view["byteStride"] = stride
+        self.bin += data
+        self.gltf["bufferViews"].append(view)
+        self.gltf["buffers"][0]["byteLength"] = len(self.bin)
+        return len(self.gltf["bufferViews"]) - 1
+
+    def add_accessor(self, accessor):
+        self.gltf["accessors"].append(accessor)
+        return len(self.gltf["accessors"]) - 1
+
+    def accessor_offset(self, index):
+        """Byte offset in the buffer of accessor `index`'s element 0."""
+        a = self.gltf["accessors"][index]
+        return self.gltf["bufferViews"][a["bufferView"]]["byteOffset"] + a.get("byteOffset", 0)
+
+
+def floats(values):
+    return struct.pack("<%df" % len(values), *values)
+
+
+def base_asset():
+    """The valid asset: a quad skinned to two joints, one clip on the second joint."""
+    positions = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+    normals = [(0, 0, 1)] * 4
+    joints = [(0, 1, 0, 0), (0, 1, 0, 0), (1, 0, 0, 0), (1, 0, 0, 0)]
+    weights = [(0.75, 0.25, 0, 0), (0.5, 0.5, 0, 0), (1, 0, 0, 0), (0.25, 0.75, 0, 0)]
+    indices = [0, 1, 2, 2, 1, 3]
+    # Column-major inverse bind matrices: identity, and translation by (0, -1, 0) (joint 1 rests at y = 1).
+    ibm = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+           1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1]
+    times = [0.0, 0.5, 1.0]
+    translations = [(0, 1, 0), (0.5, 1, 0), (0, 1, 0)]
+    s = math.sqrt(0.5)
+    rotations = [(0, 0, 0, 1), (0, 0, s, s), (0, 0, 0, 1)]
+
+    a = Asset({
+        "asset": {"version": "2.0", "generator": "dqskin scripts/make_malformed.py"},
+        "scene": 0,
+        "scenes": [{"name": "scene", "nodes": [0, 1]}],
+        "nodes": [
+            {"name": "skinned quad", "mesh": 0, "skin": 0},
+            {"name": "root joint", "children": [2]},
+            {"name": "tip joint", "translation": [0, 1, 0]},
+        ],
+        "meshes": [{"name": "quad", "primitives": [{
+            "attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3},
+            "indices": 4}]}],
+        "skins": [{"name": "two joints", "joints": [1, 2], "inverseBindMatrices": 5, "skeleton": 1}],
+        "animations": [{"name": "wave",
+                        "samplers": [{"input": 6, "output": 7, "interpolation": "LINEAR"},
+                                     {"input": 6, "output": 8, "interpolation": "LINEAR"}],
+                        "channels": [{"sampler": 0, "target": {"node": 2, "path": "translation"}},
+                                     {"sampler": 1, "target": {"node": 2, "path": "rotation"}}]}],
+        "buffers": [{"byteLength": 0}],
+        "bufferViews": [],
+        "accessors": [],
+    }, bytearray())
+
+    def attribute(data, type_, ctype, count, **extra):
+        view = a.add_view(data, ARRAY_BUFFER)
+        return a.add_accessor(dict({"bufferView": view, "componentType": ctype, "count": count, "type": type_},
+                                   **extra))
+
+    flat = lambda rows: [x for row in rows for x in row]
+    attribute(floats(flat(positions)), "VEC3", FLOAT, 4, min=[0, 0, 0], max=[1, 1, 0])
+    attribute(floats(flat(normals)), "VEC3", FLOAT, 4)
+    attribute(bytes(flat(joints)), "VEC4", UBYTE, 4)
+    attribute(floats(flat(weights)), "VEC4", FLOAT, 4)
+    view = a.add_view(struct.pack("<6H", *indices), ELEMENT_ARRAY_BUFFER)
+    a.add_accessor({"bufferView": view, "componentType": USHORT, "count": 6, "type": "SCALAR"})
+    for data, type_, count, extra in [(floats(ibm), "MAT4", 2, {}),
+                                      (floats(times), "SCALAR", 3, {"min": [0.0], "max": [1.0]}),
+                                      (floats(flat(translations)), "VEC3", 3, {}),
+                                      (floats(flat(rotations)), "VEC4", 3, {})]:
+        view = a.add_view(data)
+        a.add_accessor(dict({"bufferView": view, "componentType": FLOAT, "count": count, "type": type_}, **extra))
+    return a
+
+
+# Accessor indices of the base asset.
+POSITION, NORMAL, JOINTS, WEIGHTS, INDICES, IBM, TIMES, TRANSLATIONS, ROTATIONS = range(9)
+
+
+def to_json(gltf):
+    return json.dumps(gltf, separators=(",", ":"), allow_nan=False).encode()
+
+
+def gltf_bytes(a):
+    """.gltf with the buffer as a base64 data URI."""
+    g = copy.deepcopy(a.gltf)
+    g["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(bytes(a.bin)).decode()
+    g["buffers"][0]["byteLength"] = len(a.bin)
+    return to_json(g)
+
+
+def glb_bytes(a, json_bytes=None):
+    """.glb: 12-byte header, JSON chunk (space padded), BIN chunk (zero padded)."""
+    g = copy.deepcopy(a.gltf)
+    g["buffers"][0].pop("uri", None)
+    g["buffers"][0]["byteLength"] = len(a.bin)
+    j = json_bytes if json_bytes is not None else to_json(g)
+    j += b" " * (-len(j) % 4)
+    b = bytes(a.bin) + b"\0" * (-len(a.bin) % 4)
+    body = struct.pack("<II", len(j), GLB_JSON) + j + struct.pack("<II", len(b), GLB_BIN) + b
+    return struct.pack("<III", GLB_MAGIC, 2, 12 + len(body)) + body
+
+
+class Catalogue:
+    def __init__(self, outdir):
+        self.outdir = outdir
+        self.cases = []  # (file name, regex)
+        self.valid = []
+
+    def write(self, name, data):
+        with open(os.path.join(self.outdir, name), "wb") as f:
+            f.write(data)
+
+    def case(self, name, data, regex):
+        assert "\t" not in regex and ";" not in regex and "\n" not in regex, name
+        stem = os.path.splitext(name)[0]
+        assert stem not in [os.path.splitext(c[0])[0] for c in self.cases], name
+        self.write(name, data)
+        self.cases.append((name, regex))
+
+    def gltf(self, name, a, regex):
+        self.case(name + ".gltf", gltf_bytes(a), regex)
+
+    def external(self, name, a, regex, bin_data=None, uri=None):
+        """A .gltf whose buffer is the file `uri` (default name.bin, written with bin_data or the buffer)."""
+        g = copy.deepcopy(a.gltf)
+        g["buffers"][0]["uri"] = uri if uri is not None else name + ".bin"
+        g["buffers"][0]["byteLength"] = len(a.bin)
+        if uri is None:
+            self.write(name + ".bin", bytes(a.bin) if bin_data is None else bin_data)
+        self.case(name + ".gltf", to_json(g), regex)
+
+    def finish(self):
+        with open(os.path.join(self.outdir, "cases.txt"), "w") as f:
+            for name, regex in self.cases:
+                f.write("%s\t%s\n" % (name, regex))
+        with open(os.path.join(self.outdir, "valid.txt"), "w") as f:
+            for name in self.valid:
+                f.write(name + "\n")
+
+
+def edit(base, change):
+    """A copy of base with change(asset) applied."""
+    a = base.copy()
+    change(a)
+    return a
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: make_malformed.py OUTDIR")
+    outdir = sys.argv[1]
+    if os.path.isdir(outdir) and os.listdir(outdir):
+        # Only ever delete a folder that an earlier run wrote.
+        if not os.path.isfile(os.path.join(outdir, "cases.txt")):
+            sys.exit("make_malformed: %s is not empty and holds no cases.txt; not touching it" % outdir)
+        shutil.rmtree(outdir)
+    os.makedirs(outdir, exist_ok=True)
+    cat = Catalogue(outdir)
+    base = base_asset()
+
+    # ---- The valid files ------------------------------------------------------------------------
+    cat.write("valid.gltf", gltf_bytes(base))
+    cat.write("valid.glb", glb_bytes(base))
+    g = copy.deepcopy(base.gltf)
+    g["buffers"][0]["uri"] = "valid_external.bin"
+    g["buffers"][0]["byteLength"] = len(base.bin)
+    cat.write("valid_external.gltf", to_json(g))
+    cat.write("valid_external.bin", bytes(base.bin))
+    cat.valid += ["valid.gltf", "valid.glb", "valid_external.gltf"]
+
+    # ---- Files that are not glTF at all ---------------------------------------------------------
+    cat.case("empty.gltf", b"", r"the file is empty$")
+    cat.case("not_json.gltf", b"This is a text file, not JSON.\n", r".*(parse error|JSON)")
+    cat.case("json_not_gltf.gltf", b'{"hello": "world"}', r".*asset")
+    # tinygltf's message says the asset object is missing; it is there, without "version".
+    cat.case("asset_without_version.gltf", b'{"asset": {"generator": "nobody"}}', r'.*(version|"asset")')
+    cat.case("json_array.gltf", b"[1, 2, 3]", r".*(JSON|object|asset)")
+    valid_json = gltf_bytes(base)
+    cat.case("truncated_json.gltf", valid_json[: len(valid_json) // 2], r".*(parse error|JSON)")
+    cat.case("truncated_json_one_byte.gltf", valid_json[:-1], r".*(parse error|JSON)")
+
+    # ---- GLB container (glTF 2.0 §4.4) ----------------------------------------------------------
+    glb = glb_bytes(base)
+    json_length = struct.unpack_from("<I", glb, 12)[0]
+    bin_chunk = 20 + json_length  # offset of the BIN chunk header
+    for label, cut in [("in_header", 7), ("after_header", 12), ("in_json_chunk_header", 16),
+                       ("in_json", 20 + json_length // 2), ("before_bin_chunk", bin_chunk),
+                       ("in_bin_chunk_header", bin_chunk + 4), ("in_bin", bin_chunk + 8 + len(base.bin) // 2),
+                       ("last_byte", len(glb) - 1)]:
+        # The header's length field is left as it was: the file is simply cut short.
+        cat.case("glb_truncated_%s.glb" % label, glb[:cut], r".*([Tt]oo short|[Ii]nvalid glTF binary|truncated|length|size)")
+
+    def patched(data, offset, fmt, value):
+        d = bytearray(data)
+        struct.pack_into(fmt, d, offset, value)
+        return bytes(d)
+
+    cat.case("glb_wrong_magic.glb", patched(glb, 0, "<I", 0x46546C68), r".*(parse error|JSON)")
+    cat.case("glb_length_past_end.glb", patched(glb, 8, "<I", len(glb) + 100), r".*(length|size|[Ii]nvalid)")
+    cat.case("glb_length_too_small.glb", patched(glb, 8, "<I", 20), r".*(length|size|[Ii]nvalid)")
+    cat.case("glb_json_chunk_past_end.glb", patched(glb, 12, "<I", len(glb)), r".*(length|size|[Ii]nvalid|chunk)")
+    cat.case("glb_json_chunk_huge.glb", patched(glb, 12, "<I", 0xFFFFFFF0), r".*(length|size|[Ii]nvalid|chunk)")
+    cat.case("glb_json_chunk_wrong_type.glb", patched(glb, 16, "<I", 0x12345678), r".*([Ii]nvalid glTF binary|JSON|chunk|type)")
+    cat.case("glb_bin_chunk_past_end.glb", patched(glb, bin_chunk, "<I", len(base.bin) + 64),
+             r".*(length|size|[Ii]nvalid|chunk|BIN)")
+    cat.case("glb_bin_chunk_smaller_than_buffer.glb", patched(glb, bin_chunk, "<I", 16),
+             r".*(length|size|[Ii]nvalid|chunk|BIN|buffer)")
+    cat.case("glb_json_is_garbage.glb", glb_bytes(base, b"\x01\x02not json at all"), r".*(parse error|JSON)")
+
+    # ---- Buffers ----------------------------------------------------------------------------------
+    cat.external("external_bin_missing", base, r".*(external_bin_missing\.bin|No such file|[Ff]ile)",
+                 uri="external_bin_missing.bin")
+    cat.external("external_bin_short", base, r".*(size|length|short|[Ff]ile)", bin_data=bytes(base.bin[:100]))
+    os.makedirs(os.path.join(outdir, "a_directory.bin"))
+    cat.external("buffer_uri_directory", base, r".*(a_directory\.bin|regular|[Ff]ile)", uri="a_directory.bin")
+    cat.external("buffer_uri_dev_zero", base, r".*(/dev/zero|regular|[Ff]ile)", uri="/dev/zero")
+    cat.external("buffer_uri_dev_zero_relative", base, r".*(dev/zero|regular|[Ff]ile)",
+                 uri="../" * 32 + "dev/zero")
+    g = copy.deepcopy(base.gltf)
+    g["buffers"][0]["uri"] = "data:application/octet-stream;base64,!!!!not*base64!!!!"
+    cat.case("data_uri_not_base64.gltf", to_json(g), r".*(decode|base64|uri|URI)")
+    g = copy.deepcopy(base.gltf)
+    g["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(bytes(base.bin[:64])).decode()
+    g["buffers"][0]["byteLength"] = len(base.bin)
+    cat.case("data_uri_wrong_length.gltf", to_json(g), r".*(decode|base64|uri|URI|length|size)")
+
+    # ---- Buffer views and accessors (§3.6) ---------------------------------------------------------
+    def f(a):
+        a.gltf["accessors"][POSITION]["byteOffset"] = 12
+    cat.gltf("accessor_past_buffer_view", edit(base, f),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\): 4 elements of 12 bytes \(stride 12, offset 12\) "
+             r"do not fit in bufferView 0 \(48 bytes\)")
+
+    def f(a):
+        a.gltf["bufferViews"][8]["byteLength"] = 4096
+    cat.gltf("buffer_view_past_buffer", edit(base, f),
+             r".*bufferView 8 \(offset [0-9]+, length 4096\) runs past the end of buffer 0")
+
+    def f(a):
+        a.gltf["bufferViews"][0]["byteStride"] = 8
+    cat.gltf("byte_stride_smaller_than_element", edit(base, f),
+             r".*byteStride 8, but elements are 12 bytes")
+
+    def f(a):
+        a.gltf["accessors"][POSITION]["count"] = 0
+    cat.gltf("accessor_count_zero", edit(base, f), r"mesh 0 primitive 0 POSITION \(accessor 0\): has count 0")
+
+    def f(a):
+        a.gltf["accessors"][POSITION] = {"componentType": FLOAT, "count": 4000000000, "type": "VEC3"}
+    cat.gltf("accessor_count_4e9_unbacked", edit(base, f),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\): has count 4000000000 without a bufferView, "
+             r"more than dqskin accepts")
+
+    def f(a):
+        a.gltf["accessors"][POSITION]["bufferView"] = 42
+    cat.gltf("accessor_buffer_view_missing", edit(base, f), r".*bufferView 42 does not exist")
+
+    def f(a):
+        a.gltf["bufferViews"][0]["buffer"] = 3
+    cat.gltf("buffer_view_buffer_missing", edit(base, f), r".*(buffer 3|buffer).*does not exist")
+
+    def f(a):
+        a.gltf["accessors"][POSITION]["componentType"] = 5130  # GL_DOUBLE: not in glTF
+    cat.gltf("accessor_component_type_double", edit(base, f), r".*(componentType|component type).*(5130|not allowed|invalid|unknown)")
+
+    def sparse(indices_fmt, indices, values, count=None):
+        def f(a):
+            iv = a.add_view(struct.pack("<%d%s" % (len(indices), indices_fmt), *indices))
+            vv = a.add_view(floats([x for v in values for x in v]))
+            a.gltf["accessors"][POSITION]["sparse"] = {
+                "count": len(indices) if count is None else count,
+                "indices": {"bufferView": iv, "componentType": {"B": UBYTE, "H": USHORT, "I": UINT}[indices_fmt]},
+                "values": {"bufferView": vv}}
+        return f
+    cat.gltf("sparse_index_out_of_range", edit(base, sparse("H", [1, 9], [(2, 0, 0), (3, 0, 0)])),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\): has sparse index 9, but count is 4")
+    cat.gltf("sparse_indices_not_increasing", edit(base, sparse("H", [2, 1], [(2, 0, 0), (3, 0, 0)])),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\): has sparse indices that do not strictly increase")
+    cat.gltf("sparse_indices_repeated", edit(base, sparse("B", [1, 1], [(2, 0, 0), (3, 0, 0)])),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\): has sparse indices that do not strictly increase")
+    cat.gltf("sparse_count_above_count", edit(base, sparse("H", [0, 1, 2, 3, 4], [(0, 0, 0)] * 5)),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\): has sparse count 5, which must be 1..4")
+    cat.gltf("sparse_values_past_view", edit(base, sparse("H", [0, 1, 2], [(0, 0, 0)] * 2)),
+             r"mesh 0 primitive 0 POSITION \(accessor 0\) sparse values: 3 elements of 12 bytes .*do not fit")
+
+    # ---- Mesh data (§3.7.2) ------------------------------------------------------------------------
+    def f(a):
+        struct.pack_into("<H", a.bin, a.accessor_offset(INDICES) + 2 * 4, 4)
+    cat.gltf("index_out_of_range", edit(base, f),
+             r"mesh 0 primitive 0: index 4 is 4, but there are 4 vertices")
+
+    def f(a):
+        a.bin[a.accessor_offset(JOINTS) + 4 * 2 + 1] = 7
+    cat.gltf("joint_out_of_range", edit(base, f),
+             r"mesh 0 primitive 0: vertex 2 uses joint 7, but skin 0 has 2 joints")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(WEIGHTS) + 16 * 1 + 4, -0.5)
+    cat.gltf("negative_weight", edit(base, f), r"mesh 0 primitive 0: WEIGHTS_0 of vertex 1 is negative")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(POSITION) + 12 * 2 + 4, float("nan"))
+    cat.gltf("position_nan", edit(base, f), r"mesh 0 primitive 0 POSITION \(accessor 0\): element 2 is NaN")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(POSITION) + 12 * 3, float("inf"))
+    cat.gltf("position_infinity", edit(base, f), r"mesh 0 primitive 0 POSITION \(accessor 0\): element 3 is infinite")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(NORMAL) + 8, float("-inf"))
+    cat.gltf("normal_minus_infinity", edit(base, f), r"mesh 0 primitive 0 NORMAL \(accessor 1\): element 0 is infinite")
+
+    def f(a):
+        del a.gltf["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
+    cat.gltf("primitive_without_position", edit(base, f), r"mesh 0 primitive 0: has no POSITION")
+
+    def f(a):
+        a.gltf["accessors"][NORMAL]["count"] = 3
+    cat.gltf("attribute_counts_differ", edit(base, f), r"mesh 0 primitive 0: NORMAL has 3 elements, POSITION has 4")
+
+    def f(a):
+        del a.gltf["meshes"][0]["primitives"][0]["attributes"]["JOINTS_0"]
+    cat.gltf("weights_without_joints", edit(base, f), r"mesh 0 primitive 0: has WEIGHTS_0 without JOINTS_0")
+
+    def f(a):
+        a.gltf["accessors"][JOINTS]["componentType"] = FLOAT
+    cat.gltf("joints_are_floats", edit(base, f),
+             r"mesh 0 primitive 0 JOINTS_0 \(accessor 2\): has float components where integers are required")
+
+    def f(a):
+        a.gltf["meshes"][0]["primitives"][0]["mode"] = 9
+    cat.gltf("primitive_mode_invalid", edit(base, f), r".*mode 9")
+
+    def f(a):
+        a.gltf["meshes"][0]["primitives"] = []
+    cat.gltf("mesh_without_primitives", edit(base, f), r".*(mesh 0.*primitives|primitives)")
+
+    def f(a):
+        a.gltf["nodes"][0]["mesh"] = 5
+    cat.gltf("node_mesh_out_of_range", edit(base, f), r"node 0: mesh 5 does not exist")
+
+    def with_morph_targets(a):
+        offsets = a.add_view(floats([0, 0, 0.1] * 4))
+        return a.add_accessor({"bufferView": offsets, "componentType": FLOAT, "count": 4, "type": "VEC3"})
+
+    def f(a):
+        target = with_morph_targets(a)
+        p0 = a.gltf["meshes"][0]["primitives"][0]
+        p1 = copy.deepcopy(p0)
+        p0["targets"] = [{"POSITION": target}]
+        a.gltf["meshes"][0]["primitives"].append(p1)
+    cat.gltf("morph_target_count_differs", edit(base, f),
+             r"mesh 0: its primitives have different numbers of morph targets")
+
+    def f(a):
+        target = with_morph_targets(a)
+        a.gltf["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": target}]
+        a.gltf["meshes"][0]["weights"] = [0.5, 0.5]
+    cat.gltf("mesh_weights_count_differs", edit(base, f), r"mesh 0: has 2 weights for 1 morph targets")
+
+    def f(a):
+        a.gltf["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+        a.gltf["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    cat.gltf("required_extension_draco", edit(base, f),
+             r"requires extension KHR_draco_mesh_compression, which dqskin does not support")
+
+    # ---- Nodes and scenes (§3.5) ---------------------------------------------------------------------
+    # JSON has no infinity; 1e400 overflows a double. Written into the text after serialisation.
+    text = gltf_bytes(base).replace(b'"translation":[0,1,0]', b'"translation":[1e400,1,0]')
+    assert b"1e400" in text
+    cat.case("node_translation_1e400.gltf", text, r".*(number overflow parsing '1e400'|node 2: translation is not finite)")
+
+    def f(a):
+        a.gltf["nodes"][2]["children"] = [1]
+        a.gltf["scenes"][0]["nodes"] = [0]
+    cat.gltf("node_hierarchy_cycle", edit(base, f), r"node [12]: is its own ancestor \(the hierarchy has a cycle\)")
+
+    def f(a):
+        a.gltf["nodes"].append({"name": "own child", "children": [3]})  # in no scene: its only parent is itself
+    cat.gltf("node_is_its_own_child", edit(base, f), r"node 3: is its own ancestor")
+
+    def f(a):
+        a.gltf["nodes"].append({"name": "second parent", "children": [2]})
+        a.gltf["scenes"][0]["nodes"].append(3)
+    cat.gltf("node_with_two_parents", edit(base, f), r"node 2: has two parents \(nodes 1 and 3\)")
+
+    def f(a):
+        a.gltf["scenes"][0]["nodes"].append(17)
+    cat.gltf("scene_node_missing", edit(base, f), r"scene 0: node 17 does not exist")
+
+    def f(a):
+        a.gltf["scene"] = 4
+    cat.gltf("default_scene_missing", edit(base, f), r"scene 4 \(the default scene\) does not exist")
+
+    def f(a):
+        a.gltf["nodes"][1]["children"] = [2, 9]
+    cat.gltf("node_child_missing", edit(base, f), r"node 1: child 9 does not exist")
+
+    def f(a):
+        a.gltf["nodes"][1]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0.5, 1]
+        a.gltf["nodes"][1]["matrix"][3] = 0.25  # column 0, row 3: the last row is (0.25, 0, 0, 1)
+    cat.gltf("node_matrix_not_affine", edit(base, f),
+             r"node 1: matrix is not affine \(its last row must be 0, 0, 0, 1\)")
+
+    def f(a):
+        a.gltf["nodes"][2]["rotation"] = [0, 0, 0, 0]
+    cat.gltf("node_rotation_zero", edit(base, f), r"node 2: rotation is a zero quaternion")
+
+    # ---- Skins (§3.7.3) --------------------------------------------------------------------------------
+    def f(a):
+        a.gltf["skins"][0]["joints"] = []
+        del a.gltf["skins"][0]["inverseBindMatrices"]
+    cat.gltf("skin_without_joints", edit(base, f), r".*(skin 0: has no joints|joints)")
+
+    def f(a):
+        a.gltf["skins"][0]["joints"] = [1, 12]
+    cat.gltf("skin_joint_node_missing", edit(base, f), r"skin 0: joint node 12 does not exist")
+
+    def f(a):
+        a.gltf["skins"][0]["joints"] = [1, 1]
+    cat.gltf("skin_joint_listed_twice", edit(base, f), r"skin 0: lists node 1 twice")
+
+    def f(a):
+        a.gltf["accessors"][IBM]["count"] = 1
+    cat.gltf("inverse_bind_matrices_too_few", edit(base, f), r"skin 0: has 1 inverse bind matrices for 2 joints")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(IBM) + 64 + 5 * 4, float("nan"))
+    cat.gltf("inverse_bind_matrix_nan", edit(base, f),
+             r"skin 0 inverseBindMatrices \(accessor 5\): element 1 is NaN")
+
+    # ---- Animations (§3.11) -------------------------------------------------------------------------------
+    def f(a):
+        a.gltf["accessors"][TRANSLATIONS]["count"] = 2
+    cat.gltf("sampler_count_mismatch", edit(base, f),
+             r"animation 0 sampler 0: output has 6 values for 3 keys \(expected 9\)")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(TIMES) + 8, 0.25)
+    cat.gltf("key_times_not_increasing", edit(base, f),
+             r"animation 0 sampler 0: key times do not increase \(key 2\)")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(TIMES) + 4, 0.0)
+    cat.gltf("key_times_repeated", edit(base, f), r"animation 0 sampler 0: key times do not increase \(key 1\)")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(TIMES), -1.0)
+        a.gltf["accessors"][TIMES]["min"] = [-1.0]
+    cat.gltf("key_time_negative", edit(base, f), r"animation 0 sampler 0: key time -1(\.0*)? is negative")
+
+    def f(a):
+        struct.pack_into("<f", a.bin, a.accessor_offset(ROTATIONS) + 16 + 8, float("nan"))
+    cat.gltf("animation_output_nan", edit(base, f),
+             r"animation 0 sampler 1 output \(accessor 8\): element 1 is NaN")
+
+    def f(a):
+        a.gltf["animations"][0]["samplers"][0]["interpolation"] = "BEZIER"
+    cat.gltf("unknown_interpolation", edit(base, f), r".*(unknown interpolation 'BEZIER'|interpolation)")
+
+    def f(a):
+        a.gltf["animations"][0]["samplers"][1]["interpolation"] = "CUBICSPLINE"
+    cat.gltf("cubicspline_without_tangents", edit(base, f),
+             r"animation 0 sampler 1: output has 12 values for 3 keys \(expected 36\)")
+
+    def f(a):
+        a.gltf["animations"][0]["channels"][0]["target"]["node"] = 30
+    cat.gltf("channel_node_missing", edit(base, f), r"animation 0 channel 0: target node 30 does not exist")
+
+    def f(a):
+        a.gltf["animations"][0]["channels"][1]["sampler"] = 5
+    cat.gltf("channel_sampler_missing", edit(base, f), r".*(sampler 5 does not exist|sampler)")
+
+    def f(a):
+        a.gltf["animations"][0]["channels"][0]["target"]["path"] = "color"
+    cat.gltf("channel_unknown_path", edit(base, f), r".*(unknown target path 'color'|path)")
+
+    def f(a):
+        del a.gltf["nodes"][2]["translation"]
+        a.gltf["nodes"][2]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1]
+    cat.gltf("channel_animates_matrix_node", edit(base, f),
+             r"animation 0 channel 0: animates node 2, which has a matrix")
+
+    def f(a):
+        a.gltf["animations"][0]["channels"].append(copy.deepcopy(a.gltf["animations"][0]["channels"][0]))
+    cat.gltf("two_channels_same_target", edit(base, f),
+             r"animation 0 channel 2: a second channel for the same node and path")
+
+    def f(a):
+        a.gltf["animations"][0]["channels"][0]["target"]["path"] = "weights"
+    cat.gltf("weights_channel_without_targets", edit(base, f),
+             r"animation 0 channel 0: animates weights of a node without morph targets")
+
+    # ---- Cases the loader gets wrong today (see the report in the commit that added them): each test
+    # states the correct behaviour and fails until the loader is fixed.
+    # GLB header version 1 (glTF 2.0 §4.4.3.1: this specification defines container version 2).
+    cat.case("glb_version_1.glb", patched(glb, 4, "<I", 1), r".*version")
+    # asset.version / asset.minVersion name a major version dqskin does not read (glTF 2.0 §3.2).
+    a = base.copy()
+    a.gltf["asset"]["version"] = "1.0"
+    cat.gltf("asset_version_1_0", a, r".*version")
+    a = base.copy()
+    a.gltf["asset"]["minVersion"] = "2.1"
+    cat.gltf("asset_min_version_2_1", a, r".*(minVersion|version)")
+    # A BIN chunk whose length claims 8 bytes more than the file holds, with the buffer's byteLength
+    # claiming them too: tinygltf checks chunk length + 20 + JSON length, forgetting the chunk's own
+    # 8-byte header, so it copies 8 bytes from past the end of the file into the buffer.
+    g = copy.deepcopy(base.gltf)
+    g["buffers"][0]["byteLength"] = len(base.bin) + 8
+    d = bytearray(glb_bytes(Asset(g, base.bin), to_json(g)))
+    struct.pack_into("<I", d, 20 + struct.unpack_from("<I", d, 12)[0], len(base.bin) + 8)
+    cat.case("glb_bin_chunk_8_bytes_past_end.glb", bytes(d), r".*(BIN|[Cc]hunk|length|size|past the end)")
+    # A GLB buffer with byteLength 0 (glTF 2.0: byteLength ≥ 1) and no uri: tinygltf calls
+    # data.at(0) on the empty vector, and std::out_of_range escapes the loader (abort, exit status 134).
+    g = copy.deepcopy(base.gltf)
+    g["buffers"].append({"byteLength": 0})
+    cat.case("glb_buffer_byte_length_0.glb", glb_bytes(Asset(g, base.bin), to_json(g)),
+             r".*(byteLength|buffer 1|[Bb]uffer)")
+    # The buffer is missing beside the .gltf but exists in the current directory (the test runs in
+    # OUTDIR/cwd): tinygltf also searches ".", so the loader reads a file the asset does not refer to
+    # (load.hpp: external buffers are looked up in base_dir).
+    os.makedirs(os.path.join(outdir, "cwd"))
+    with open(os.path.join(outdir, "cwd", "only_in_cwd.bin"), "wb") as f_:
+        f_.write(bytes(base.bin))
+    cat.external("external_bin_only_in_current_directory", base, r".*(only_in_cwd\.bin|not found|[Ff]ile)",
+                 uri="only_in_cwd.bin")
+    # 2^26 inverse bind matrices (max_unbacked_elements) without a bufferView: a 3 kB file that makes
+    # the loader allocate 8 GiB of doubles and 4 GiB of floats (12.6 GB resident, 35 s). The limit counts
+    # elements, not components or bytes; a MAT4 element is 16 components.
+    def f(a):
+        a.gltf["accessors"][IBM] = {"componentType": FLOAT, "count": 1 << 26, "type": "MAT4"}
+    cat.gltf("accessor_unbacked_2e26_mat4", edit(base, f), r"skin 0 inverseBindMatrices \(accessor 5\): .*67108864")
+
+    # An image stored in a bufferView that runs past the end of its buffer (no accessor uses the view, so
+    # the accessor checks never see it): tinygltf hands &buffer.data[byteOffset] and byteLength to the
+    # image callback unchecked, and model_io.cpp's keep_encoded_image copies byteLength bytes: a heap
+    # read past the end of the buffer (silent in a Release build, which then loads the file).
+    def image_view(length):
+        def f(a):
+            a.gltf["bufferViews"].append({"buffer": 0, "byteOffset": 0, "byteLength": length})
+            a.gltf["images"] = [{"bufferView": len(a.gltf["bufferViews"]) - 1, "mimeType": "image/png"}]
+        return f
+    cat.gltf("image_buffer_view_past_buffer", edit(base, image_view(4096)), r".*(image|bufferView 9)")
+    # The same with byteLength 3e9: the callback's int size is negative, and std::length_error escapes
+    # the loader (abort, exit status 134).
+    cat.gltf("image_buffer_view_3e9_bytes", edit(base, image_view(3000000000)), r".*(image|bufferView 9)")
+
+    # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
+    # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.
+    a = base.copy()
+    nodes = a.gltf["nodes"]
+    start = len(nodes)
+    nodes[1]["children"] = [2, start]
+    chain = 200000
+    for i in range(chain):
+        nodes.append({"children": [start + i + 1]} if i + 1 < chain else {"name": "deepest"})
+    cat.write("valid_deep_hierarchy.gltf", gltf_bytes(a))
+    cat.valid.append("valid_deep_hierarchy.gltf")
+
+    cat.finish()
+    print("make_malformed: %d cases, %d valid files in %s" % (len(cat.cases), len(cat.valid), outdir))
+
+
+if __name__ == "__main__":
+    main()
