@@ -1,6 +1,7 @@
 // The dqskin commands: each one a settings struct that CLI11 fills and a function that runs it.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,5 +14,15 @@ struct InfoSettings {
 
 // Prints facts about each input. Returns an ExitCode.
 int run_info(const InfoSettings& settings);
+
+struct BenchSettings {
+  bool json = false;
+  bool quick = false;
+  std::string backend = "auto";
+  size_t gpu_memory_mb = 512;
+};
+
+// Measures vertex-frames per second of every deformation path. Returns an ExitCode.
+int run_bench(const BenchSettings& settings);
 
 }  // namespace dqskin::cli

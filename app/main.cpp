@@ -26,6 +26,18 @@ int main(int argc, char** argv) {
   info_cmd->add_option("FILE", info.inputs, ".gltf or .glb files")->required();
   info_cmd->add_flag("--json", info.json, "Print one JSON document instead of text");
 
+  BenchSettings bench;
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench", "Measure vertex-frames per second of lbs, dqs and dqs with scale on the GPU path and the CPU "
+               "reference, for synthetic characters of 10k, 100k and 1M vertices");
+  bench_cmd->add_flag("--json", bench.json, "Print one JSON document: one entry per measurement");
+  bench_cmd->add_flag("--quick", bench.quick, "A run under a minute: 10k and 100k vertices, 1 and 64 frames per batch");
+  bench_cmd->add_option("--backend", bench.backend, "Headless OpenGL backend: auto (EGL, then OSMesa), egl or osmesa")
+      ->capture_default_str();
+  bench_cmd->add_option("--gpu-memory", bench.gpu_memory_mb, "GPU output buffer budget per batch, in MiB")
+      ->capture_default_str()
+      ->check(CLI::Range(size_t(1), size_t(1) << 20));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -40,6 +52,7 @@ int main(int argc, char** argv) {
   }
 
   if (info_cmd->parsed()) return run_info(info);
+  if (bench_cmd->parsed()) return run_bench(bench);
 
   // No command given: show what there is to run.
   std::cout << app.help();

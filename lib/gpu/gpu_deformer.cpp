@@ -307,9 +307,14 @@ struct GpuDeformer::Impl {
       DeformedBatch out;
       out.first_frame = first;
       out.frame_count = count;
+      if (!options.read_back) gl.Finish();
       for (const Prim& p : prims) {
         DeformedBatch::Primitive r;
         r.vertices = p.vertices;
+        if (!options.read_back) {
+          out.primitives.push_back(std::move(r));
+          continue;
+        }
         auto read = [&](GLuint b, std::vector<float>& dst, size_t per_vertex) {
           dst.resize(p.vertices * per_vertex * count);
           gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);

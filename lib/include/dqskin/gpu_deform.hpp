@@ -46,6 +46,8 @@ struct DeformedBatch {
 struct GpuDeformOptions {
   BlendMode mode = BlendMode::kDqs;                // lbs or dqs; dib is CPU-only (InputError)
   size_t memory_budget = size_t(512) << 20;        // bytes of GPU output buffers per batch (--gpu-memory)
+  bool read_back = true;  // false: wait for the GPU (glFinish) but leave the results there; batches
+                          // reach the sink with empty arrays (for benchmarks of the deformation alone)
 };
 
 // Deforms an asset's mesh instances on the GPU. Uploads the rest data once; each run() samples the clip,
