@@ -69,7 +69,7 @@ void exercise(const dqskin::Asset& asset) {
       auto& jt = skins[size_t(instance.skin)];
       if (!jt)
         jt = std::make_unique<dqskin::JointTransforms>(
-            dqskin::joint_transforms(asset, asset.skins[size_t(instance.skin)], pose));
+            dqskin::joint_transforms(asset.skins[size_t(instance.skin)], pose));
       joints = jt.get();
     }
     const dqskin::Mesh& mesh = asset.meshes[size_t(instance.mesh)];

@@ -168,7 +168,7 @@ TEST(LoadSkins, SkinnedMeshNodeTransformIsIgnored) {
   const Pose pose = sample_pose(asset, nullptr, 0);
   const std::vector<MeshInstance> inst = mesh_instances(asset, choose_scene(asset, -1));
   ASSERT_EQ(inst.size(), 1u);
-  const JointTransforms jt = joint_transforms(asset, asset.skins[0], pose);
+  const JointTransforms jt = joint_transforms(asset.skins[0], pose);
   const DeformedPrimitive d = deform_primitive(asset, inst[0], 0, pose, &jt, BlendMode::kLbs);
   EXPECT_EQ(d.positions[0], Vec3<double>(0, 0, 0));
   EXPECT_NEAR(glm::distance(d.positions[2], Vec3<double>(0, 2, 0)), 0, 1e-12);     // all on joint 1: +(0,1,0)

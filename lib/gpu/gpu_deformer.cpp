@@ -237,7 +237,7 @@ struct GpuDeformer::Impl {
       std::vector<JointTransforms> frames(poses.size());
       for (size_t f = 0; f < poses.size(); ++f) {
         if (inst.skin >= 0) {
-          frames[f] = joint_transforms(asset, asset.skins[size_t(inst.skin)], poses[f]);
+          frames[f] = joint_transforms(asset.skins[size_t(inst.skin)], poses[f]);
         } else {  // a rigid instance is a one-joint skin whose joint matrix is the node's world matrix
           const JointSplit<double> split = split_joint_matrix(poses[f].world[size_t(inst.node)]);
           frames[f] = {{poses[f].world[size_t(inst.node)]}, {split.rigid}, {split.scale}, !split.is_rigid};

@@ -103,7 +103,7 @@ TEST_P(GpuMatchesCpu, EveryFrameOfEveryClip) {
       for (size_t f = 0; f < batch.frame_count; ++f) {
         const Pose pose = sample_pose(asset, clip, times[batch.first_frame + f]);
         std::vector<JointTransforms> skins;
-        for (const Skin& skin : asset.skins) skins.push_back(joint_transforms(asset, skin, pose));
+        for (const Skin& skin : asset.skins) skins.push_back(joint_transforms(skin, pose));
         const DeformedFrame cpu = deform_frame(asset, instances, pose, c.mode);
         ASSERT_EQ(cpu.primitives.size(), batch.primitives.size());
         for (size_t p = 0; p < cpu.primitives.size(); ++p) {

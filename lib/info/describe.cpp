@@ -30,10 +30,6 @@ int max_influences(const Primitive& p) {
   return best;
 }
 
-bool any_non_rigid(const Asset& asset, const Skin& skin, const Pose& pose) {
-  return joint_transforms(asset, skin, pose).any_non_rigid;
-}
-
 }  // namespace
 
 AssetFacts describe(const Asset& asset) {
@@ -75,13 +71,13 @@ AssetFacts describe(const Asset& asset) {
     SkinFacts s;
     s.name = skin.name;
     s.joints = skin.joints.size();
-    s.non_rigid_in_bind_pose = any_non_rigid(asset, skin, rest);
+    s.non_rigid_in_bind_pose = joint_transforms(skin, rest).any_non_rigid;
     for (const Clip& clip : asset.clips) {
       if (s.non_rigid_in_animation) break;
       FrameSpec keys;
       keys.keys = true;
       for (double t : frame_times(clip, keys)) {
-        if (any_non_rigid(asset, skin, sample_pose(asset, &clip, t))) {
+        if (joint_transforms(skin, sample_pose(asset, &clip, t)).any_non_rigid) {
           s.non_rigid_in_animation = true;
           break;
         }

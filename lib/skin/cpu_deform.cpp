@@ -154,7 +154,7 @@ DeformedFrame deform_frame(const Asset& asset, const std::vector<MeshInstance>& 
     const JointTransforms* jt = nullptr;
     if (inst.skin >= 0) {
       if (!computed[size_t(inst.skin)]) {
-        skins[size_t(inst.skin)] = joint_transforms(asset, asset.skins[size_t(inst.skin)], pose);
+        skins[size_t(inst.skin)] = joint_transforms(asset.skins[size_t(inst.skin)], pose);
         computed[size_t(inst.skin)] = 1;
       }
       jt = &skins[size_t(inst.skin)];

@@ -159,7 +159,7 @@ int single_joint(const Primitive& p, size_t v) {
 std::vector<std::vector<DeformedPrimitive>> deform_all(const Model& m, const Pose& pose, BlendMode mode) {
   std::vector<std::vector<DeformedPrimitive>> out;
   for (const MeshInstance& inst : m.skinned) {
-    const JointTransforms jt = joint_transforms(m.asset, m.asset.skins[size_t(inst.skin)], pose);
+    const JointTransforms jt = joint_transforms(m.asset.skins[size_t(inst.skin)], pose);
     out.emplace_back();
     for (size_t p = 0; p < m.asset.meshes[size_t(inst.mesh)].primitives.size(); ++p)
       out.back().push_back(deform_primitive(m.asset, inst, p, pose, &jt, mode));
@@ -434,7 +434,7 @@ std::vector<double> channel_value(const Clip& clip, int node, TargetPath path, d
 void expect_scaled_joint_moves_its_vertices_by_its_matrix(const Model& m, const Pose& pose) {
   const Primitive& prim = only_primitive(m);
   const Skin& skin = m.asset.skins[0];
-  ASSERT_TRUE(joint_transforms(m.asset, skin, pose).any_non_rigid) << m.name;
+  ASSERT_TRUE(joint_transforms(skin, pose).any_non_rigid) << m.name;
   size_t on_scaled = 0;
   for (BlendMode mode : kModes) {
     const DeformedPrimitive out = deform_all(m, pose, mode).at(0).at(0);
@@ -669,7 +669,7 @@ bool bit_identical(const DeformedPrimitive& a, const DeformedPrimitive& b) {
 
 void expect_thread_count_does_not_matter(const Asset& asset, const MeshInstance& inst, const Pose& pose,
                                          const std::string& what) {
-  const JointTransforms jt = joint_transforms(asset, asset.skins[size_t(inst.skin)], pose);
+  const JointTransforms jt = joint_transforms(asset.skins[size_t(inst.skin)], pose);
   for (BlendMode mode : kModes) {
     const DeformedPrimitive one = deform_primitive(asset, inst, 0, pose, &jt, mode, 1);
     for (int threads : {2, 3, 8}) {

@@ -4,7 +4,7 @@
 
 namespace dqskin {
 
-JointTransforms joint_transforms(const Asset& asset, const Skin& skin, const Pose& pose) {
+JointTransforms joint_transforms(const Skin& skin, const Pose& pose) {
   JointTransforms out;
   const size_t n = skin.joints.size();
   out.matrices.resize(n);
@@ -19,7 +19,6 @@ JointTransforms joint_transforms(const Asset& asset, const Skin& skin, const Pos
     out.scale[j] = split.scale;
     out.any_non_rigid = out.any_non_rigid || !split.is_rigid;
   }
-  (void)asset;
   return out;
 }
 

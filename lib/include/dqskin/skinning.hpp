@@ -18,7 +18,7 @@ struct JointTransforms {
   bool any_non_rigid = false;           // some joint has scale or shear beyond 1e-5 (DESIGN.md)
 };
 
-JointTransforms joint_transforms(const Asset& asset, const Skin& skin, const Pose& pose);
+JointTransforms joint_transforms(const Skin& skin, const Pose& pose);
 
 // The blend modes of DESIGN.md: lbs (linear blend of matrices), dqs (DLB with the two-phase scale
 // rule), dib (iterative dual-quaternion blending, exact).
