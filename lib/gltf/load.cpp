@@ -246,6 +246,31 @@ void read_animations(const tinygltf::Model& m, const AccessorReader& reader, Ass
   }
 }
 
+// Things that are valid, or that dqskin corrects, but that a user may want to know (the Khronos
+// validator reports the same situations).
+void add_warnings(const tinygltf::Model& m, Asset& asset) {
+  for (size_t i = 0; i < m.nodes.size(); ++i) {
+    const std::vector<double>& r = m.nodes[i].rotation;
+    if (r.size() == 4 && std::abs(std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]) - 1) > 1e-5)
+      asset.warnings.push_back(at("node", i) + ": rotation is not a unit quaternion; it is normalized");
+  }
+  for (size_t i = 0; i < asset.nodes.size(); ++i) {
+    const Node& node = asset.nodes[i];
+    if (node.skin < 0) continue;
+    // §3.7.3.1: the skinned mesh node's transform does not apply, nor do its parents'.
+    bool moved = false;
+    for (int n = int(i); n >= 0 && !moved; n = asset.nodes[size_t(n)].parent)
+      moved = asset.nodes[size_t(n)].local.to_matrix() != Mat4<double>(1.0);
+    if (moved)
+      asset.warnings.push_back(at("node", i) + ": is skinned but has a transform of its own or of a parent; as " +
+                               "glTF says, it is ignored");
+  }
+  for (const std::string& ext : m.extensionsUsed)
+    if (!is_supported_extension(ext) &&
+        std::find(m.extensionsRequired.begin(), m.extensionsRequired.end(), ext) == m.extensionsRequired.end())
+      asset.warnings.push_back("extension " + ext + " is used but not supported; it is ignored");
+}
+
 Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptions& options) {
   for (const std::string& ext : m.extensionsRequired)
     if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
@@ -258,6 +283,7 @@ Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptio
   read_skins(m, reader, asset);
   gltf::read_meshes(m, reader, asset);
   read_animations(m, reader, asset);
+  add_warnings(m, asset);
   return asset;
 }
 

@@ -175,6 +175,20 @@ TEST(LoadSkins, SkinnedMeshNodeTransformIsIgnored) {
   EXPECT_NEAR(glm::distance(d.positions[1], Vec3<double>(1, 0.8, 0)), 0, 1e-6);    // 0.2/0.8 blend
 }
 
+TEST(LoadWarnings, IgnoredSkinnedMeshTransformAndNonUnitRotationAreReported) {
+  GltfBuilder b = triangle();
+  b.doc["nodes"][2]["rotation"] = {0, 0, 0, 2};  // a joint with a rotation of length 2
+  const Asset asset = b.load();
+  ASSERT_EQ(asset.warnings.size(), 2u);
+  EXPECT_EQ(asset.warnings[0], "node 2: rotation is not a unit quaternion; it is normalized");
+  EXPECT_EQ(asset.warnings[1], "node 0: is skinned but has a transform of its own or of a parent; as glTF says, it is ignored");
+  EXPECT_EQ(asset.nodes[2].local.rotation, Quat<double>(1, 0, 0, 0));
+
+  GltfBuilder clean = triangle();
+  clean.doc["nodes"][0].erase("translation");
+  EXPECT_TRUE(clean.load().warnings.empty());
+}
+
 TEST(LoadScenes, SceneChoiceFollowsTheFileAndTheRequest) {
   GltfBuilder b = triangle(false);
   b.doc["nodes"].push_back({{"mesh", 0}, {"translation", {1, 0, 0}}});
