@@ -89,7 +89,9 @@ struct GpuDeformer::Impl {
     int targets = 0;
     bool normals = false, tangents = false;
     GLuint rest_position = 0, rest_normal = 0, rest_tangent = 0, influence = 0, morph_offset = 0;
-    GLuint morph_weight = 0, out_position = 0, out_normal = 0, out_tangent = 0;
+    GLuint morph_weight = 0;
+    // Two sets of outputs: batch b is computed into set b % 2 while batch b − 1 is read from the other.
+    GLuint out_position[2] = {}, out_normal[2] = {}, out_tangent[2] = {};
   };
 
   GpuContext& context;
@@ -117,8 +119,9 @@ struct GpuDeformer::Impl {
   ~Impl() {
     context.make_current();
     for (Prim& p : prims) {
-      const GLuint b[] = {p.rest_position, p.rest_normal, p.rest_tangent, p.influence, p.morph_offset,
-                          p.morph_weight, p.out_position, p.out_normal, p.out_tangent};
+      const GLuint b[] = {p.rest_position, p.rest_normal, p.rest_tangent, p.influence, p.morph_offset, p.morph_weight,
+                          p.out_position[0], p.out_normal[0], p.out_tangent[0],
+                          p.out_position[1], p.out_normal[1], p.out_tangent[1]};
       gl.DeleteBuffers(GLsizei(std::size(b)), b);
     }
     for (GLuint t : textures)
@@ -199,7 +202,8 @@ struct GpuDeformer::Impl {
       // Each output array is one SSBO binding: llvmpipe caps a binding at 128 MiB.
       batch = std::min(batch, size_t(max_block) / std::max<size_t>(1, p.vertices * 16));
     }
-    batch = std::min(batch, options.memory_budget / std::max<size_t>(1, total));
+    // Two batches are in flight (one computed, one read back), so the budget holds two sets of outputs.
+    batch = std::min(batch, options.memory_budget / std::max<size_t>(1, 2 * total));
     batch = std::max<size_t>(batch, 1);
     for (Prim& p : prims) {
       auto out = [&](size_t per_vertex) {
@@ -210,9 +214,11 @@ struct GpuDeformer::Impl {
                       nullptr, GL_DYNAMIC_READ);
         return b;
       };
-      p.out_position = out(12);
-      p.out_normal = out(p.normals ? 12 : 0);
-      p.out_tangent = out(p.tangents ? 16 : 0);
+      for (int set = 0; set < 2; ++set) {
+        p.out_position[set] = out(12);
+        p.out_normal[set] = out(p.normals ? 12 : 0);
+        p.out_tangent[set] = out(p.tangents ? 16 : 0);
+      }
     }
   }
 
@@ -261,74 +267,91 @@ struct GpuDeformer::Impl {
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
 
+  struct InFlight {
+    size_t first = 0, count = 0;
+    int set = 0;
+  };
+
+  // Waits for a dispatched batch and hands it to the sink (read back, or only finished).
+  void deliver(const InFlight& batch_done, const std::function<void(const DeformedBatch&)>& sink) {
+    DeformedBatch out;
+    out.first_frame = batch_done.first;
+    out.frame_count = batch_done.count;
+    if (!options.read_back) gl.Finish();
+    for (const Prim& p : prims) {
+      DeformedBatch::Primitive r;
+      r.vertices = p.vertices;
+      if (options.read_back) {
+        auto read = [&](GLuint b, std::vector<float>& dst, size_t per_vertex) {
+          dst.resize(p.vertices * per_vertex * batch_done.count);
+          gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+          gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(dst.size() * 4), dst.data());
+        };
+        read(p.out_position[batch_done.set], r.positions, 3);
+        if (p.normals) read(p.out_normal[batch_done.set], r.normals, 3);
+        if (p.tangents) read(p.out_tangent[batch_done.set], r.tangents, 4);
+      }
+      out.primitives.push_back(std::move(r));
+    }
+    if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
+      throw std::runtime_error("OpenGL error " + std::to_string(e) + " during GPU deformation");
+    sink(out);
+  }
+
+  // Samples, packs and uploads the bone textures of one batch and dispatches every primitive into `set`.
+  void dispatch(const Clip* clip, std::span<const double> times, size_t first, size_t count, int set, GLint max_width) {
+    std::vector<Pose> poses(count);
+    for (size_t f = 0; f < count; ++f) poses[f] = sample_pose(asset, clip, times[first + f]);
+    const std::vector<BoneTexture> textures_of = pack(poses);
+    for (size_t i = 0; i < instances.size(); ++i) {
+      if (textures_of[i].width() > size_t(max_width))
+        throw InputError("skin of node " + std::to_string(instances[i].node) + " needs a bone texture " +
+                         std::to_string(textures_of[i].width()) + " texels wide; this GPU allows " +
+                         std::to_string(max_width));
+      upload_texture(i, textures_of[i]);  // the previous batch's texture lives on until its dispatch is done
+    }
+    for (Prim& p : prims) {
+      const BoneTexture& tex = textures_of[p.instance];
+      if (p.targets) {
+        std::vector<float> w(count * size_t(p.targets), 0.0f);
+        for (size_t f = 0; f < count; ++f) {
+          const std::vector<double>& morph = poses[f].weights[size_t(instances[p.instance].node)];
+          for (size_t m = 0; m < size_t(p.targets) && m < morph.size(); ++m) w[f * size_t(p.targets) + m] = float(morph[m]);
+        }
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.morph_weight);  // new storage: the last batch keeps its own
+        gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(w.size() * 4), w.data(), GL_STREAM_DRAW);
+      }
+      const GLuint prog = program({options.mode, tex.texels_per_joint, p.influences, p.targets, p.normals, p.tangents});
+      gl.UseProgram(prog);
+      const GLuint buffers[] = {p.rest_position, p.rest_normal, p.rest_tangent, p.influence, p.morph_offset,
+                                p.morph_weight, p.out_position[set], p.out_normal[set], p.out_tangent[set]};
+      for (GLuint b = 0; b < 9; ++b) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
+      gl.ActiveTexture(GL_TEXTURE0);
+      gl.BindTexture(GL_TEXTURE_2D, textures[p.instance]);
+      gl.Uniform1i(gl.GetUniformLocation(prog, "bones"), 0);
+      gl.Uniform1ui(gl.GetUniformLocation(prog, "vertex_count"), GLuint(p.vertices));
+      gl.Uniform1i(gl.GetUniformLocation(prog, "first_row"), 0);
+      gl.DispatchCompute(GLuint((p.vertices + 63) / 64), GLuint(count), 1);
+    }
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.Flush();  // start it now: the previous batch is read back while this one runs
+  }
+
   void run(const Clip* clip, std::span<const double> times, const std::function<void(const DeformedBatch&)>& sink) {
     context.make_current();
     GLint max_width = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_width);
-    for (size_t first = 0; first < times.size(); first += batch) {
+    bool pending = false;
+    InFlight previous;
+    int set = 0;
+    for (size_t first = 0; first < times.size(); first += batch, set ^= 1) {
       const size_t count = std::min(batch, times.size() - first);
-      std::vector<Pose> poses(count);
-      for (size_t f = 0; f < count; ++f) poses[f] = sample_pose(asset, clip, times[first + f]);
-      const std::vector<BoneTexture> textures_of = pack(poses);
-      for (size_t i = 0; i < instances.size(); ++i) {
-        if (textures_of[i].width() > size_t(max_width))
-          throw InputError("skin of node " + std::to_string(instances[i].node) + " needs a bone texture " +
-                           std::to_string(textures_of[i].width()) + " texels wide; this GPU allows " +
-                           std::to_string(max_width));
-        upload_texture(i, textures_of[i]);
-      }
-
-      for (Prim& p : prims) {
-        const BoneTexture& tex = textures_of[p.instance];
-        if (p.targets) {
-          std::vector<float> w(count * size_t(p.targets), 0.0f);
-          const std::vector<double>* morph = nullptr;
-          for (size_t f = 0; f < count; ++f) {
-            morph = &poses[f].weights[size_t(instances[p.instance].node)];
-            for (size_t m = 0; m < size_t(p.targets) && m < morph->size(); ++m) w[f * size_t(p.targets) + m] = float((*morph)[m]);
-          }
-          gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, p.morph_weight);
-          gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(w.size() * 4), w.data(), GL_STREAM_DRAW);
-        }
-        const GLuint prog = program({options.mode, tex.texels_per_joint, p.influences, p.targets, p.normals, p.tangents});
-        gl.UseProgram(prog);
-        const GLuint buffers[] = {p.rest_position, p.rest_normal, p.rest_tangent, p.influence, p.morph_offset,
-                                  p.morph_weight, p.out_position, p.out_normal, p.out_tangent};
-        for (GLuint b = 0; b < 9; ++b) gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
-        gl.ActiveTexture(GL_TEXTURE0);
-        gl.BindTexture(GL_TEXTURE_2D, textures[p.instance]);
-        gl.Uniform1i(gl.GetUniformLocation(prog, "bones"), 0);
-        gl.Uniform1ui(gl.GetUniformLocation(prog, "vertex_count"), GLuint(p.vertices));
-        gl.Uniform1i(gl.GetUniformLocation(prog, "first_row"), 0);
-        gl.DispatchCompute(GLuint((p.vertices + 63) / 64), GLuint(count), 1);
-      }
-      gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-
-      DeformedBatch out;
-      out.first_frame = first;
-      out.frame_count = count;
-      if (!options.read_back) gl.Finish();
-      for (const Prim& p : prims) {
-        DeformedBatch::Primitive r;
-        r.vertices = p.vertices;
-        if (!options.read_back) {
-          out.primitives.push_back(std::move(r));
-          continue;
-        }
-        auto read = [&](GLuint b, std::vector<float>& dst, size_t per_vertex) {
-          dst.resize(p.vertices * per_vertex * count);
-          gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-          gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(dst.size() * 4), dst.data());
-        };
-        read(p.out_position, r.positions, 3);
-        if (p.normals) read(p.out_normal, r.normals, 3);
-        if (p.tangents) read(p.out_tangent, r.tangents, 4);
-        out.primitives.push_back(std::move(r));
-      }
-      if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
-        throw std::runtime_error("OpenGL error " + std::to_string(e) + " during GPU deformation");
-      sink(out);
+      dispatch(clip, times, first, count, set, max_width);
+      if (pending) deliver(previous, sink);
+      previous = {first, count, set};
+      pending = true;
     }
+    if (pending) deliver(previous, sink);
   }
 };
 

@@ -180,7 +180,8 @@ TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {
   big.run(&asset.clips[0], times, [&](const DeformedBatch& b) { whole = b.primitives[0].positions; });
   const Primitive& prim = asset.meshes[0].primitives[0];
   const size_t frame_bytes = prim.vertex_count() * (12u + (prim.normals.empty() ? 0u : 12u) + (prim.tangents.empty() ? 0u : 16u));
-  GpuDeformer small(*ctx, asset, instances, {BlendMode::kDqs, 3 * frame_bytes});  // room for 3 frames of outputs
+  // Room for two batches of 3 frames in flight.
+  GpuDeformer small(*ctx, asset, instances, {BlendMode::kDqs, 2 * 3 * frame_bytes});
   EXPECT_EQ(small.frames_per_batch(), 3u);
   size_t batches = 0;
   small.run(&asset.clips[0], times, [&](const DeformedBatch& b) {

@@ -45,13 +45,15 @@ struct DeformedBatch {
 
 struct GpuDeformOptions {
   BlendMode mode = BlendMode::kDqs;                // lbs or dqs; dib is CPU-only (InputError)
-  size_t memory_budget = size_t(512) << 20;        // bytes of GPU output buffers per batch (--gpu-memory)
+  size_t memory_budget = size_t(512) << 20;  // bytes of GPU output buffers (--gpu-memory); two batches are
+                                             // in flight, one computed while the other is read back
   bool read_back = true;  // false: wait for the GPU (glFinish) but leave the results there; batches
                           // reach the sink with empty arrays (for benchmarks of the deformation alone)
 };
 
 // Deforms an asset's mesh instances on the GPU. Uploads the rest data once; each run() samples the clip,
-// packs the bone textures and dispatches batch after batch. Not thread-safe; the context must be current.
+// packs the bone textures and dispatches batch after batch into two alternating sets of output buffers,
+// reading batch b − 1 back (and handing it to the sink) while batch b is being computed. Not thread-safe.
 class GpuDeformer {
 public:
   GpuDeformer(GpuContext& context, const Asset& asset, std::vector<MeshInstance> instances,
