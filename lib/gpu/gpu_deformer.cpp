@@ -4,6 +4,7 @@
 
 #include "dqskin/error.hpp"
 #include "gl_functions.hpp"
+#include "ordered_worker.hpp"
 #include "shader_sources.hpp"
 
 #include <algorithm>
@@ -272,8 +273,8 @@ struct GpuDeformer::Impl {
     int set = 0;
   };
 
-  // Waits for a dispatched batch and hands it to the sink (read back, or only finished).
-  void deliver(const InFlight& batch_done, const std::function<void(const DeformedBatch&)>& sink) {
+  // Waits for a dispatched batch and hands it to the sink's thread (read back, or only finished).
+  void deliver(const InFlight& batch_done, gpu::OrderedWorker<DeformedBatch>& sink) {
     DeformedBatch out;
     out.first_frame = batch_done.first;
     out.frame_count = batch_done.count;
@@ -295,7 +296,7 @@ struct GpuDeformer::Impl {
     }
     if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
       throw std::runtime_error("OpenGL error " + std::to_string(e) + " during GPU deformation");
-    sink(out);
+    sink.push(std::move(out));
   }
 
   // Samples, packs and uploads the bone textures of one batch and dispatches every primitive into `set`.
@@ -341,17 +342,21 @@ struct GpuDeformer::Impl {
     context.make_current();
     GLint max_width = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_width);
+    // The sink runs on its own thread: while it writes batch b − 2, batch b − 1 is read back and batch b
+    // is computed.
+    gpu::OrderedWorker<DeformedBatch> worker(sink);
     bool pending = false;
     InFlight previous;
     int set = 0;
     for (size_t first = 0; first < times.size(); first += batch, set ^= 1) {
       const size_t count = std::min(batch, times.size() - first);
       dispatch(clip, times, first, count, set, max_width);
-      if (pending) deliver(previous, sink);
+      if (pending) deliver(previous, worker);
       previous = {first, count, set};
       pending = true;
     }
-    if (pending) deliver(previous, sink);
+    if (pending) deliver(previous, worker);
+    worker.finish();
   }
 };
 

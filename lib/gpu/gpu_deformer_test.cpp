@@ -8,6 +8,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <thread>
 
 namespace dqskin {
 namespace {
@@ -191,6 +192,36 @@ TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {
   });
   EXPECT_EQ(batches, (times.size() + 2) / 3);
   EXPECT_EQ(whole, split);
+}
+
+TEST(GpuDeformer, SinkRunsInOrderOnItsOwnThreadAndItsErrorsReachTheCaller) {
+  std::unique_ptr<GpuContext> ctx = context_or_skip(GpuBackend::kAuto);
+  if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
+  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
+  const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
+  const std::vector<double> times = frame_times(asset.clips[0], FrameSpec{});
+  const Primitive& prim = asset.meshes[0].primitives[0];
+  const size_t frame_bytes = prim.vertex_count() * (12u + (prim.normals.empty() ? 0u : 12u));
+  GpuDeformer gpu(*ctx, asset, instances, {BlendMode::kDqs, 2 * 2 * frame_bytes});  // 2 frames per batch
+  ASSERT_EQ(gpu.frames_per_batch(), 2u);
+
+  std::vector<size_t> firsts;
+  std::thread::id sink_thread;
+  gpu.run(&asset.clips[0], times, [&](const DeformedBatch& b) {
+    firsts.push_back(b.first_frame);
+    sink_thread = std::this_thread::get_id();
+  });
+  ASSERT_EQ(firsts.size(), (times.size() + 1) / 2);
+  for (size_t i = 0; i < firsts.size(); ++i) EXPECT_EQ(firsts[i], 2 * i);
+  EXPECT_NE(sink_thread, std::this_thread::get_id());
+
+  size_t calls = 0;
+  EXPECT_THROW(gpu.run(&asset.clips[0], times,
+                       [&](const DeformedBatch&) {
+                         if (++calls == 2) throw std::runtime_error("disk full");
+                       }),
+               std::runtime_error);
+  EXPECT_EQ(calls, 2u);  // nothing after the failing batch
 }
 
 TEST(GpuDeformer, DibIsRefusedOnTheGpu) {

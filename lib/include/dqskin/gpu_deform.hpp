@@ -65,7 +65,9 @@ public:
   // Frames per batch under the memory budget (at least 1).
   size_t frames_per_batch() const;
 
-  // Calls `sink` once per batch, in frame order. `clip` may be null (rest pose).
+  // Calls `sink` once per batch, in frame order, on a thread of its own, so that the sink's work (encoding,
+  // writing) overlaps the next batches' readback and dispatch; returns when the sink has seen every batch.
+  // An exception from the sink stops the run and is rethrown here. `clip` may be null (rest pose).
   void run(const Clip* clip, std::span<const double> times, const std::function<void(const DeformedBatch&)>& sink);
 
 private:
