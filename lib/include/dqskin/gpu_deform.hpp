@@ -56,6 +56,9 @@ struct GpuDeformOptions {
 // reading batch b − 1 back (and handing it to the sink) while batch b is being computed. Not thread-safe.
 class GpuDeformer {
 public:
+  // `context` and `asset` must outlive the deformer. Throws InputError for mode dib, NoGpuContext when
+  // the context lacks an entry point, std::runtime_error (naming glsl/skin.comp and the line) when a
+  // shader variant does not compile.
   GpuDeformer(GpuContext& context, const Asset& asset, std::vector<MeshInstance> instances,
               const GpuDeformOptions& options);
   ~GpuDeformer();
