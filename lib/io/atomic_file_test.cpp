@@ -1,0 +1,81 @@
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/error.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace dqskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+class AtomicFileTest : public testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dqskin_atomic_" + std::to_string(::getpid()) + "_" +
+                                        testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string read(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  size_t entries() { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
+
+  fs::path dir_;
+};
+
+TEST_F(AtomicFileTest, CommittedFileAppearsWhole) {
+  const fs::path out = dir_ / "frame_0001.ply";
+  {
+    AtomicFile file(out.string());
+    file.write(std::string("hello "));
+    EXPECT_FALSE(fs::exists(out)) << "nothing under the final name before commit";
+    file.write(std::string("world"));
+    file.commit();
+  }
+  EXPECT_EQ(read(out), "hello world");
+  EXPECT_EQ(entries(), 1u) << "no temporary left behind";
+}
+
+TEST_F(AtomicFileTest, UncommittedFileLeavesNothing) {
+  const fs::path out = dir_ / "frame_0002.ply";
+  {
+    AtomicFile file(out.string());
+    file.write(std::string("partial"));
+  }
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(entries(), 0u);
+}
+
+TEST_F(AtomicFileTest, CommitReplacesAnOlderFileInOneStep) {
+  const fs::path out = dir_ / "manifest.json";
+  std::ofstream(out) << "old";
+  AtomicFile file(out.string());
+  file.write(std::string("new"));
+  EXPECT_EQ(read(out), "old");
+  file.commit();
+  EXPECT_EQ(read(out), "new");
+}
+
+TEST_F(AtomicFileTest, UnwritableFolderIsAnOutputErrorNamingTheFile) {
+  const fs::path out = dir_ / "missing" / "frame.ply";
+  try {
+    AtomicFile file(out.string());
+    FAIL() << "expected OutputError";
+  } catch (const OutputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(out.string() + ": cannot create: ", 0), 0u) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace dqskin
