@@ -65,25 +65,24 @@ AssetFacts describe(const Asset& asset) {
     f.skinned_meshes.push_back(m);
   }
 
-  // Non-rigid joints: at rest, and at every key time of every clip.
+  // Non-rigid joints: at rest, and at every key time of every clip. Each pose is sampled once and
+  // checked against every skin still rigid so far (RecursiveSkeletons has 84 skins on one skeleton).
   const Pose rest = sample_pose(asset, nullptr, 0);
-  for (const Skin& skin : asset.skins) {
-    SkinFacts s;
-    s.name = skin.name;
-    s.joints = skin.joints.size();
-    s.non_rigid_in_bind_pose = joint_transforms(skin, rest).any_non_rigid;
-    for (const Clip& clip : asset.clips) {
-      if (s.non_rigid_in_animation) break;
-      FrameSpec keys;
-      keys.keys = true;
-      for (double t : frame_times(clip, keys)) {
-        if (joint_transforms(skin, sample_pose(asset, &clip, t)).any_non_rigid) {
-          s.non_rigid_in_animation = true;
-          break;
-        }
+  for (const Skin& skin : asset.skins)
+    f.skins.push_back({skin.name, skin.joints.size(), joint_transforms(skin, rest).any_non_rigid, false});
+  size_t still_rigid = asset.skins.size();
+  FrameSpec keys;
+  keys.keys = true;
+  for (const Clip& clip : asset.clips) {
+    for (double t : frame_times(clip, keys)) {
+      if (still_rigid == 0) break;
+      const Pose pose = sample_pose(asset, &clip, t);
+      for (size_t i = 0; i < asset.skins.size(); ++i) {
+        if (f.skins[i].non_rigid_in_animation || !joint_transforms(asset.skins[i], pose).any_non_rigid) continue;
+        f.skins[i].non_rigid_in_animation = true;
+        --still_rigid;
       }
     }
-    f.skins.push_back(s);
   }
 
   for (const Clip& clip : asset.clips) {
