@@ -2,17 +2,34 @@
 
 #include "dqskin/error.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <vector>
 
 namespace dqskin {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const char* what) {
-  throw OutputError(path + ": " + what + ": " + std::strerror(errno));
+[[noreturn]] void fail(const std::string& path, const char* what, int error) {
+  throw OutputError(path + ": " + what + ": " + std::strerror(error));
+}
+
+// Byte-for-byte comparison of two files, in chunks.
+bool same_contents(const std::string& a, const std::string& b) {
+  std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+  if (!fa || !fb) return false;
+  std::vector<char> ba(1 << 16), bb(1 << 16);
+  while (true) {
+    fa.read(ba.data(), std::streamsize(ba.size()));
+    fb.read(bb.data(), std::streamsize(bb.size()));
+    if (fa.gcount() != fb.gcount()) return false;
+    if (std::memcmp(ba.data(), bb.data(), size_t(fa.gcount())) != 0) return false;
+    if (!fa || !fb) return !fa && !fb;
+  }
 }
 
 }  // namespace
@@ -25,38 +42,54 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   const std::string name = slash == std::string::npos ? path_ : path_.substr(slash + 1);
   temporary_ = folder + "." + name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   file_ = std::fopen(temporary_.c_str(), "wb");
-  if (!file_) fail(path_, "cannot create");
+  if (!file_) fail(path_, "cannot create", errno);
+  open_ = true;
 }
 
 AtomicFile::~AtomicFile() {
-  if (file_) {
-    std::fclose(file_);
-    std::remove(temporary_.c_str());
-  }
+  if (file_) std::fclose(file_);
+  if (open_) std::remove(temporary_.c_str());
 }
 
 void AtomicFile::write(std::span<const char> bytes) {
-  if (!file_) throw OutputError(path_ + ": write after commit");
-  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) fail(path_, "cannot write");
+  if (!file_) throw OutputError(path_ + ": write after commit or hand-over");
+  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
+    fail(path_, "cannot write", errno);
 }
 
-void AtomicFile::commit() {
-  if (!file_) throw OutputError(path_ + ": committed twice");
-  const bool flushed = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
-  const int error = errno;
+const std::string& AtomicFile::hand_over() {
+  if (!file_) throw OutputError(path_ + ": handed over after commit");
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
-  if (!flushed || !closed) {
-    std::remove(temporary_.c_str());
-    errno = flushed ? errno : error;
-    fail(path_, "cannot write");
+  if (!closed) fail(path_, "cannot write", errno);
+  return temporary_;
+}
+
+Committed AtomicFile::commit(Overwrite overwrite) {
+  if (!open_) throw OutputError(path_ + ": committed twice");
+  // Flush our stream, or the hand-over writer's file, to disk before it gets its final name.
+  if (file_) {
+    const bool flushed = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
+    const int error = errno;
+    const bool closed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!flushed || !closed) fail(path_, "cannot write", flushed ? errno : error);
+  } else {
+    const int fd = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) fail(path_, "cannot write", errno);
+    const bool synced = ::fsync(fd) == 0;
+    const int error = errno;
+    ::close(fd);
+    if (!synced) fail(path_, "cannot write", error);
   }
-  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
-    const int rename_error = errno;
-    std::remove(temporary_.c_str());
-    errno = rename_error;
-    fail(path_, "cannot rename into place");
+  if (overwrite == Overwrite::kRefuseDifferent && ::access(path_.c_str(), F_OK) == 0) {
+    if (!same_contents(temporary_, path_))
+      throw OutputError(path_ + ": exists with different contents; not overwritten");
+    return Committed::kUnchanged;  // the destructor removes the temporary
   }
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) fail(path_, "cannot rename into place", errno);
+  open_ = false;
+  return Committed::kWritten;
 }
 
 }  // namespace dqskin

@@ -77,5 +77,39 @@ TEST_F(AtomicFileTest, UnwritableFolderIsAnOutputErrorNamingTheFile) {
   }
 }
 
+TEST_F(AtomicFileTest, RefuseDifferentKeepsAnEqualFileAndRefusesADifferentOne) {
+  const fs::path out = dir_ / "frame_0003.ply";
+  std::ofstream(out) << "same";
+  {
+    AtomicFile file(out.string());
+    file.write(std::string("same"));
+    EXPECT_EQ(file.commit(Overwrite::kRefuseDifferent), Committed::kUnchanged);
+  }
+  EXPECT_EQ(read(out), "same");
+  EXPECT_EQ(entries(), 1u) << "the temporary of an unchanged file is removed";
+  try {
+    AtomicFile file(out.string());
+    file.write(std::string("other"));
+    file.commit(Overwrite::kRefuseDifferent);
+    FAIL() << "expected OutputError";
+  } catch (const OutputError& e) {
+    EXPECT_EQ(std::string(e.what()), out.string() + ": exists with different contents; not overwritten");
+  }
+  EXPECT_EQ(read(out), "same");
+  EXPECT_EQ(entries(), 1u);
+}
+
+TEST_F(AtomicFileTest, HandedOverTemporaryIsCommittedByName) {
+  const fs::path out = dir_ / "vat_positions.exr";
+  AtomicFile file(out.string());
+  const std::string temporary = file.hand_over();
+  EXPECT_NE(temporary, out.string());
+  std::ofstream(temporary, std::ios::binary) << "written by another library";
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(file.commit(), Committed::kWritten);
+  EXPECT_EQ(read(out), "written by another library");
+  EXPECT_EQ(entries(), 1u);
+}
+
 }  // namespace
 }  // namespace dqskin
