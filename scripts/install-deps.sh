@@ -17,6 +17,10 @@ packages=(
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
 )
 
+# Node.js and npm run the Khronos glTF-Validator (scripts/install-validator.sh). Debian's are installed
+# only when no npm is on the PATH, so that a Node.js installed otherwise is left alone.
+command -v npm >/dev/null || packages+=(nodejs npm)
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

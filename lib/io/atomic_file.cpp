@@ -34,7 +34,7 @@ bool same_contents(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+AtomicFile::AtomicFile(std::string path, bool sync) : path_(std::move(path)), sync_(sync) {
   // Unique per process and object, hidden, in the destination folder.
   static std::atomic<unsigned> counter{0};
   const size_t slash = path_.find_last_of('/');
@@ -57,6 +57,10 @@ void AtomicFile::write(std::span<const char> bytes) {
     fail(path_, "cannot write", errno);
 }
 
+bool AtomicFile::conflicts() const {
+  return ::access(path_.c_str(), F_OK) == 0 && !same_contents(temporary_, path_);
+}
+
 const std::string& AtomicFile::hand_over() {
   if (!file_) throw OutputError(path_ + ": handed over after commit");
   const bool closed = std::fclose(file_) == 0;
@@ -69,12 +73,12 @@ Committed AtomicFile::commit(Overwrite overwrite) {
   if (!open_) throw OutputError(path_ + ": committed twice");
   // Flush our stream, or the hand-over writer's file, to disk before it gets its final name.
   if (file_) {
-    const bool flushed = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
+    const bool flushed = std::fflush(file_) == 0 && (!sync_ || ::fsync(::fileno(file_)) == 0);
     const int error = errno;
     const bool closed = std::fclose(file_) == 0;
     file_ = nullptr;
     if (!flushed || !closed) fail(path_, "cannot write", flushed ? errno : error);
-  } else {
+  } else if (sync_) {
     const int fd = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) fail(path_, "cannot write", errno);
     const bool synced = ::fsync(fd) == 0;
@@ -83,13 +87,21 @@ Committed AtomicFile::commit(Overwrite overwrite) {
     if (!synced) fail(path_, "cannot write", error);
   }
   if (overwrite == Overwrite::kRefuseDifferent && ::access(path_.c_str(), F_OK) == 0) {
-    if (!same_contents(temporary_, path_))
-      throw OutputError(path_ + ": exists with different contents; not overwritten");
+    if (conflicts()) throw OutputError(path_ + ": exists with different contents; not overwritten");
     return Committed::kUnchanged;  // the destructor removes the temporary
   }
   if (std::rename(temporary_.c_str(), path_.c_str()) != 0) fail(path_, "cannot rename into place", errno);
   open_ = false;
   return Committed::kWritten;
+}
+
+void sync_folder(const std::string& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) fail(folder, "cannot open", errno);
+  const bool synced = ::syncfs(fd) == 0;
+  const int error = errno;
+  ::close(fd);
+  if (!synced) fail(folder, "cannot sync", error);
 }
 
 }  // namespace dqskin

@@ -1,42 +1,63 @@
 #include "dqskin/mesh_output.hpp"
 
-#include "dqskin/atomic_file.hpp"
+#include "dqskin/version.hpp"
 #include "mesh.hpp"
 
 #include <bit>
-#include <cstring>
+#include <charconv>
 
 namespace dqskin {
+namespace {
 
-MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const DeformedFrame& frame) {
+// Shortest decimal that reads back as the same float (std::to_chars without precision).
+void put_float(std::string& out, float x) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  out.append(buffer, result.ptr);
+}
+
+void put_uint(std::string& out, size_t x) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  out.append(buffer, result.ptr);
+}
+
+bool name_char_ok(char c) { return c > ' ' && c != '#' && c < 127; }
+
+}  // namespace
+
+MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& frame) {
   MergedMesh out;
   size_t index = 0;
   for (const MeshInstance& inst : instances) {
     for (const Primitive& prim : asset.meshes[size_t(inst.mesh)].primitives) {
-      const DeformedPrimitive& d = frame.primitives[index++];
+      const PrimitiveView& d = frame.primitives[index++];
       const uint32_t base = uint32_t(out.positions.size());
       for (size_t v = 0; v < prim.vertex_count(); ++v) {
-        out.positions.emplace_back(d.positions[v]);
-        out.normals.push_back(d.normals.empty() ? glm::vec3(0) : glm::vec3(d.normals[v]));
+        out.positions.emplace_back(d.positions[3 * v], d.positions[3 * v + 1], d.positions[3 * v + 2]);
+        out.normals.push_back(d.normals.empty() ? glm::vec3(0)
+                                                : glm::vec3(d.normals[3 * v], d.normals[3 * v + 1], d.normals[3 * v + 2]));
         out.uv0.push_back(prim.uv0.empty() ? glm::vec2(0) : prim.uv0[v]);
       }
+      MergedMesh::Group group{asset.nodes[size_t(inst.node)].name, prim.material, out.triangles.size() / 3, 0};
       for (uint32_t i : gltf::triangle_list(prim)) out.triangles.push_back(base + i);
+      group.triangle_count = out.triangles.size() / 3 - group.first_triangle;
+      out.groups.push_back(std::move(group));
     }
   }
   return out;
 }
 
-void write_ply(const std::string& path, const MergedMesh& mesh) {
+std::string encode_ply(const MergedMesh& mesh) {
   static_assert(std::endian::native == std::endian::little, "PLY is written as binary_little_endian");
-  std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by dqskin\n";
-  header += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
-  for (const char* p : {"x", "y", "z", "nx", "ny", "nz", "s", "t"}) header += std::string("property float ") + p + "\n";
-  header += "element face " + std::to_string(mesh.triangles.size() / 3) + "\n";
-  header += "property list uchar uint vertex_indices\nend_header\n";
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by dqskin\n";
+  out += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
+  for (const char* p : {"x", "y", "z", "nx", "ny", "nz", "s", "t"}) out += std::string("property float ") + p + "\n";
+  out += "element face " + std::to_string(mesh.triangles.size() / 3) + "\n";
+  out += "property list uchar uint vertex_indices\nend_header\n";
 
-  std::string body;
-  body.reserve(mesh.positions.size() * 32 + mesh.triangles.size() / 3 * 13);
-  auto put = [&body](const void* data, size_t bytes) { body.append(static_cast<const char*>(data), bytes); };
+  out.reserve(out.size() + mesh.positions.size() * 32 + mesh.triangles.size() / 3 * 13);
+  auto put = [&out](const void* data, size_t bytes) { out.append(static_cast<const char*>(data), bytes); };
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     put(&mesh.positions[v], 12);
     put(&mesh.normals[v], 12);
@@ -47,10 +68,80 @@ void write_ply(const std::string& path, const MergedMesh& mesh) {
     put(&three, 1);
     put(&mesh.triangles[t], 12);
   }
-  AtomicFile file(path);
-  file.write(header);
-  file.write(body);
-  file.commit();
+  return out;
+}
+
+std::string obj_material_name(const Asset& asset, int material) {
+  if (material < 0) return "dqskin_default";
+  const std::string& name = asset.materials[size_t(material)].name;
+  auto cleaned = [](const std::string& n) {
+    std::string s = n;
+    for (char& c : s)
+      if (!name_char_ok(c)) c = '_';
+    return s;
+  };
+  const std::string mine = cleaned(name);
+  bool taken = mine.empty() || mine == "dqskin_default";
+  for (int i = 0; i < material && !taken; ++i) taken = cleaned(asset.materials[size_t(i)].name) == mine;
+  return taken ? "material_" + std::to_string(material) : mine;
+}
+
+std::string encode_mtl(const Asset& asset) {
+  if (asset.materials.empty()) return {};
+  std::string out = std::string("# dqskin ") + kVersion + ": base color factors of the glTF materials\n";
+  auto entry = [&](int m, glm::vec4 color) {
+    out += "\nnewmtl " + obj_material_name(asset, m) + "\nKd ";
+    for (int c = 0; c < 3; ++c) {
+      put_float(out, color[c]);
+      out += c < 2 ? " " : "\nd ";
+    }
+    put_float(out, color.a);
+    out += "\n";
+  };
+  for (size_t m = 0; m < asset.materials.size(); ++m) entry(int(m), asset.materials[m].base_color);
+  entry(-1, glm::vec4(1.0f));  // glTF's default material (§3.9.6): base color 1
+  return out;
+}
+
+std::string encode_obj(const MergedMesh& mesh, const Asset& asset, const std::string& mtl_file) {
+  std::string out = std::string("# dqskin ") + kVersion + "\n";
+  if (!mtl_file.empty()) out += "mtllib " + mtl_file + "\n";
+  out.reserve(mesh.positions.size() * 96 + mesh.triangles.size() * 12);
+  auto vec = [&out](const char* tag, const float* x, int n) {
+    out += tag;
+    for (int c = 0; c < n; ++c) {
+      out += ' ';
+      put_float(out, x[c]);
+    }
+    out += '\n';
+  };
+  for (const glm::vec3& p : mesh.positions) vec("v", &p.x, 3);
+  for (const glm::vec2& t : mesh.uv0) {
+    const float st[2] = {t.x, 1.0f - t.y};
+    vec("vt", st, 2);
+  }
+  for (const glm::vec3& n : mesh.normals) vec("vn", &n.x, 3);
+  for (size_t g = 0; g < mesh.groups.size(); ++g) {
+    const MergedMesh::Group& group = mesh.groups[g];
+    if (group.triangle_count == 0) continue;
+    out += "o ";
+    for (char c : group.node_name.empty() ? "primitive_" + std::to_string(g) : group.node_name)
+      out += name_char_ok(c) ? c : '_';
+    out += '\n';
+    if (!mtl_file.empty()) out += "usemtl " + obj_material_name(asset, group.material) + "\n";
+    for (size_t t = group.first_triangle; t < group.first_triangle + group.triangle_count; ++t) {
+      out += 'f';
+      for (int k = 0; k < 3; ++k) {
+        const size_t i = size_t(mesh.triangles[3 * t + size_t(k)]) + 1;  // OBJ counts from 1
+        for (int a = 0; a < 3; ++a) {
+          out += a == 0 ? ' ' : '/';
+          put_uint(out, i);
+        }
+      }
+      out += '\n';
+    }
+  }
+  return out;
 }
 
 }  // namespace dqskin

@@ -1,6 +1,6 @@
-#include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/mesh_output.hpp"
+#include "ply_test_reader.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -15,66 +15,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A small reader for what write_ply writes: the header's counts and properties, then the binary body.
-struct PlyFile {
-  std::vector<std::string> vertex_properties;
-  std::vector<float> vertex_data;  // vertex count × properties
-  std::vector<uint32_t> faces;     // 3 per face
+struct Rig {
+  Asset asset;
+  std::vector<MeshInstance> instances;
+  DeformedFrame frame;
+  DeformedBatch batch;
 };
 
-PlyFile read_ply(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  PlyFile ply;
-  size_t vertices = 0, faces = 0;
-  std::string element;
-  std::getline(in, line);
-  EXPECT_EQ(line, "ply");
-  std::getline(in, line);
-  EXPECT_EQ(line, "format binary_little_endian 1.0");
-  while (std::getline(in, line) && line != "end_header") {
-    std::istringstream words(line);
-    std::string word, type, name;
-    words >> word;
-    if (word == "element") {
-      words >> element;
-      (element == "vertex" ? vertices : faces) = std::stoul(line.substr(line.rfind(' ') + 1));
-    } else if (word == "property" && element == "vertex") {
-      words >> type >> name;
-      EXPECT_EQ(type, "float");
-      ply.vertex_properties.push_back(name);
-    }
-  }
-  ply.vertex_data.resize(vertices * ply.vertex_properties.size());
-  in.read(reinterpret_cast<char*>(ply.vertex_data.data()), std::streamsize(ply.vertex_data.size() * 4));
-  for (size_t f = 0; f < faces; ++f) {
-    unsigned char n = 0;
-    in.read(reinterpret_cast<char*>(&n), 1);
-    EXPECT_EQ(n, 3);
-    uint32_t idx[3];
-    in.read(reinterpret_cast<char*>(idx), 12);
-    ply.faces.insert(ply.faces.end(), idx, idx + 3);
-  }
-  EXPECT_TRUE(in.good());
-  EXPECT_EQ(in.peek(), EOF) << "nothing after the faces";
-  return ply;
+Rig two_skins() {
+  Rig r;
+  r.asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf");
+  r.instances = mesh_instances(r.asset, choose_scene(r.asset, -1));
+  r.frame = deform_frame(r.asset, r.instances, sample_pose(r.asset, &r.asset.clips[0], 0.5), BlendMode::kDqs);
+  r.batch = to_batch(std::span<const DeformedFrame>(&r.frame, 1), 0);
+  return r;
+}
+
+fs::path temporary(const std::string& name) {
+  return fs::temp_directory_path() / ("dqskin_" + std::to_string(::getpid()) + "_" + name);
 }
 
 TEST(WritePly, ReadsBackAsTheDeformedFrame) {
-  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf");
-  const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
-  const DeformedFrame frame = deform_frame(asset, instances, sample_pose(asset, &asset.clips[0], 0.5), BlendMode::kDqs);
-  const MergedMesh mesh = merge_frame(asset, instances, frame);
+  const Rig r = two_skins();
+  const MergedMesh mesh = merge_frame(r.asset, r.instances, frame_view(r.batch, 0));
 
-  const fs::path path = fs::temp_directory_path() / ("dqskin_ply_" + std::to_string(::getpid()) + ".ply");
-  write_ply(path.string(), mesh);
+  const fs::path path = temporary("frame.ply");
+  std::ofstream(path, std::ios::binary) << encode_ply(mesh);
   const PlyFile ply = read_ply(path);
   fs::remove(path);
 
   ASSERT_EQ(ply.vertex_properties, (std::vector<std::string>{"x", "y", "z", "nx", "ny", "nz", "s", "t"}));
   // Both instances' vertices, in scene order and accessor order, as the deformer gave them.
   size_t v = 0;
-  for (const DeformedPrimitive& p : frame.primitives) {
+  for (const DeformedPrimitive& p : r.frame.primitives) {
     for (size_t i = 0; i < p.positions.size(); ++i, ++v) {
       for (int c = 0; c < 3; ++c) {
         EXPECT_EQ(ply.vertex_data[v * 8 + size_t(c)], float(p.positions[i][c]));
@@ -85,15 +58,67 @@ TEST(WritePly, ReadsBackAsTheDeformedFrame) {
   EXPECT_EQ(v * 8, ply.vertex_data.size());
   EXPECT_EQ(ply.faces, mesh.triangles);
   size_t triangles = 0;
-  for (const MeshInstance& inst : instances)
-    for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) triangles += p.indices.size() / 3;
+  for (const MeshInstance& inst : r.instances)
+    for (const Primitive& p : r.asset.meshes[size_t(inst.mesh)].primitives) triangles += p.indices.size() / 3;
   EXPECT_EQ(ply.faces.size(), triangles * 3);
   // The second instance's faces point at its own vertices, after the first's.
-  EXPECT_GE(ply.faces.back(), frame.primitives[0].positions.size());
+  EXPECT_GE(ply.faces.back(), r.frame.primitives[0].positions.size());
 }
 
-TEST(WritePly, UnwritablePathIsAnOutputError) {
-  EXPECT_THROW(write_ply("/nonexistent-dqskin-dir/frame.ply", MergedMesh{}), OutputError);
+TEST(WriteObj, ReadsBackAsTheDeformedFrameWithOneObjectPerPrimitive) {
+  const Rig r = two_skins();
+  const MergedMesh mesh = merge_frame(r.asset, r.instances, frame_view(r.batch, 0));
+  std::istringstream obj(encode_obj(mesh, r.asset, "materials.mtl"));
+  std::vector<float> v, vn, vt;
+  std::vector<uint32_t> faces;
+  size_t objects = 0, usemtl = 0;
+  std::string line;
+  while (std::getline(obj, line)) {
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    float x;
+    if (tag == "v") while (words >> x) v.push_back(x);
+    if (tag == "vn") while (words >> x) vn.push_back(x);
+    if (tag == "vt") while (words >> x) vt.push_back(x);
+    if (tag == "o") ++objects;
+    if (tag == "usemtl") ++usemtl;
+    if (tag == "f") {
+      std::string corner;
+      while (words >> corner) {
+        const uint32_t i = uint32_t(std::stoul(corner));
+        EXPECT_EQ(corner, std::to_string(i) + "/" + std::to_string(i) + "/" + std::to_string(i));
+        faces.push_back(i - 1);
+      }
+    }
+  }
+  ASSERT_EQ(v.size(), mesh.positions.size() * 3);
+  ASSERT_EQ(vn.size(), mesh.normals.size() * 3);
+  ASSERT_EQ(vt.size(), mesh.uv0.size() * 2);
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(v[3 * i + size_t(c)], mesh.positions[i][c]) << "shortest round-trip form reads back exactly";
+      EXPECT_EQ(vn[3 * i + size_t(c)], mesh.normals[i][c]);
+    }
+  for (size_t i = 0; i < mesh.uv0.size(); ++i) EXPECT_EQ(vt[2 * i + 1], 1.0f - mesh.uv0[i].y);
+  EXPECT_EQ(faces, mesh.triangles);
+  EXPECT_EQ(objects, mesh.groups.size());
+  EXPECT_EQ(usemtl, mesh.groups.size());
+}
+
+TEST(WriteObj, MaterialLibraryHasEveryMaterialWithUniqueNames) {
+  Asset asset;
+  asset.materials = {{"skin", glm::vec4(0.5f, 0.25f, 1.0f, 0.75f)}, {"skin", glm::vec4(1.0f)}, {"", glm::vec4(1.0f)},
+                     {"two words", glm::vec4(1.0f)}};
+  EXPECT_EQ(obj_material_name(asset, 0), "skin");
+  EXPECT_EQ(obj_material_name(asset, 1), "material_1");
+  EXPECT_EQ(obj_material_name(asset, 2), "material_2");
+  EXPECT_EQ(obj_material_name(asset, 3), "two_words");
+  EXPECT_EQ(obj_material_name(asset, -1), "dqskin_default");
+  const std::string mtl = encode_mtl(asset);
+  EXPECT_NE(mtl.find("newmtl skin\nKd 0.5 0.25 1\nd 0.75\n"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("newmtl dqskin_default\nKd 1 1 1\nd 1\n"), std::string::npos) << mtl;
+  EXPECT_EQ(encode_mtl(Asset{}), "");
 }
 
 }  // namespace

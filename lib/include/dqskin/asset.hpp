@@ -99,6 +99,12 @@ struct Clip {
   double last_key = 0;   // largest key time: the clip's duration, as glTF time 0 is the clip's start
 };
 
+// What the mesh writers need of a material (OBJ's .mtl); the glb writer copies the file's own.
+struct Material {
+  std::string name;
+  glm::vec4 base_color{1.0f};  // pbrMetallicRoughness.baseColorFactor, linear RGBA (default 1, 1, 1, 1)
+};
+
 struct Scene {
   std::string name;
   std::vector<int> roots;
@@ -111,6 +117,7 @@ struct Asset {
   std::vector<Skin> skins;
   std::vector<Clip> clips;
   std::vector<Scene> scenes;
+  std::vector<Material> materials;
   int default_scene = -1;
   std::vector<std::string> warnings;  // things that are allowed but worth telling the user
 };

@@ -23,7 +23,10 @@ enum class Committed { kWritten, kUnchanged };
 // so a failed or interrupted write leaves nothing under the final name. Throws OutputError naming `path`.
 class AtomicFile {
 public:
-  explicit AtomicFile(std::string path);
+  // `sync`: commit() fsyncs the data before the rename, so that after a power loss the file is whole or
+  // absent. A caller writing many files may pass false and sync the file system once (sync_folder)
+  // before writing the record that claims them; the rename alone is already atomic for other processes.
+  explicit AtomicFile(std::string path, bool sync = true);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
@@ -36,6 +39,10 @@ public:
   // temporary by name; commit() then flushes it to disk and renames it as usual.
   const std::string& hand_over();
 
+  // True when a file exists under the final name with bytes other than the temporary's (after writing):
+  // what commit(kRefuseDifferent) refuses. Lets a writer of several files check them all first.
+  bool conflicts() const;
+
   const std::string& path() const { return path_; }
 
 private:
@@ -43,6 +50,10 @@ private:
   std::string temporary_;
   std::FILE* file_ = nullptr;
   bool open_ = false;  // the temporary exists and is not committed
+  bool sync_ = true;
 };
+
+// Flushes every file of the file system holding `folder` to disk (syncfs). Throws OutputError.
+void sync_folder(const std::string& folder);
 
 }  // namespace dqskin

@@ -51,6 +51,13 @@ struct GpuDeformOptions {
                           // reach the sink with empty arrays (for benchmarks of the deformation alone)
 };
 
+// Where a run's time went, accumulated over runs, in seconds of the calling thread.
+struct GpuDeformStats {
+  double sample_seconds = 0;    // sampling poses, joint transforms and packing bone textures
+  double deform_seconds = 0;    // uploading, dispatching, and waiting for the GPU to finish
+  double readback_seconds = 0;  // copying results to host memory
+};
+
 // Deforms an asset's mesh instances on the GPU. Uploads the rest data once; each run() samples the clip,
 // packs the bone textures and dispatches batch after batch into two alternating sets of output buffers,
 // reading batch b − 1 back (and handing it to the sink) while batch b is being computed. Not thread-safe.
@@ -67,6 +74,7 @@ public:
 
   // Frames per batch under the memory budget (at least 1).
   size_t frames_per_batch() const;
+  const GpuDeformStats& stats() const;
 
   // Calls `sink` once per batch, in frame order, on a thread of its own, so that the sink's work (encoding,
   // writing) overlaps the next batches' readback and dispatch; returns when the sink has seen every batch.

@@ -1,9 +1,9 @@
-// One frame's deformed meshes as one mesh, and its PLY file (shared/DESIGN.md "write"): every primitive
-// of every instance merged in scene order, vertices in glTF accessor order, faces from the triangle-mode
-// primitives.
+// One frame's deformed meshes as one mesh, and its PLY and OBJ files (shared/DESIGN.md "write"): every
+// primitive of every instance merged in scene order, vertices in glTF accessor order, faces from the
+// triangle-mode primitives (strips and fans are turned into lists; points and lines have no faces).
 #pragma once
 
-#include "dqskin/skinning.hpp"
+#include "dqskin/frame_view.hpp"
 
 #include <cstdint>
 #include <string>
@@ -14,15 +14,36 @@ namespace dqskin {
 struct MergedMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // zero for vertices of primitives that have none
-  std::vector<glm::vec2> uv0;      // zero for vertices of primitives that have none
+  std::vector<glm::vec2> uv0;      // glTF convention (origin top left); zero where a primitive has none
   std::vector<uint32_t> triangles; // three indices per face, into the merged vertices
+
+  // One per primitive, in order: its faces and where they came from (OBJ objects and materials).
+  struct Group {
+    std::string node_name;
+    int material = -1;  // index into Asset::materials, or -1
+    size_t first_triangle = 0, triangle_count = 0;
+  };
+  std::vector<Group> groups;
 };
 
-// Merges a CPU-reference frame (deform_frame with the same instances) into one mesh, in float.
-MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const DeformedFrame& frame);
+// Merges one frame (as deform_frame orders primitives: instances, then their mesh's primitives).
+MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& frame);
 
-// Writes binary little-endian PLY: x y z nx ny nz s t per vertex, faces as uchar-counted uint lists.
-// Atomic (AtomicFile); throws OutputError naming `path`.
-void write_ply(const std::string& path, const MergedMesh& mesh);
+// Binary little-endian PLY: x y z nx ny nz s t per vertex, faces as uchar-counted uint lists.
+std::string encode_ply(const MergedMesh& mesh);
+
+// Wavefront OBJ with v, vt (t flipped to OBJ's bottom-left origin), vn, one object per primitive named
+// after its node, and `usemtl` per primitive when `mtl_file` is not empty (then `mtllib mtl_file`).
+// Numbers are written in their shortest round-trip form, so reading them back gives the same floats.
+std::string encode_obj(const MergedMesh& mesh, const Asset& asset, const std::string& mtl_file);
+
+// The material library for encode_obj: Kd and d from each material's base color factor. Empty when the
+// asset has no materials (then OBJ files name no library).
+std::string encode_mtl(const Asset& asset);
+
+// The name encode_obj/encode_mtl use for a material: its glTF name with blanks replaced (OBJ names are
+// single words), or material_<index> when it has none or shares it with an earlier one; -1 is the
+// default material.
+std::string obj_material_name(const Asset& asset, int material);
 
 }  // namespace dqskin

@@ -1,0 +1,210 @@
+// `dqskin bake INPUT… -o OUTDIR`: the command asset builds run. Reports progress as a bar on a terminal
+// or as JSON lines, and a summary at the end; SIGINT and SIGTERM stop it cleanly.
+#include "commands.hpp"
+#include "default_input.hpp"
+#include "exit_codes.hpp"
+
+#include "dqskin/bake.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/version.hpp"
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+
+namespace dqskin::cli {
+namespace {
+
+std::atomic<bool> g_cancel{false};
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_signal(int signal) {
+  g_signal = signal;
+  g_cancel = true;
+}
+
+std::string clock_text(double seconds) {
+  const long s = long(seconds + 0.5);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+// The progress display: a bar redrawn at most ten times a second on a terminal, or one JSON line per
+// batch. Called from the bake's worker threads.
+class Progress {
+public:
+  Progress(const BakeSettings& s) : json_(s.json_progress), bar_(!s.quiet && !s.json_progress && ::isatty(2)) {}
+
+  void operator()(const BakeProgress& p) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double rate = elapsed > 0 ? double(p.frames_done) / elapsed : 0;
+    const double left = rate > 0 ? double(p.frames_total - p.frames_done) / rate : 0;
+    if (json_) {
+      std::cout << nlohmann::json{{"event", "progress"},   {"frames_done", p.frames_done},
+                                  {"frames_total", p.frames_total}, {"input", p.input},
+                                  {"animation", p.clip},    {"elapsed_s", elapsed},
+                                  {"frames_per_s", rate},   {"eta_s", left}}
+                       .dump()
+                << std::endl;
+    } else if (bar_ && (elapsed - last_draw_ > 0.1 || p.frames_done == p.frames_total)) {
+      last_draw_ = elapsed;
+      const int width = 30;
+      const int filled = p.frames_total ? int(double(width) * double(p.frames_done) / double(p.frames_total)) : width;
+      std::fprintf(stderr, "\r\033[K[%s%s] %zu/%zu frames  %.1f frames/s  %s left  %s", std::string(size_t(filled), '#').c_str(),
+                   std::string(size_t(width - filled), '.').c_str(), p.frames_done, p.frames_total, rate,
+                   clock_text(left).c_str(), p.clip.c_str());
+      drawn_ = true;
+    }
+  }
+
+  void done() {
+    if (drawn_) std::fputs("\r\033[K", stderr);
+  }
+
+private:
+  bool json_, bar_, drawn_ = false;
+  double last_draw_ = -1;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+BakeOptions to_options(const BakeSettings& s) {
+  BakeOptions o;
+  o.out_dir = s.out_dir;
+  o.clips = s.anim;
+  o.frames.fps = s.fps;
+  if (!s.frames.empty()) parse_frame_range(s.frames, o.frames);
+  if (!s.times.empty()) o.frames.times = parse_times(s.times);
+  o.frames.keys = s.keys;
+  if (int(s.keys) + int(!s.times.empty()) + int(!s.frames.empty()) > 1)
+    throw InputError("--frames, --keys and --times choose frames in different ways; give one of them");
+  if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
+  o.formats = parse_bake_formats(s.formats);
+  o.backend = s.backend;
+  o.gpu_memory = s.gpu_memory_mb << 20;
+  o.scene = s.scene;
+  if (!s.shard.empty()) parse_shard(s.shard, o);
+  o.jobs = s.jobs;
+  o.dry_run = s.dry_run;
+  o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
+  o.cancel = &g_cancel;
+  return o;
+}
+
+void print_summary(const BakeSettings& s, const BakeReport& r) {
+  size_t written = 0, unchanged = 0;
+  uint64_t bytes = 0;
+  for (const BakeOutput& o : r.outputs) {
+    (o.unchanged ? unchanged : written) += 1;
+    bytes += o.size;
+  }
+  if (s.json_progress) {
+    nlohmann::json failures = nlohmann::json::array();
+    for (const BakeInputResult& in : r.inputs)
+      if (!in.error.empty()) failures.push_back({{"input", in.path}, {"error", in.error}});
+    const BakeStageTimes& t = r.times;
+    std::cout << nlohmann::json{{"event", "summary"},
+                                {"frames", r.frames_total},
+                                {"files_written", written},
+                                {"files_unchanged", unchanged},
+                                {"bytes", bytes},
+                                {"manifest", r.manifest},
+                                {"backend", r.gpu.backend},
+                                {"renderer", r.gpu.renderer},
+                                {"wall_s", r.wall_seconds},
+                                {"stage_s", {{"load", t.load}, {"sample", t.sample}, {"deform", t.deform},
+                                             {"readback", t.readback}, {"encode", t.encode}, {"write", t.write}}},
+                                {"failures", failures}}
+                     .dump()
+              << std::endl;
+  }
+  for (const BakeInputResult& in : r.inputs)
+    if (!in.error.empty()) std::cerr << "dqskin: " << in.path << ": " << in.error << '\n';
+  const bool all_failed = std::all_of(r.inputs.begin(), r.inputs.end(), [](const BakeInputResult& in) { return !in.error.empty(); });
+  if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
+  const BakeStageTimes& t = r.times;
+  std::fprintf(stderr, "baked %zu frames of %zu inputs in %.2f s (%.1f frames/s): %zu files written, %zu unchanged, %.1f MB\n",
+               r.frames_total, r.inputs.size(), r.wall_seconds,
+               r.wall_seconds > 0 ? double(r.frames_total) / r.wall_seconds : 0.0, written, unchanged, double(bytes) / 1e6);
+  std::fprintf(stderr,
+               "stages (thread-seconds): load %.2f, sample %.2f, deform %.2f, readback %.2f, encode %.2f, write %.2f\n",
+               t.load, t.sample, t.deform, t.readback, t.encode, t.write);
+  if (s.verbose) std::fprintf(stderr, "backend: %s, %s\n", r.gpu.backend.c_str(), r.gpu.renderer.c_str());
+  std::fprintf(stderr, "manifest: %s\n", r.manifest.c_str());
+}
+
+// Writes the bundled rig into a fresh temporary folder and returns its path (README's first command).
+std::string unpack_default_input(BakeSettings& s) {
+  std::string folder = (std::filesystem::temp_directory_path() / "dqskin-bake-XXXXXX").string();
+  if (!::mkdtemp(folder.data())) throw OutputError(folder + ": cannot create a temporary folder");
+  const std::string input = folder + "/" + kDefaultInputName;
+  std::FILE* f = std::fopen(input.c_str(), "wb");
+  const bool ok = f && std::fwrite(kDefaultInput.data(), 1, kDefaultInput.size(), f) == kDefaultInput.size();
+  if (f) std::fclose(f);
+  if (!ok) throw OutputError(input + ": cannot write");
+  if (s.out_dir.empty()) s.out_dir = folder + "/out";
+  if (!s.quiet) std::cerr << "dqskin: no input given: baking the bundled " << kDefaultInputName << " into " << s.out_dir << '\n';
+  return input;
+}
+
+}  // namespace
+
+int run_bake(const BakeSettings& given) {
+  BakeSettings settings = given;
+  Progress progress(settings);
+  try {
+    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input(settings));
+    if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
+    const BakeOptions options = to_options(settings);
+    if (!options.dry_run) std::filesystem::create_directories(options.out_dir);
+
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    const BakeReport report = bake(settings.inputs, options, [&](const BakeProgress& p) { progress(p); });
+    progress.done();
+    if (options.dry_run) {
+      for (const BakeOutput& o : report.outputs) std::cout << options.out_dir << '/' << o.path << '\n';
+      for (const BakeInputResult& in : report.inputs)
+        if (!in.error.empty()) std::cerr << "dqskin: " << in.path << ": " << in.error << '\n';
+    } else {
+      print_summary(settings, report);
+    }
+    const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
+                                               [](const BakeInputResult& r) { return !r.error.empty(); }));
+    if (failed == 0) return kSuccess;
+    if (!settings.quiet && failed < report.inputs.size())
+      std::cerr << "dqskin: " << failed << " of " << report.inputs.size() << " inputs failed; the others baked\n";
+    return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
+  } catch (const BakeCancelled&) {
+    progress.done();
+    std::cerr << "dqskin: bake stopped by signal " << int(g_signal) << "; no partial files were left under final names\n";
+    std::signal(int(g_signal), SIG_DFL);
+    std::raise(int(g_signal));  // die of the signal, so that callers (make, shells) see it
+    return 128 + int(g_signal);
+  } catch (const NoGpuContext& e) {
+    progress.done();
+    std::cerr << "dqskin: " << e.what() << '\n';
+    return kNoGlContext;
+  } catch (const std::filesystem::filesystem_error& e) {
+    progress.done();
+    std::cerr << "dqskin: " << e.path1().string() << ": " << e.code().message() << '\n';
+    return kUsageOrInputError;
+  } catch (const std::exception& e) {
+    progress.done();
+    std::cerr << "dqskin: " << e.what() << '\n';
+    return kUsageOrInputError;
+  }
+}
+
+}  // namespace dqskin::cli

@@ -1,0 +1,121 @@
+// `dqskin bake` as a process: what a killed or interrupted bake leaves behind, and that a rerun
+// completes it. Runs the real binary (DQSKIN_CLI) on the twisted cylinder at a high frame rate, so that
+// the bake is still writing when the signal arrives.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kInput = std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf";
+
+pid_t start_bake(const fs::path& out) {
+  const std::string out_arg = out.string();
+  // Thousands of frames of three per-frame formats: several seconds of writing.
+  const char* argv[] = {DQSKIN_CLI, "bake",   kInput.c_str(), "-o", out_arg.c_str(), "--fps", "3000",
+                        "--format", "glb,ply,obj", "--quiet", nullptr};
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, DQSKIN_CLI, nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  return pid;
+}
+
+int run_bake(const fs::path& out) {
+  const pid_t pid = start_bake(out);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+size_t count_frames(const fs::path& dir) {
+  if (!fs::exists(dir)) return 0;
+  size_t n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) n += e.path().extension() == ".ply";
+  return n;
+}
+
+// Waits until the bake has written some frames (and is surely mid-way).
+void wait_for_frames(const fs::path& out, size_t frames) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (count_frames(out) < frames && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GE(count_frames(out), frames) << "the bake wrote nothing in two minutes";
+}
+
+bool is_temporary(const fs::path& p) {
+  const std::string name = p.filename().string();
+  return name[0] == '.' && name.find(".tmp-") != std::string::npos;
+}
+
+std::map<std::string, std::string> final_files(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file() || is_temporary(e.path()) || e.path().filename() == "manifest.json") continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    out[fs::relative(e.path(), dir).string()] = s.str();
+  }
+  return out;
+}
+
+// Starts a bake into `out`, waits until it is mid-way and sends it `signal`; returns its wait status.
+int bake_and_signal(const fs::path& out, int signal) {
+  const pid_t pid = start_bake(out);
+  wait_for_frames(out, 50);
+  EXPECT_EQ(kill(pid, signal), 0);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
+}
+
+class BakeProcessTest : public testing::Test {
+protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("dqskin_bake_process_" + std::to_string(::getpid()) + "_" +
+                                         testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  fs::path root_;
+};
+
+TEST_F(BakeProcessTest, KilledBakeLeavesOnlyCompleteFilesAndARerunCompletesIt) {
+  const fs::path out = root_ / "killed";
+  const int status = bake_and_signal(out, SIGKILL);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const size_t frames_before = count_frames(out);
+
+  // Every file under its final name is complete: a rerun without --force would refuse any file whose
+  // bytes differ from the bake's, and it succeeds.
+  ASSERT_EQ(run_bake(out), 0);
+  EXPECT_GT(count_frames(out), frames_before) << "the rerun finished the job";
+  ASSERT_EQ(run_bake(root_ / "reference"), 0);
+  EXPECT_TRUE(final_files(out) == final_files(root_ / "reference"));
+  EXPECT_TRUE(fs::exists(out / "manifest.json"));
+}
+
+TEST_F(BakeProcessTest, InterruptedBakeRemovesItsTemporariesAndDiesOfTheSignal) {
+  const fs::path out = root_ / "interrupted";
+  const int status = bake_and_signal(out, SIGTERM);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  for (const auto& e : fs::recursive_directory_iterator(out)) EXPECT_FALSE(is_temporary(e.path())) << e.path();
+  EXPECT_FALSE(fs::exists(out / "manifest.json")) << "an interrupted bake claims nothing";
+  ASSERT_EQ(run_bake(out), 0);
+}
+
+}  // namespace

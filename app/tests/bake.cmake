@@ -1,0 +1,63 @@
+# `dqskin bake` on the command line: help, the bundled default input, exit statuses and messages.
+set(bake_scratch ${CMAKE_CURRENT_BINARY_DIR}/bake_cli)
+file(MAKE_DIRECTORY ${bake_scratch}/tmp)
+set(rig ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
+
+function(dqskin_bake_test name expected)
+  cmake_parse_arguments(T "" "STDOUT;STDERR" "ARGS" ${ARGN})
+  string(REPLACE ";" "\\;" args "${T_ARGS}")  # one -DARGS= argument, not one per word
+  set(script_args -DCOMMAND=$<TARGET_FILE:dqskin_cli> "-DARGS=${args}" -DEXPECTED=${expected})
+  if(DEFINED T_STDOUT)
+    list(APPEND script_args "-DSTDOUT_REGEX=${T_STDOUT}")
+  endif()
+  if(DEFINED T_STDERR)
+    list(APPEND script_args "-DSTDERR_REGEX=${T_STDERR}")
+  endif()
+  add_test(NAME cli.bake_${name} COMMAND ${CMAKE_COMMAND} ${script_args} -P ${PROJECT_SOURCE_DIR}/app/tests/expect_run.cmake)
+  set_tests_properties(cli.bake_${name} PROPERTIES ENVIRONMENT "TMPDIR=${bake_scratch}/tmp;${bake_test_environment}")
+endfunction()
+
+dqskin_bake_test(help 0 ARGS bake --help
+  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--format.*--backend.*--shard.*--jobs.*--dry-run.*--quiet.*--json-progress.*--force.*Exit status")
+dqskin_bake_test(default_input_says_where 0 ARGS bake
+  STDERR "^dqskin: no input given: baking the bundled twisted_cylinder.gltf into [^\n]*/dqskin-bake-[^\n]*/out\n.*manifest: ")
+dqskin_bake_test(dry_run_lists_frames 0 ARGS bake ${rig} -o ${bake_scratch}/dry --dry-run --format glb,vat
+  STDOUT "bending_arm/[^/]+/frame_0000.glb\n.*vat_positions.exr")
+dqskin_bake_test(json_progress 0 ARGS bake ${rig} -o ${bake_scratch}/json --json-progress --format ply
+  STDOUT "^{\"animation\":[^\n]*\"event\":\"progress\"[^\n]*\n.*{[^\n]*\"event\":\"summary\"[^\n]*\"stage_s\":")
+dqskin_bake_test(quiet_prints_nothing 0 ARGS bake ${rig} -o ${bake_scratch}/quiet --quiet --format ply
+  STDOUT "^$" STDERR "^$")
+dqskin_bake_test(missing_input_exits_2 2 ARGS bake ${bake_scratch}/missing.gltf -o ${bake_scratch}/missing
+  STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
+dqskin_bake_test(some_inputs_failed_exits_1 1 ARGS bake ${bake_scratch}/missing.gltf ${rig} -o ${bake_scratch}/some --quiet
+  STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
+dqskin_bake_test(unknown_format_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --format glb,fbx
+  STDERR "^dqskin: --format 'fbx' is not one of glb, ply, obj, vat, bones\n$")
+dqskin_bake_test(bad_shard_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --shard 3/3
+  STDERR "^dqskin: --shard '3/3': I must be at least 0 and less than N\n$")
+dqskin_bake_test(unknown_mode_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --mode slerp
+  STDERR "^dqskin: --mode 'slerp' is not one of lbs, dqs, dib\n$")
+dqskin_bake_test(dib_on_the_gpu_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --mode dib --backend egl
+  STDERR "^dqskin: --mode dib runs on the CPU reference only")
+dqskin_bake_test(two_frame_choices_exit_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --keys --times 0,1
+  STDERR "^dqskin: --frames, --keys and --times choose frames in different ways")
+dqskin_bake_test(inputs_required_with_out_dir 2 ARGS bake ${rig}
+  STDERR "^dqskin: -o OUTDIR is required")
+dqskin_bake_test(unwritable_out_dir_exits_2 2 ARGS bake ${rig} -o /proc/dqskin-cannot-write-here --format ply
+  STDERR "^dqskin: /proc/dqskin-cannot-write-here[^\n]*\n$")
+dqskin_bake_test(no_gl_context_exits_3 3 ARGS bake ${rig} -o ${bake_scratch}/nogl --backend egl
+  STDERR "^dqskin: no OpenGL 4.3 core context: ")
+set_property(TEST cli.bake_no_gl_context_exits_3 APPEND PROPERTY ENVIRONMENT
+  "__EGL_VENDOR_LIBRARY_FILENAMES=${CMAKE_CURRENT_BINARY_DIR}/no-such-vendor.json")
+
+# Every rig and shared model baked to glb, then every frame file through the Khronos glTF-Validator
+# (installed by scripts/install-validator.sh into the build tree; the test fails when it is missing).
+set(bake_glb_dir ${CMAKE_CURRENT_BINARY_DIR}/bake_glb)
+add_test(NAME cli.bake_glb_samples COMMAND ${CMAKE_COMMAND} -DCOMMAND=$<TARGET_FILE:dqskin_cli>
+  -DTESTDATA=${PROJECT_SOURCE_DIR}/testdata -DSHARED=${PROJECT_SOURCE_DIR}/../shared/testdata -DOUT=${bake_glb_dir}
+  -P ${PROJECT_SOURCE_DIR}/app/tests/bake_glb_samples.cmake)
+set_tests_properties(cli.bake_glb_samples PROPERTIES FIXTURES_SETUP bake_glb ENVIRONMENT "${bake_test_environment}")
+find_program(DQSKIN_NODE node)
+add_test(NAME cli.bake_glb_validator COMMAND ${DQSKIN_NODE} ${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs
+  --validator ${CMAKE_BINARY_DIR}/tools/node_modules/gltf-validator ${bake_glb_dir})
+set_tests_properties(cli.bake_glb_validator PROPERTIES FIXTURES_REQUIRED bake_glb)

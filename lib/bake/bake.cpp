@@ -1,0 +1,337 @@
+// The bake: plan, then per input and clip deform batch after batch (GPU or CPU reference) while the
+// frames of the previous batch are encoded and written on every core (issue: "writing uses both cores").
+#include "dqskin/bake.hpp"
+
+#include "bake_plan.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/frame_view.hpp"
+#include "dqskin/glb_output.hpp"
+#include "dqskin/gpu_deform.hpp"
+#include "dqskin/mesh_output.hpp"
+#include "dqskin/sha256.hpp"
+#include "dqskin/texture_output.hpp"
+#include "manifest.hpp"
+#include "parallel_for.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+
+namespace dqskin {
+
+using namespace bake_detail;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+bool has(unsigned formats, BakeFormat f) { return formats & unsigned(f); }
+
+// Thread-safe bookkeeping of one bake: outputs, stage times, progress.
+struct Ledger {
+  const BakeOptions& options;
+  const std::function<void(const BakeProgress&)>& progress;
+  BakeReport& report;
+  std::mutex mutex;
+  size_t frames_done = 0;
+
+  std::string absolute(const std::string& relative) const { return options.out_dir + "/" + relative; }
+
+  void check_cancel() const {
+    if (options.cancel && options.cancel->load()) throw BakeCancelled();
+  }
+
+  void add_time(double BakeStageTimes::*stage, double seconds) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    report.times.*stage += seconds;
+  }
+
+  void record(BakeOutput output) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    report.outputs.push_back(std::move(output));
+  }
+
+  // Writes bytes we encoded: hashed from memory, no second read.
+  void write(const std::string& relative, const std::string& bytes) {
+    const Clock::time_point start = Clock::now();
+    AtomicFile file(absolute(relative), false);  // synced all at once before the manifest
+    file.write(bytes);
+    const bool unchanged = file.commit(options.overwrite) == Committed::kUnchanged;
+    const std::string digest = sha256_hex(bytes);
+    add_time(&BakeStageTimes::write, since(start));
+    record({relative, bytes.size(), digest, unchanged});
+  }
+
+  // Records files another library wrote (OpenImageIO): hashed from disk.
+  void record_files(const std::vector<std::string>& relative, const std::vector<Committed>& committed) {
+    for (size_t i = 0; i < relative.size(); ++i) {
+      const std::string path = absolute(relative[i]);
+      record({relative[i], uint64_t(std::filesystem::file_size(path)), sha256_file(path),
+              i < committed.size() && committed[i] == Committed::kUnchanged});
+    }
+  }
+
+  void frames_finished(size_t count, const InputPlan& input, const ClipPlan& clip) {
+    BakeProgress p;
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      frames_done += count;
+      p = {frames_done, report.frames_total, input.path, clip.name};
+    }
+    if (progress) progress(p);
+  }
+};
+
+// Bakes the clips of one input with one deformer.
+class InputBaker {
+public:
+  InputBaker(const InputPlan& input, const BakeOptions& options, GpuContext* context, Ledger& ledger)
+      : input_(input), asset_(*input.asset), options_(options), ledger_(ledger),
+        jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())) {
+    if (has(options.formats, BakeFormat::kGlb)) glb_ = std::make_unique<GlbWriter>(asset_, input.instances, input.scene);
+    if (context) {
+      GpuDeformOptions gpu_options;
+      gpu_options.mode = options.mode;
+      gpu_options.memory_budget = options.gpu_memory;
+      gpu_ = std::make_unique<GpuDeformer>(*context, asset_, input.instances, gpu_options);
+    }
+  }
+
+  ~InputBaker() {
+    if (gpu_) {
+      ledger_.add_time(&BakeStageTimes::sample, gpu_->stats().sample_seconds);
+      ledger_.add_time(&BakeStageTimes::deform, gpu_->stats().deform_seconds);
+      ledger_.add_time(&BakeStageTimes::readback, gpu_->stats().readback_seconds);
+    }
+  }
+
+  size_t bake_clip(const ClipPlan& clip) {
+    ledger_.check_cancel();
+    std::filesystem::create_directories(ledger_.absolute(clip.folder));
+    if (clip.clip_mine) write_clip_files(clip);
+
+    const std::vector<size_t> frames = clip.frames_to_deform(options_.formats);
+    if (frames.empty()) return 0;
+    std::unique_ptr<VatWriter> vat;
+    if (clip.clip_mine && has(options_.formats, BakeFormat::kVat))
+      vat = std::make_unique<VatWriter>(ledger_.absolute(clip.folder + "/vat_positions.exr"),
+                                        ledger_.absolute(clip.folder + "/vat_normals.exr"),
+                                        ledger_.absolute(clip.folder + "/vat.json"), vat_sources(asset_, input_.instances),
+                                        clip.times, clip.fps, clip.name);
+    std::vector<double> times;
+    for (size_t f : frames) times.push_back(clip.times[f]);
+    auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, vat.get()); };
+    if (gpu_) {
+      gpu_->run(clip.clip, times, sink);
+    } else {
+      deform_on_cpu(clip, times, sink);
+    }
+    if (vat) {
+      const std::vector<Committed> committed = vat->commit(options_.overwrite);
+      ledger_.record_files({clip.folder + "/vat_positions.exr", clip.folder + "/vat_normals.exr", clip.folder + "/vat.json"},
+                           committed);
+    }
+    return frames.size();
+  }
+
+private:
+  // Whole-animation files that need no deformation: the OBJ material library and the bone textures.
+  void write_clip_files(const ClipPlan& clip) {
+    if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
+      ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_));
+    if (!has(options_.formats, BakeFormat::kBones) || input_.skins.empty()) return;
+    const Clock::time_point start = Clock::now();
+    std::vector<Pose> poses;
+    for (double t : clip.times) poses.push_back(sample_pose(asset_, clip.clip, t));
+    for (int skin : input_.skins) {
+      std::vector<JointTransforms> frames;
+      for (const Pose& pose : poses) frames.push_back(joint_transforms(asset_.skins[size_t(skin)], pose));
+      const BoneTexture texture = pack_bone_texture(frames);
+      const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
+      const std::vector<Committed> committed = write_bone_texture(
+          ledger_.absolute(base + ".exr"), ledger_.absolute(base + ".json"), texture, asset_, skin, clip.times, clip.fps,
+          options_.overwrite);
+      ledger_.record_files({base + ".exr", base + ".json"}, committed);
+    }
+    ledger_.add_time(&BakeStageTimes::sample, since(start));
+  }
+
+  // The CPU reference, in batches of frames so that encoding works like the GPU path's.
+  void deform_on_cpu(const ClipPlan& clip, const std::vector<double>& times,
+                     const std::function<void(const DeformedBatch&)>& sink) {
+    const size_t batch = 8;
+    for (size_t first = 0; first < times.size(); first += batch) {
+      ledger_.check_cancel();
+      std::vector<DeformedFrame> frames;
+      for (size_t f = first; f < std::min(times.size(), first + batch); ++f) {
+        Clock::time_point start = Clock::now();
+        const Pose pose = sample_pose(asset_, clip.clip, times[f]);
+        ledger_.add_time(&BakeStageTimes::sample, since(start));
+        start = Clock::now();
+        frames.push_back(deform_frame(asset_, input_.instances, pose, options_.mode, int(jobs_)));
+        ledger_.add_time(&BakeStageTimes::deform, since(start));
+      }
+      sink(to_batch(frames, first));
+    }
+  }
+
+  // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them.
+  void encode_batch(const DeformedBatch& batch, const ClipPlan& clip, const std::vector<size_t>& frames, VatWriter* vat) {
+    ledger_.check_cancel();
+    const size_t tasks = batch.frame_count + (vat ? 1 : 0);
+    parallel_for(tasks, jobs_, [&](size_t task) {
+      ledger_.check_cancel();
+      if (task == batch.frame_count) {
+        const Clock::time_point start = Clock::now();
+        for (size_t k = 0; k < batch.frame_count; ++k) vat->append(frame_view(batch, k));
+        ledger_.add_time(&BakeStageTimes::encode, since(start));
+        return;
+      }
+      const size_t f = frames[batch.first_frame + task];
+      if (!clip.frame_mine[f]) return;
+      encode_frame(frame_view(batch, task), clip, f);
+    });
+    ledger_.frames_finished(batch.frame_count, input_, clip);
+  }
+
+  void encode_frame(const FrameView& view, const ClipPlan& clip, size_t f) {
+    Clock::time_point start = Clock::now();
+    if (glb_) {
+      const std::string bytes = glb_->encode(view, clip.clip, clip.times[f]);
+      ledger_.add_time(&BakeStageTimes::encode, since(start));
+      ledger_.write(clip.frame_file(f, "glb"), bytes);
+      start = Clock::now();
+    }
+    if (!has(options_.formats, BakeFormat::kPly) && !has(options_.formats, BakeFormat::kObj)) return;
+    const MergedMesh mesh = merge_frame(asset_, input_.instances, view);
+    if (has(options_.formats, BakeFormat::kPly)) {
+      const std::string bytes = encode_ply(mesh);
+      ledger_.add_time(&BakeStageTimes::encode, since(start));
+      ledger_.write(clip.frame_file(f, "ply"), bytes);
+      start = Clock::now();
+    }
+    if (has(options_.formats, BakeFormat::kObj)) {
+      const std::string bytes = encode_obj(mesh, asset_, asset_.materials.empty() ? "" : "materials.mtl");
+      ledger_.add_time(&BakeStageTimes::encode, since(start));
+      ledger_.write(clip.frame_file(f, "obj"), bytes);
+    }
+  }
+
+  const InputPlan& input_;
+  const Asset& asset_;
+  const BakeOptions& options_;
+  Ledger& ledger_;
+  const unsigned jobs_;
+  std::unique_ptr<GlbWriter> glb_;
+  std::unique_ptr<GpuDeformer> gpu_;
+};
+
+}  // namespace
+
+unsigned parse_bake_formats(const std::string& list) {
+  unsigned formats = 0;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    static const std::pair<const char*, BakeFormat> known[] = {{"glb", BakeFormat::kGlb}, {"ply", BakeFormat::kPly},
+                                                               {"obj", BakeFormat::kObj}, {"vat", BakeFormat::kVat},
+                                                               {"bones", BakeFormat::kBones}};
+    const auto it = std::find_if(std::begin(known), std::end(known), [&](const auto& k) { return name == k.first; });
+    if (it == std::end(known)) throw InputError("--format '" + name + "' is not one of glb, ply, obj, vat, bones");
+    formats |= unsigned(it->second);
+    start = comma + 1;
+  }
+  return formats;
+}
+
+void parse_shard(const std::string& text, BakeOptions& options) {
+  const size_t slash = text.find('/');
+  auto number = [&](const std::string& s) {
+    if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError("--shard '" + text + "' is not I/N (e.g. 0/4)");
+    return size_t(std::stoul(s));
+  };
+  if (slash == std::string::npos) throw InputError("--shard '" + text + "' is not I/N (e.g. 0/4)");
+  options.shard_index = number(text.substr(0, slash));
+  options.shard_count = number(text.substr(slash + 1));
+  if (options.shard_count == 0 || options.shard_index >= options.shard_count)
+    throw InputError("--shard '" + text + "': I must be at least 0 and less than N");
+}
+
+bool BakeReport::any_failed() const {
+  return std::any_of(inputs.begin(), inputs.end(), [](const BakeInputResult& r) { return !r.error.empty(); });
+}
+
+BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
+                const std::function<void(const BakeProgress&)>& progress) {
+  const Clock::time_point start = Clock::now();
+  BakeReport report;
+  if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
+  const bool cpu = options.backend == "cpu" || options.mode == BlendMode::kDib;
+  GpuBackend backend = GpuBackend::kAuto;
+  if (!cpu && !parse_gpu_backend(options.backend, backend))
+    throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa, cpu");
+  if (options.mode == BlendMode::kDib && options.backend != "auto" && options.backend != "cpu")
+    throw InputError("--mode dib runs on the CPU reference only; use --backend cpu (or auto)");
+
+  std::vector<InputPlan> plans = plan_bake(inputs, options, report.times.load);
+  for (const InputPlan& plan : plans)
+    for (const ClipPlan& clip : plan.clips) report.frames_total += clip.frames_to_deform(options.formats).size();
+
+  if (options.dry_run) {
+    for (const InputPlan& plan : plans) {
+      report.inputs.push_back({plan.path, plan.error, 0});
+      for (const ClipPlan& clip : plan.clips)
+        for (std::string& file : planned_files(plan, clip, options.formats)) report.outputs.push_back({std::move(file), 0, {}, false});
+    }
+    std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
+    report.wall_seconds = since(start);
+    return report;
+  }
+
+  std::unique_ptr<GpuContext> context;
+  if (cpu) {
+    report.gpu = {"cpu", "", "dqskin CPU reference (double precision)"};
+  }
+  Ledger ledger{options, progress, report, {}, 0};
+  for (const InputPlan& plan : plans) {
+    BakeInputResult result{plan.path, plan.error, 0};
+    if (plan.error.empty()) {
+      try {
+        if (!cpu && !context) {
+          context = create_gpu_context(backend);  // NoGpuContext ends the bake: exit status 3
+          report.gpu = context->info();
+        }
+        InputBaker baker(plan, options, context.get(), ledger);
+        for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
+      } catch (const BakeCancelled&) {
+        throw;
+      } catch (const NoGpuContext&) {
+        throw;
+      } catch (const std::exception& e) {
+        result.error = e.what();
+      }
+    }
+    report.inputs.push_back(std::move(result));
+  }
+  std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
+  if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const BakeInputResult& r) { return r.error.empty(); })) {
+    report.wall_seconds = since(start);
+    return report;  // nothing baked, nothing to record
+  }
+  // One sync of the file system instead of one per file (milliseconds each): after a power loss, a manifest
+  // that exists only lists outputs that are on disk.
+  const Clock::time_point sync = Clock::now();
+  std::filesystem::create_directories(options.out_dir);
+  sync_folder(options.out_dir);
+  report.times.write += since(sync);
+  report.manifest = write_manifest(plans, options, report);
+  report.wall_seconds = since(start);
+  return report;
+}
+
+}  // namespace dqskin

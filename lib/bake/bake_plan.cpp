@@ -1,0 +1,147 @@
+#include "bake_plan.hpp"
+
+#include "dqskin/error.hpp"
+#include "dqskin/load.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <set>
+
+namespace dqskin::bake_detail {
+namespace {
+
+std::string stem_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const size_t dot = name.find_last_of('.');
+  if (dot != std::string::npos && dot > 0) name.resize(dot);
+  return safe_name(name);
+}
+
+int digits(size_t n) {
+  int d = 1;
+  while (n >= 10) n /= 10, ++d;
+  return d;
+}
+
+}  // namespace
+
+std::string safe_name(const std::string& name) {
+  std::string out = name;
+  for (char& c : out)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.'))
+      c = '_';
+  // Never empty, hidden, "." or "..".
+  if (out.empty()) out.push_back('_');
+  if (out[0] == '.') out[0] = '_';
+  return out;
+}
+
+std::string ClipPlan::frame_file(size_t frame, const char* extension) const {
+  char number[32];
+  std::snprintf(number, sizeof number, "%0*d", number_width, numbers[frame]);
+  return folder + "/frame_" + number + "." + extension;
+}
+
+std::vector<size_t> ClipPlan::frames_to_deform(unsigned formats) const {
+  const bool textures = clip_mine && (formats & unsigned(BakeFormat::kVat));
+  const bool per_frame = formats & (unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kPly) | unsigned(BakeFormat::kObj));
+  std::vector<size_t> out;
+  for (size_t f = 0; f < times.size(); ++f)
+    if (textures || (per_frame && frame_mine[f])) out.push_back(f);
+  return out;
+}
+
+std::vector<InputPlan> plan_bake(const std::vector<std::string>& inputs, const BakeOptions& options, double& load_seconds) {
+  std::vector<InputPlan> plans;
+  std::map<std::string, std::string> stems;  // output folder → the input that writes it
+  size_t frame_unit = 0, clip_unit = 0;
+  auto mine = [&](size_t unit) { return unit % options.shard_count == options.shard_index; };
+  for (const std::string& path : inputs) {
+    InputPlan plan;
+    plan.path = path;
+    plan.stem = stem_of(path);
+    if (const auto [it, fresh] = stems.emplace(plan.stem, path); !fresh)
+      throw InputError("inputs " + it->second + " and " + path + " would both write to " + options.out_dir + "/" +
+                       plan.stem + "; bake them into different folders");
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      plan.asset = std::make_unique<Asset>(load_asset(path));
+      load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const Asset& asset = *plan.asset;
+      plan.scene = choose_scene(asset, options.scene);
+      plan.instances = mesh_instances(asset, plan.scene);
+      if (plan.instances.empty()) throw InputError("the scene draws no meshes");
+      std::set<int> skins;
+      for (const MeshInstance& inst : plan.instances)
+        if (inst.skin >= 0) skins.insert(inst.skin);
+      plan.skins.assign(skins.begin(), skins.end());
+
+      std::vector<const Clip*> clips;
+      if (asset.clips.empty() && options.clips == "all") {
+        clips.push_back(nullptr);  // a file without animations bakes its rest pose
+      } else {
+        for (size_t c : select_clips(asset, options.clips)) clips.push_back(&asset.clips[c]);
+      }
+      std::set<std::string> folders;
+      for (size_t c = 0; c < clips.size(); ++c) {
+        ClipPlan cp;
+        cp.clip = clips[c];
+        cp.name = cp.clip ? cp.clip->name : "rest";
+        const size_t index = cp.clip ? size_t(cp.clip - asset.clips.data()) : 0;
+        std::string folder = cp.clip ? (cp.clip->name.empty() ? "animation_" + std::to_string(index) : safe_name(cp.name)) : "rest";
+        if (!folders.insert(folder).second) {  // two clips of one name: the later gets its index
+          folder.append("_").append(std::to_string(index));
+          folders.insert(folder);
+        }
+        cp.folder = plan.stem;
+        cp.folder.append("/").append(folder);
+        if (cp.clip) {
+          cp.times = frame_times(*cp.clip, options.frames);
+        } else {
+          cp.times = options.frames.times.empty() ? std::vector<double>{0.0} : options.frames.times;
+        }
+        const bool grid = cp.clip && options.frames.times.empty() && !options.frames.keys;
+        cp.fps = grid ? options.frames.fps : 0.0;
+        for (size_t f = 0; f < cp.times.size(); ++f)
+          cp.numbers.push_back(grid ? options.frames.first.value_or(0) + int(f) * options.frames.step : int(f));
+        cp.number_width = std::max(4, digits(size_t(cp.numbers.empty() ? 0 : cp.numbers.back())));
+        plan.clips.push_back(std::move(cp));
+      }
+    } catch (const std::exception& e) {
+      plan = InputPlan{path, plan.stem, nullptr, -1, {}, {}, {}, e.what()};
+    }
+    // Units are numbered after the input is known to load, so a failing input takes none.
+    for (ClipPlan& cp : plan.clips) {
+      cp.clip_mine = mine(clip_unit++);
+      for (size_t f = 0; f < cp.times.size(); ++f) cp.frame_mine.push_back(mine(frame_unit++));
+    }
+    plans.push_back(std::move(plan));
+  }
+  return plans;
+}
+
+std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, unsigned formats) {
+  std::vector<std::string> files;
+  const struct {
+    BakeFormat format;
+    const char* extension;
+  } per_frame[] = {{BakeFormat::kGlb, "glb"}, {BakeFormat::kPly, "ply"}, {BakeFormat::kObj, "obj"}};
+  for (const auto& [format, extension] : per_frame)
+    if (formats & unsigned(format))
+      for (size_t f = 0; f < clip.times.size(); ++f)
+        if (clip.frame_mine[f]) files.push_back(clip.frame_file(f, extension));
+  if (!clip.clip_mine) return files;
+  if ((formats & unsigned(BakeFormat::kObj)) && !input.asset->materials.empty())
+    files.push_back(clip.folder + "/materials.mtl");
+  if (formats & unsigned(BakeFormat::kVat))
+    for (const char* name : {"vat_positions.exr", "vat_normals.exr", "vat.json"}) files.push_back(clip.folder + "/" + name);
+  if (formats & unsigned(BakeFormat::kBones))
+    for (int skin : input.skins)
+      for (const char* extension : {".exr", ".json"})
+        files.push_back(clip.folder + "/bones_skin" + std::to_string(skin) + extension);
+  return files;
+}
+
+}  // namespace dqskin::bake_detail

@@ -1,0 +1,335 @@
+// The bake end to end through the library: every rig and shared model in every format, outputs read
+// back against the deformer, manifests against the files, determinism, shards, overwrite rules.
+#include "dqskin/bake.hpp"
+
+#include "dqskin/error.hpp"
+#include "dqskin/gpu_deform.hpp"
+#include "dqskin/load.hpp"
+#include "dqskin/sha256.hpp"
+#include "ply_test_reader.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+namespace dqskin {
+namespace {
+
+namespace fs = std::filesystem;
+
+const unsigned kAllFormats = 31;
+
+std::string rig(const char* name) { return std::string(DQSKIN_TESTDATA_DIR) + "/" + name; }
+
+// The shared models (../shared/testdata/*/*.glb|gltf, one file per folder and glTF/ variants).
+std::vector<std::string> shared_models() {
+  std::vector<std::string> out;
+  const fs::path root = DQSKIN_SHARED_TESTDATA_DIR;
+  if (!fs::is_directory(root)) return out;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file() && (e.path().extension() == ".glb" || e.path().extension() == ".gltf"))
+      out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class BakeTest : public testing::Test {
+protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("dqskin_bake_" + std::to_string(::getpid()) + "_" + testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  BakeOptions options(const std::string& folder, unsigned formats = kAllFormats) {
+    BakeOptions o;
+    o.out_dir = (root_ / folder).string();
+    o.formats = formats;
+    o.jobs = 2;
+    return o;
+  }
+
+  fs::path root_;
+};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Every file under `dir`, relative path → bytes (manifests left out when asked).
+std::map<std::string, std::string> tree(const fs::path& dir, bool manifests) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const std::string rel = fs::relative(e.path(), dir).string();
+    if (!manifests && rel.rfind("manifest", 0) == 0) continue;
+    out[rel] = read_file(e.path());
+  }
+  return out;
+}
+
+std::vector<float> read_exr(const fs::path& p, int& width, int& height) {
+  auto in = OIIO::ImageInput::open(p.string());
+  EXPECT_TRUE(in) << p;
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  width = spec.width;
+  height = spec.height;
+  EXPECT_EQ(spec.nchannels, 4);
+  EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
+  std::vector<float> pixels(size_t(width) * size_t(height) * 4);
+  EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data()));
+  return pixels;
+}
+
+// Frames per second that keeps a model's longest clip to about 16 frames (the shared models' clips run
+// from 0.2 s to 35 s; all formats of every frame are read back).
+double modest_fps(const Asset& asset) {
+  double longest = 0;
+  for (const Clip& c : asset.clips) longest = std::max(longest, c.last_key);
+  return longest > 0 ? std::min(8.0, 16.0 / longest) : 8.0;
+}
+
+// Bakes one file in every format on the GPU and checks every output against an independent run of the
+// deformer and the manifest against the files.
+void check_bake_of(const std::string& input, const fs::path& out) {
+  SCOPED_TRACE(input);
+  const Asset asset = load_asset(input);
+  BakeOptions o;
+  o.out_dir = out.string();
+  o.formats = kAllFormats;
+  o.frames.fps = modest_fps(asset);
+  o.jobs = 2;
+  const BakeReport report = bake({input}, o);
+  ASSERT_FALSE(report.any_failed()) << report.inputs[0].error;
+
+  // Exactly the planned files are there, and the manifest lists each with its size and digest.
+  BakeOptions dry = o;
+  dry.dry_run = true;
+  std::set<std::string> planned;
+  for (const BakeOutput& p : bake({input}, dry).outputs) planned.insert(p.path);
+  std::set<std::string> present;
+  for (const auto& [rel, bytes] : tree(out, false)) present.insert(rel);
+  EXPECT_EQ(present, planned);
+  const nlohmann::json manifest = nlohmann::json::parse(read_file(out / "manifest.json"));
+  ASSERT_EQ(manifest["outputs"].size(), planned.size());
+  for (const auto& entry : manifest["outputs"]) {
+    const fs::path file = out / entry["path"].get<std::string>();
+    EXPECT_EQ(entry["size"].get<uint64_t>(), fs::file_size(file));
+    EXPECT_EQ(entry["sha256"].get<std::string>(), sha256_file(file.string()));
+  }
+  EXPECT_EQ(manifest["inputs"][0]["sha256"].get<std::string>(), sha256_file(input));
+  EXPECT_EQ(manifest["backend"]["name"].get<std::string>(), report.gpu.backend);
+
+  // The deformer run again on the same times gives the same floats as the PLY and VAT files.
+  auto context = create_gpu_context(GpuBackend::kAuto);
+  const int scene = choose_scene(asset, -1);
+  GpuDeformer deformer(*context, asset, mesh_instances(asset, scene), {});
+  for (const auto& clip_entry : manifest["inputs"][0]["animations"]) {
+    const std::string folder = clip_entry["folder"].get<std::string>();
+    const std::vector<double> times = clip_entry["frame_times"].get<std::vector<double>>();
+    const std::vector<int> numbers = clip_entry["frame_numbers"].get<std::vector<int>>();
+    const std::string name = clip_entry["name"].get<std::string>();
+    const Clip* clip = nullptr;
+    for (const Clip& c : asset.clips)
+      if (c.name == name) clip = &c;
+    int vat_width = 0, vat_height = 0;
+    const std::vector<float> vat = read_exr(out / folder / "vat_positions.exr", vat_width, vat_height);
+    deformer.run(clip, times, [&](const DeformedBatch& batch) {
+      for (size_t k = 0; k < batch.frame_count; ++k) {
+        const size_t f = batch.first_frame + k;
+        char file[32];
+        std::snprintf(file, sizeof file, "frame_%04d.ply", numbers[f]);
+        const PlyFile ply = read_ply(out / folder / file);
+        size_t v = 0;
+        for (const DeformedBatch::Primitive& p : batch.primitives)
+          for (size_t i = 0; i < p.vertices; ++i, ++v)
+            for (size_t c = 0; c < 3; ++c) {
+              const float x = p.positions[(k * p.vertices + i) * 3 + c];
+              ASSERT_EQ(ply.vertex_data[v * 8 + c], x) << file << " vertex " << v;
+              if (!p.normals.empty()) {
+                ASSERT_EQ(ply.vertex_data[v * 8 + 3 + c], p.normals[(k * p.vertices + i) * 3 + c]);
+              }
+            }
+        // VAT texel of vertex v at frame f: (v mod wrap, f · rows + v / wrap), DESIGN.md.
+        const size_t vertices = v;
+        ASSERT_GT(vat_width, 0);
+        const size_t wrap = size_t(vat_width), rows_per_frame = (vertices + wrap - 1) / wrap;
+        ASSERT_EQ(size_t(vat_height), times.size() * rows_per_frame);
+        v = 0;
+        for (const DeformedBatch::Primitive& p : batch.primitives)
+          for (size_t i = 0; i < p.vertices; ++i, ++v) {
+            const size_t texel = ((f * rows_per_frame + v / wrap) * wrap + v % wrap) * 4;
+            for (size_t c = 0; c < 3; ++c) ASSERT_EQ(vat[texel + c], p.positions[(k * p.vertices + i) * 3 + c]);
+          }
+      }
+    });
+  }
+}
+
+TEST_F(BakeTest, EveryRigBakesInEveryFormatAndReadsBackAsTheDeformer) {
+  for (const char* name : {"twisted_cylinder.gltf", "bending_arm.gltf", "uniform_scale.gltf", "nonuniform_scale.gltf",
+                           "eight_influences.gltf", "interpolation_modes.gltf", "morph_skin.gltf", "two_skins.gltf"})
+    check_bake_of(rig(name), root_ / name);
+}
+
+TEST_F(BakeTest, EverySharedModelBakesInEveryFormatAndReadsBackAsTheDeformer) {
+  const std::vector<std::string> models = shared_models();
+  if (models.empty()) GTEST_SKIP() << "no shared models at " << DQSKIN_SHARED_TESTDATA_DIR;
+  for (const std::string& model : models) check_bake_of(model, root_ / fs::path(model).filename());
+}
+
+TEST_F(BakeTest, BoneTextureFileIsTheShadersTexture) {
+  const std::string input = rig("nonuniform_scale.gltf");
+  BakeOptions o = options("out", unsigned(BakeFormat::kBones));
+  ASSERT_FALSE(bake({input}, o).any_failed());
+  const Asset asset = load_asset(input);
+  const Clip& clip = asset.clips[0];
+  const std::vector<double> times = frame_times(clip, o.frames);
+  std::vector<JointTransforms> frames;
+  for (double t : times) frames.push_back(joint_transforms(asset.skins[0], sample_pose(asset, &clip, t)));
+  const BoneTexture expected = pack_bone_texture(frames);
+  EXPECT_EQ(expected.texels_per_joint, 5) << "this rig scales a joint";
+  const fs::path folder = root_ / "out" / "nonuniform_scale" / (clip.name.empty() ? "animation_0" : clip.name);
+  int width = 0, height = 0;
+  const std::vector<float> texels = read_exr(folder / "bones_skin0.exr", width, height);
+  EXPECT_EQ(size_t(width), expected.width());
+  EXPECT_EQ(size_t(height), times.size());
+  EXPECT_TRUE(texels == expected.rgba) << "bit for bit";
+  const nlohmann::json side = nlohmann::json::parse(read_file(folder / "bones_skin0.json"));
+  EXPECT_EQ(side.dump().find("\"texels_per_joint\":5") != std::string::npos ||
+                side.dump().find("\"T\":5") != std::string::npos,
+            true)
+      << side.dump();
+}
+
+TEST_F(BakeTest, TwoBakesAreByteIdenticalManifestsIncluded) {
+  std::vector<std::string> inputs = {rig("twisted_cylinder.gltf"), rig("two_skins.gltf")};
+  for (const std::string& m : shared_models())
+    if (m.find("CesiumMan.glb") != std::string::npos) inputs.push_back(m);
+  BakeOptions a = options("a"), b = options("b");
+  b.jobs = 1;  // and the thread count does not matter
+  ASSERT_FALSE(bake(inputs, a).any_failed());
+  ASSERT_FALSE(bake(inputs, b).any_failed());
+  const auto ta = tree(root_ / "a", true), tb = tree(root_ / "b", true);
+  EXPECT_GT(ta.size(), 10u);
+  EXPECT_TRUE(ta == tb);
+}
+
+TEST_F(BakeTest, ShardsTogetherEqualTheWholeBake) {
+  std::vector<std::string> inputs = {rig("twisted_cylinder.gltf"), rig("interpolation_modes.gltf"), rig("two_skins.gltf")};
+  for (const std::string& m : shared_models())
+    if (m.find("Fox.glb") != std::string::npos) inputs.push_back(m);
+  ASSERT_FALSE(bake(inputs, options("whole")).any_failed());
+  std::set<std::string> listed;
+  for (size_t i = 0; i < 3; ++i) {
+    BakeOptions o = options("sharded");
+    o.shard_index = i;
+    o.shard_count = 3;
+    const BakeReport r = bake(inputs, o);
+    ASSERT_FALSE(r.any_failed());
+    EXPECT_TRUE(fs::exists(root_ / "sharded" / ("manifest.shard-" + std::to_string(i) + "-of-3.json")));
+    EXPECT_GT(r.outputs.size(), 0u) << "every shard gets work";
+    for (const BakeOutput& out : r.outputs) EXPECT_TRUE(listed.insert(out.path).second) << out.path << " baked twice";
+  }
+  const auto whole = tree(root_ / "whole", false), sharded = tree(root_ / "sharded", false);
+  EXPECT_EQ(whole.size(), listed.size());
+  EXPECT_TRUE(whole == sharded) << "the union of the shards equals the whole bake, byte for byte";
+}
+
+TEST_F(BakeTest, DifferentExistingOutputIsRefusedUnlessForced) {
+  const std::string input = rig("bending_arm.gltf");
+  BakeOptions o = options("out", unsigned(BakeFormat::kPly));
+  ASSERT_FALSE(bake({input}, o).any_failed());
+  const auto before = tree(root_ / "out", false);
+  // A rerun finds equal files and leaves them alone.
+  const BakeReport again = bake({input}, o);
+  ASSERT_FALSE(again.any_failed());
+  for (const BakeOutput& out : again.outputs) EXPECT_TRUE(out.unchanged) << out.path;
+
+  const fs::path victim = root_ / "out" / before.begin()->first;
+  std::ofstream(victim, std::ios::binary | std::ios::app) << "edited";
+  const BakeReport refused = bake({input}, o);
+  ASSERT_TRUE(refused.any_failed());
+  EXPECT_EQ(refused.inputs[0].error, victim.string() + ": exists with different contents; not overwritten");
+  EXPECT_EQ(read_file(victim), before.begin()->second + "edited");
+
+  o.overwrite = Overwrite::kReplace;
+  ASSERT_FALSE(bake({input}, o).any_failed());
+  EXPECT_TRUE(tree(root_ / "out", false) == before);
+}
+
+TEST_F(BakeTest, FailingInputIsReportedAndTheOthersBake) {
+  const BakeReport r = bake({rig("no_such_rig.gltf"), rig("bending_arm.gltf")}, options("out", unsigned(BakeFormat::kPly)));
+  ASSERT_EQ(r.inputs.size(), 2u);
+  EXPECT_NE(r.inputs[0].error, "");
+  EXPECT_EQ(r.inputs[1].error, "");
+  EXPECT_TRUE(fs::exists(root_ / "out" / "bending_arm"));
+  const nlohmann::json manifest = nlohmann::json::parse(read_file(root_ / "out" / "manifest.json"));
+  EXPECT_EQ(manifest["inputs"][0]["error"].get<std::string>(), r.inputs[0].error);
+}
+
+TEST_F(BakeTest, InputsWritingToTheSameFolderAreRefusedBeforeAnythingIsWritten) {
+  const fs::path other = root_ / "elsewhere";
+  fs::create_directories(other);
+  fs::copy_file(rig("bending_arm.gltf"), other / "bending_arm.gltf");
+  try {
+    bake({rig("bending_arm.gltf"), (other / "bending_arm.gltf").string()}, options("out"));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would both write to"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(root_ / "out"));
+}
+
+TEST_F(BakeTest, DryRunListsAndWritesNothing) {
+  BakeOptions o = options("out", unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kVat));
+  o.dry_run = true;
+  o.frames.fps = 4;
+  const BakeReport r = bake({rig("two_skins.gltf")}, o);
+  EXPECT_FALSE(fs::exists(root_ / "out"));
+  ASSERT_FALSE(r.outputs.empty());
+  EXPECT_EQ(r.outputs.front().path.rfind("two_skins/", 0), 0u);
+  const Asset asset = load_asset(rig("two_skins.gltf"));
+  EXPECT_EQ(r.outputs.size(), frame_times(asset.clips[0], o.frames).size() + 3) << "frames + vat (2 EXR, 1 JSON)";
+}
+
+TEST_F(BakeTest, DibBakesOnTheCpuReference) {
+  BakeOptions o = options("out", unsigned(BakeFormat::kPly));
+  o.mode = BlendMode::kDib;
+  const BakeReport r = bake({rig("twisted_cylinder.gltf")}, o);
+  ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;
+  EXPECT_EQ(r.gpu.backend, "cpu");
+  o.backend = "egl";
+  EXPECT_THROW(bake({rig("twisted_cylinder.gltf")}, o), InputError);
+}
+
+TEST(ParseShard, AcceptsIOfNAndRejectsTheRest) {
+  BakeOptions o;
+  parse_shard("2/5", o);
+  EXPECT_EQ(o.shard_index, 2u);
+  EXPECT_EQ(o.shard_count, 5u);
+  for (const char* bad : {"5/5", "1/0", "1", "a/2", "-1/2", "1/2/3", ""}) EXPECT_THROW(parse_shard(bad, o), InputError) << bad;
+}
+
+TEST(ParseBakeFormats, KnowsTheFiveFormats) {
+  EXPECT_EQ(parse_bake_formats("glb,ply,obj,vat,bones"), kAllFormats);
+  EXPECT_EQ(parse_bake_formats("vat"), unsigned(BakeFormat::kVat));
+  EXPECT_THROW(parse_bake_formats("gltf"), InputError);
+  EXPECT_THROW(parse_bake_formats("glb,"), InputError);
+}
+
+}  // namespace
+}  // namespace dqskin

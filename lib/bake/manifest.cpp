@@ -1,0 +1,66 @@
+#include "manifest.hpp"
+
+#include "dqskin/sha256.hpp"
+#include "dqskin/version.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace dqskin::bake_detail {
+
+std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOptions& options, const BakeReport& report) {
+  using nlohmann::json;
+  json inputs = json::array();
+  for (size_t i = 0; i < plans.size(); ++i) {
+    const InputPlan& plan = plans[i];
+    json in = {{"path", plan.path}, {"output_folder", plan.stem}};
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(plan.path, ec);
+    if (!ec) {
+      in["size"] = uint64_t(size);
+      try {
+        in["sha256"] = sha256_file(plan.path);
+      } catch (const std::exception&) {  // unreadable inputs have an error below already
+      }
+    }
+    const std::string& error = report.inputs[i].error;
+    if (!error.empty()) in["error"] = error;
+    json clips = json::array();
+    for (const ClipPlan& clip : plan.clips) {
+      json c = {{"name", clip.name}, {"folder", clip.folder}, {"frame_times", clip.times}, {"frame_numbers", clip.numbers}};
+      if (clip.fps > 0) c["fps"] = clip.fps;
+      clips.push_back(std::move(c));
+    }
+    in["animations"] = std::move(clips);
+    if (plan.scene >= 0) in["scene"] = plan.scene;
+    inputs.push_back(std::move(in));
+  }
+  json outputs = json::array();
+  for (const BakeOutput& out : report.outputs) outputs.push_back({{"path", out.path}, {"size", out.size}, {"sha256", out.sha256}});
+
+  json formats = json::array();
+  for (const auto& [bit, name] : {std::pair{BakeFormat::kGlb, "glb"}, {BakeFormat::kPly, "ply"}, {BakeFormat::kObj, "obj"},
+                                  {BakeFormat::kVat, "vat"}, {BakeFormat::kBones, "bones"}})
+    if (options.formats & unsigned(bit)) formats.push_back(name);
+
+  const json manifest = {
+      {"tool", {{"name", "dqskin"}, {"version", kVersion}}},
+      {"backend", {{"name", report.gpu.backend}, {"renderer", report.gpu.renderer}, {"gl_version", report.gpu.version}}},
+      {"mode", to_string(options.mode)},
+      {"formats", formats},
+      {"shard", {{"index", options.shard_index}, {"count", options.shard_count}}},
+      {"inputs", inputs},
+      {"outputs", outputs},
+  };
+  const std::string name = options.shard_count > 1 ? "manifest.shard-" + std::to_string(options.shard_index) + "-of-" +
+                                                         std::to_string(options.shard_count) + ".json"
+                                                   : "manifest.json";
+  const std::string path = options.out_dir + "/" + name;
+  AtomicFile file(path);
+  file.write(manifest.dump(2) + "\n");
+  file.commit(Overwrite::kReplace);  // the record of the latest bake, whatever an earlier one wrote
+  return path;
+}
+
+}  // namespace dqskin::bake_detail

@@ -1,0 +1,90 @@
+// `dqskin bake` as a library call (shared/DESIGN.md, the whole data flow): glTF files in, per-frame
+// meshes, vertex-animation textures, bone textures and a manifest out, every file written atomically.
+#pragma once
+
+#include "dqskin/animation.hpp"
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/gpu_context.hpp"
+#include "dqskin/skinning.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace dqskin {
+
+enum class BakeFormat : unsigned { kGlb = 1, kPly = 2, kObj = 4, kVat = 8, kBones = 16 };
+
+// "glb,ply" → the formats' bits. Throws InputError naming an unknown format.
+unsigned parse_bake_formats(const std::string& list);
+
+struct BakeOptions {
+  std::string out_dir;
+  std::string clips = "all";  // select_clips: all, a name or an index
+  FrameSpec frames;
+  BlendMode mode = BlendMode::kDqs;
+  unsigned formats = unsigned(BakeFormat::kGlb);
+  std::string backend = "auto";  // auto, egl, osmesa (GPU), or cpu (the double-precision reference)
+  size_t gpu_memory = size_t(512) << 20;
+  int scene = -1;  // choose_scene
+  size_t shard_index = 0, shard_count = 1;  // this process bakes the units u with u mod count == index
+  unsigned jobs = 0;  // encoder threads; 0: one per core
+  bool dry_run = false;  // plan and list, write nothing, start no GPU
+  Overwrite overwrite = Overwrite::kRefuseDifferent;
+  const std::atomic<bool>* cancel = nullptr;  // set from a signal handler: stop, leaving no partial files
+};
+
+// One file of the bake, its path relative to out_dir.
+struct BakeOutput {
+  std::string path;
+  uint64_t size = 0;
+  std::string sha256;
+  bool unchanged = false;  // an equal file was already there (not part of the manifest)
+};
+
+// Thread-seconds per stage (encoding runs on several threads at once, so they may add up to more than
+// the wall time).
+struct BakeStageTimes {
+  double load = 0, sample = 0, deform = 0, readback = 0, encode = 0, write = 0;
+};
+
+struct BakeInputResult {
+  std::string path;
+  std::string error;  // empty when the input baked
+  size_t frames = 0;  // frames this process deformed
+};
+
+struct BakeReport {
+  std::vector<BakeInputResult> inputs;
+  std::vector<BakeOutput> outputs;  // sorted by path; with dry_run, what would be written
+  std::string manifest;             // path of the manifest written (empty for dry runs)
+  GpuContextInfo gpu;               // backend "cpu" when the CPU reference deformed
+  size_t frames_total = 0;          // frames to deform over all inputs
+  BakeStageTimes times;
+  double wall_seconds = 0;
+  bool any_failed() const;
+};
+
+struct BakeProgress {
+  size_t frames_done = 0, frames_total = 0;
+  std::string input, clip;  // what is being baked now
+};
+
+// Bakes `inputs` (each on its own: a failing input is reported in BakeReport::inputs and the rest go on).
+// Throws NoGpuContext when a GPU backend is needed and none can be made, BakeCancelled when
+// options.cancel was set, InputError for options that cannot work (a bad --shard, two inputs whose
+// outputs would collide). `progress` is called after every batch, from a worker thread.
+BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
+                const std::function<void(const BakeProgress&)>& progress = {});
+
+class BakeCancelled : public std::runtime_error {
+public:
+  BakeCancelled() : std::runtime_error("bake cancelled") {}
+};
+
+// Parses "I/N" (0 ≤ I < N) into shard_index and shard_count. Throws InputError.
+void parse_shard(const std::string& text, BakeOptions& options);
+
+}  // namespace dqskin

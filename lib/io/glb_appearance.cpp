@@ -1,0 +1,293 @@
+// The source file's appearance and fixed attributes for the .glb writer (glb_appearance.hpp). Objects are
+// copied as JSON, so that properties dqskin does not model (extensions, extras) survive; every index in
+// them is checked, and a reference to something that was not copied is removed rather than left dangling.
+#include "glb_appearance.hpp"
+
+#include "accessor.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/load.hpp"
+#include "dqskin/version.hpp"
+#include "model_io.hpp"
+#include "precheck.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <map>
+
+namespace dqskin::glb {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian (§3.6.1)");
+
+// The array `key` of `doc`, or an empty one.
+json array_of(const json& doc, const char* key) {
+  const auto it = doc.find(key);
+  return it != doc.end() && it->is_array() ? *it : json::array();
+}
+
+// The entry `key` of an object, or null.
+json member(const json& object, const char* key) {
+  if (!object.is_object()) return nullptr;
+  const auto it = object.find(key);
+  return it == object.end() ? json() : *it;
+}
+
+// The new index of `value` through `map` (old index → new index or -1), or -1 when it is not an index.
+int remap(const json& value, const std::vector<int>& map) {
+  if (!value.is_number_integer()) return -1;
+  const int64_t i = value.get<int64_t>();
+  return i >= 0 && uint64_t(i) < map.size() ? map[size_t(i)] : -1;
+}
+
+bool is_index(const json& value, size_t size) {
+  return value.is_number_integer() && value.get<int64_t>() >= 0 && uint64_t(value.get<int64_t>()) < size;
+}
+
+// The image format by its signature: what §3.8.2 ("Images") and the image extensions allow.
+std::string sniff_mime_type(const std::vector<unsigned char>& b) {
+  auto starts = [&](std::initializer_list<unsigned char> magic, size_t at = 0) {
+    return b.size() >= at + magic.size() && std::equal(magic.begin(), magic.end(), b.begin() + std::ptrdiff_t(at));
+  };
+  if (starts({0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A})) return "image/png";
+  if (starts({0xFF, 0xD8, 0xFF})) return "image/jpeg";
+  if (starts({'R', 'I', 'F', 'F'}) && starts({'W', 'E', 'B', 'P'}, 8)) return "image/webp";  // EXT_texture_webp
+  if (starts({0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, 0x0D, 0x0A, 0x1A, 0x0A})) return "image/ktx2";  // KHR_texture_basisu
+  return "";
+}
+
+// Images: bytes from a bufferView, a data URI or an external file (tinygltf read them through
+// gltf::read_regular_file, from the source's folder only) go into the BIN chunk, as a .glb has no folder
+// beside it and the validator discourages data URIs in a GLB (DATA_URI_GLB). An image that could not be read, or whose format is unknown, is dropped.
+std::vector<int> copy_images(const json& src, const tinygltf::Model& model, Appearance& out) {
+  const json images = array_of(src, "images");
+  std::vector<int> map(images.size(), -1);
+  json copied = json::array();
+  for (size_t i = 0; i < images.size(); ++i) {
+    json image = images[i].is_object() ? images[i] : json::object();
+    const std::vector<unsigned char> empty;
+    const std::vector<unsigned char>& bytes = i < model.images.size() ? model.images[i].image : empty;
+    std::string mime = sniff_mime_type(bytes);
+    if (mime.empty() && member(image, "mimeType").is_string()) mime = image["mimeType"].get<std::string>();
+    if (bytes.empty() || mime.empty()) continue;
+    image.erase("uri");
+    image["bufferView"] = out.bin.view(bytes.data(), bytes.size(), 0);
+    image["mimeType"] = mime;  // required with a bufferView (§5.17)
+    map[i] = int(copied.size());
+    copied.push_back(std::move(image));
+  }
+  out.doc["images"] = std::move(copied);
+  return map;
+}
+
+// Textures: the image (`source`, and the `source` of extensions such as EXT_texture_webp) and the
+// sampler are checked. A texture that pointed at images of which none is left is dropped.
+std::vector<int> copy_textures(const json& src, const std::vector<int>& image_map, size_t samplers, Appearance& out) {
+  const json textures = array_of(src, "textures");
+  std::vector<int> map(textures.size(), -1);
+  json copied = json::array();
+  for (size_t t = 0; t < textures.size(); ++t) {
+    json texture = textures[t].is_object() ? textures[t] : json::object();
+    bool had_image = false, has_image = false;
+    auto fix_source = [&](json& object) {  // false when the reference must go
+      if (!object.contains("source")) return true;
+      had_image = true;
+      const int s = remap(object["source"], image_map);
+      if (s < 0) return false;
+      object["source"] = s;
+      has_image = true;
+      return true;
+    };
+    if (!fix_source(texture)) texture.erase("source");
+    if (texture.contains("extensions") && texture["extensions"].is_object()) {
+      std::vector<std::string> gone;
+      for (auto& [name, extension] : texture["extensions"].items())
+        if (extension.is_object() && !fix_source(extension)) gone.push_back(name);
+      for (const std::string& name : gone) texture["extensions"].erase(name);
+      if (texture["extensions"].empty()) texture.erase("extensions");
+    }
+    if (had_image && !has_image) continue;
+    if (texture.contains("sampler") && !is_index(texture["sampler"], samplers)) texture.erase("sampler");
+    map[t] = int(copied.size());
+    copied.push_back(std::move(texture));
+  }
+  out.doc["textures"] = std::move(copied);
+  return map;
+}
+
+// Every textureInfo in a material, core or extension (§5.22 and the KHR_materials_* schemas name them all
+// "...Texture": baseColorTexture, normalTexture, clearcoatTexture …), gets its texture's new index; one
+// whose texture was dropped is removed. Extras are the application's and left alone.
+void remap_texture_infos(json& object, const std::vector<int>& texture_map) {
+  std::vector<std::string> gone;
+  for (auto& [key, value] : object.items()) {
+    if (!value.is_object() || key == "extras") continue;
+    if (key.ends_with("Texture") && value.contains("index")) {
+      const int t = remap(value["index"], texture_map);
+      if (t < 0) gone.push_back(key);
+      else value["index"] = t;
+    } else {
+      remap_texture_infos(value, texture_map);
+    }
+  }
+  for (const std::string& key : gone) object.erase(key);
+}
+
+// Node extensions whose properties index data that the frame does not copy (accessors, other nodes).
+bool copies_node_extension(const std::string& name) { return name != "EXT_mesh_gpu_instancing" && name != "MSFT_lod"; }
+
+// A fixed attribute (TEXCOORD_n, COLOR_n) decoded to float into the BIN chunk; returns its accessor.
+int fixed_attribute(const gltf::AccessorReader& reader, int accessor, const std::string& name, bool quantized,
+                    size_t vertices, const std::string& what, BinWriter& bin) {
+  const bool color = name.rfind("COLOR_", 0) == 0;
+  // §3.7.2.1's attribute table; KHR_mesh_quantization adds signed and unnormalized texture coordinates.
+  const gltf::AccessorShape shape =
+      color       ? gltf::AccessorShape{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
+                                        {kFloat, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kUnsignedShort}, true}
+      : quantized ? gltf::AccessorShape{{TINYGLTF_TYPE_VEC2},
+                                        {kFloat, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                         TINYGLTF_COMPONENT_TYPE_SHORT, kUnsignedShort},
+                                        false}
+                  : gltf::AccessorShape{{TINYGLTF_TYPE_VEC2}, {kFloat, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kUnsignedShort}, true};
+  const std::string full = what + " " + name;
+  const size_t count = reader.count(accessor, full);
+  if (count != vertices)
+    throw InputError(what + ": " + name + " has " + std::to_string(count) + " elements, POSITION has " +
+                     std::to_string(vertices));
+  const int components = reader.components(accessor, full);
+  std::vector<float> values = reader.floats(accessor, shape, full);
+  if (color)  // float colours outside [0, 1] are invalid (§3.7.2.1); keep the file valid
+    for (float& v : values) v = std::clamp(v, 0.0f, 1.0f);
+  return bin.floats(values, count, components == 2 ? "VEC2" : components == 3 ? "VEC3" : "VEC4");
+}
+
+std::vector<FixedPrimitive> fixed_primitives(const Asset& asset, const tinygltf::Model& model, const json& src_mesh,
+                                             const gltf::AccessorReader& reader, bool quantized, size_t m,
+                                             size_t materials, BinWriter& bin) {
+  std::vector<FixedPrimitive> out;
+  const json src_prims = member(src_mesh, "primitives");
+  for (size_t p = 0; p < asset.meshes[m].primitives.size(); ++p) {
+    const Primitive& prim = asset.meshes[m].primitives[p];
+    const std::string what = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+    FixedPrimitive fixed;
+    for (const auto& [name, accessor] : model.meshes[m].primitives[p].attributes)  // std::map: sorted
+      if (name.rfind("TEXCOORD_", 0) == 0 || name.rfind("COLOR_", 0) == 0)
+        fixed.attributes[name] = fixed_attribute(reader, accessor, name, quantized, prim.vertex_count(), what, bin);
+    if (!prim.indices.empty()) fixed.indices = bin.indices(prim.indices);
+    if (prim.material >= 0 && size_t(prim.material) < materials) fixed.material = prim.material;
+    const json src_prim = src_prims.is_array() && p < src_prims.size() ? src_prims[p] : json();
+    fixed.extras = member(src_prim, "extras");
+    if (const json variants = member(member(src_prim, "extensions"), "KHR_materials_variants"); !variants.is_null())
+      fixed.extensions = {{"KHR_materials_variants", variants}};
+    out.push_back(std::move(fixed));
+  }
+  return out;
+}
+
+}  // namespace
+
+int BinWriter::view(const void* data, size_t size, int target) {
+  bytes.resize((bytes.size() + 3) & ~size_t(3), '\0');
+  json v = {{"buffer", 0}, {"byteOffset", bytes.size()}, {"byteLength", size}};
+  if (target) v["target"] = target;
+  bytes.append(static_cast<const char*>(data), size);
+  views.push_back(std::move(v));
+  return int(views.size()) - 1;
+}
+
+int BinWriter::floats(std::span<const float> values, size_t count, const char* type) {
+  const int v = view(values.data(), values.size_bytes(), kArrayBuffer);
+  accessors.push_back({{"bufferView", v}, {"componentType", kFloat}, {"count", count}, {"type", type}});
+  return int(accessors.size()) - 1;
+}
+
+int BinWriter::indices(std::span<const uint32_t> indices) {
+  const uint32_t largest = indices.empty() ? 0 : *std::max_element(indices.begin(), indices.end());
+  int v;
+  if (largest < 0xFFFF) {
+    std::vector<uint16_t> narrow(indices.begin(), indices.end());
+    v = view(narrow.data(), narrow.size() * 2, kElementArrayBuffer);
+  } else {
+    v = view(indices.data(), indices.size_bytes(), kElementArrayBuffer);
+  }
+  accessors.push_back({{"bufferView", v},
+                       {"componentType", largest < 0xFFFF ? kUnsignedShort : kUnsignedInt},
+                       {"count", indices.size()},
+                       {"type", "SCALAR"}});
+  return int(accessors.size()) - 1;
+}
+
+Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
+                           std::span<const uint8_t> source, const std::string& base_dir) {
+  const LoadOptions limits;
+  const bool is_glb = source.size() >= 4 && std::memcmp(source.data(), "glTF", 4) == 0;
+  const std::span<const uint8_t> text = gltf::json_chunk(source, is_glb);
+  const json src = json::parse(text.begin(), text.end(), nullptr, false);
+  if (!src.is_object()) throw InputError("the file's JSON cannot be read again");
+  const tinygltf::Model model = gltf::parse_model(source, base_dir, limits.max_file_bytes);
+  if (model.meshes.size() != asset.meshes.size() || model.nodes.size() != asset.nodes.size())
+    throw InputError("the file changed since it was loaded");
+
+  Appearance out;
+  json asset_info = {{"version", "2.0"}, {"generator", std::string("dqskin ") + kVersion}};
+  const json src_asset = member(src, "asset");
+  for (const char* key : {"copyright", "extras"})
+    if (!member(src_asset, key).is_null()) asset_info[key] = src_asset[key];
+  out.doc["asset"] = asset_info;
+  for (const char* key : {"extensions", "extras"})  // root extensions: KHR_lights_punctual lights, variants …
+    if (!member(src, key).is_null()) out.doc[key] = src[key];
+  out.doc["samplers"] = array_of(src, "samplers");
+  out.doc["cameras"] = array_of(src, "cameras");
+
+  const std::vector<int> image_map = copy_images(src, model, out);
+  const std::vector<int> texture_map = copy_textures(src, image_map, out.doc["samplers"].size(), out);
+  json materials = array_of(src, "materials");
+  for (json& material : materials) {
+    if (!material.is_object()) material = json::object();
+    remap_texture_infos(material, texture_map);
+  }
+  out.doc["materials"] = std::move(materials);
+  for (const json& e : array_of(src, "extensionsRequired"))
+    if (e.is_string()) out.source_extensions_required.push_back(e.get<std::string>());
+
+  // Nodes: what the frame does not change; transforms, meshes, children are the writer's.
+  const json src_nodes = array_of(src, "nodes");
+  const size_t cameras = out.doc["cameras"].size();
+  out.nodes.resize(asset.nodes.size());
+  for (size_t n = 0; n < asset.nodes.size() && n < src_nodes.size(); ++n) {
+    json& fields = out.nodes[n].fields;
+    for (const char* key : {"name", "extras"})
+      if (!member(src_nodes[n], key).is_null()) fields[key] = src_nodes[n][key];
+    if (const json camera = member(src_nodes[n], "camera"); is_index(camera, cameras))
+      fields["camera"] = camera;
+    if (const json extensions = member(src_nodes[n], "extensions"); extensions.is_object()) {
+      json kept = json::object();
+      for (const auto& [name, value] : extensions.items())
+        if (copies_node_extension(name)) kept[name] = value;
+      if (!kept.empty()) fields["extensions"] = kept;
+    }
+  }
+  if (scene >= 0) {
+    const json src_scene = array_of(src, "scenes").at(size_t(scene));
+    for (const char* key : {"name", "extras"})
+      if (!member(src_scene, key).is_null()) out.scene_fields[key] = src_scene[key];
+  }
+
+  // The fixed attributes of each mesh that an instance draws, in the order instances first draw them.
+  bool quantized = false;
+  for (const std::string& e : model.extensionsUsed) quantized = quantized || e == "KHR_mesh_quantization";
+  const gltf::AccessorReader reader{model, limits.max_unbacked_elements};
+  const json src_meshes = array_of(src, "meshes");
+  out.meshes.resize(asset.meshes.size());
+  out.mesh_extras.resize(asset.meshes.size());
+  for (const MeshInstance& inst : instances) {
+    const size_t m = size_t(inst.mesh);
+    if (!out.meshes[m].empty()) continue;
+    const json src_mesh = m < src_meshes.size() ? src_meshes[m] : json();
+    out.meshes[m] = fixed_primitives(asset, model, src_mesh, reader, quantized, m, out.doc["materials"].size(), out.bin);
+    out.mesh_extras[m] = member(src_mesh, "extras");
+  }
+  return out;
+}
+
+}  // namespace dqskin::glb

@@ -1,0 +1,73 @@
+// What a .glb frame takes from the source file unchanged (internal to glb_output.cpp): the appearance
+// objects copied as JSON with every reference checked, the images' bytes, and the vertex attributes that do
+// not move (texture coordinates, colours, indices), written once into the start of the BIN chunk.
+#pragma once
+
+#include "dqskin/skinning.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace dqskin::glb {
+
+using nlohmann::json;
+
+// glTF bufferView.target values (§3.6.2.3 "Buffer views").
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+// accessor.componentType values (§3.6.2.2 "Accessor data types").
+constexpr int kUnsignedShort = 5123;
+constexpr int kUnsignedInt = 5125;
+constexpr int kFloat = 5126;
+
+// The GLB BIN chunk being filled and the bufferViews and accessors that describe it.
+struct BinWriter {
+  std::string bytes;
+  json views = json::array();
+  json accessors = json::array();
+
+  // Appends `size` bytes as a bufferView of their own, starting on a 4-byte boundary (§3.6.2.4 "Data
+  // alignment": every accessor offset must be a multiple of its component size). target 0 = none
+  // (images). Returns the view's index.
+  int view(const void* data, size_t size, int target);
+  // A float accessor of `count` elements of `type` (VEC2 …) over `values`, in a view of its own.
+  int floats(std::span<const float> values, size_t count, const char* type);
+  // Indices as UNSIGNED_SHORT when every index is below 65535, else UNSIGNED_INT: §3.7.2.1 forbids the
+  // primitive-restart value (the type's largest) as an index.
+  int indices(std::span<const uint32_t> indices);
+};
+
+// A source primitive's attributes that stay the same in every frame.
+struct FixedPrimitive {
+  json attributes = json::object();  // TEXCOORD_n and COLOR_n → accessor index, decoded to float
+  int indices = -1;                  // accessor index, or -1 when the source is not indexed
+  int material = -1;                 // checked against the materials, or -1
+  json extras;                       // null when none
+  json extensions;                   // KHR_materials_variants only (its material indices stay valid)
+};
+
+// The parts of a node that do not depend on the frame (name, camera, extensions, extras).
+struct FixedNode {
+  json fields = json::object();
+};
+
+struct Appearance {
+  json doc;  // asset, materials, textures, samplers, images, cameras, root extensions and extras
+  BinWriter bin;  // images, then the fixed attributes (their accessors and views are in `bin`)
+  std::vector<std::vector<FixedPrimitive>> meshes;  // per source mesh; empty for meshes no instance draws
+  std::vector<json> mesh_extras;                   // per source mesh (null when none)
+  std::vector<FixedNode> nodes;                    // per source node
+  json scene_fields = json::object();              // the chosen scene's name and extras
+  std::vector<std::string> source_extensions_required;
+};
+
+// Reads the source again (bytes of a .gltf or .glb, base_dir for its external files) and prepares what
+// every frame shares for the meshes that `instances` draw. Throws InputError.
+Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
+                           std::span<const uint8_t> source, const std::string& base_dir);
+
+}  // namespace dqskin::glb
