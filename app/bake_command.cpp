@@ -134,8 +134,9 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
   const bool all_failed = std::all_of(r.inputs.begin(), r.inputs.end(), [](const BakeInputResult& in) { return !in.error.empty(); });
   if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
   const BakeStageTimes& t = r.times;
-  std::fprintf(stderr, "baked %zu frames of %zu inputs in %.2f s (%.1f frames/s): %zu files written, %zu unchanged, %.1f MB\n",
-               r.frames_total, r.inputs.size(), r.wall_seconds,
+  const size_t baked = size_t(std::count_if(r.inputs.begin(), r.inputs.end(), [](const BakeInputResult& in) { return in.error.empty(); }));
+  std::fprintf(stderr, "baked %zu of %zu input%s in %.2f s: %zu frames deformed (%.1f frames/s); %zu files written, %zu unchanged, %.1f MB\n",
+               baked, r.inputs.size(), r.inputs.size() == 1 ? "" : "s", r.wall_seconds, r.frames_total,
                r.wall_seconds > 0 ? double(r.frames_total) / r.wall_seconds : 0.0, written, unchanged, double(bytes) / 1e6);
   std::fprintf(stderr,
                "stages (thread-seconds): load %.2f, sample %.2f, deform %.2f, readback %.2f, encode %.2f, write %.2f\n",

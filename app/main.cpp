@@ -18,7 +18,11 @@ int main(int argc, char** argv) {
       "dqskin"};
   app.set_version_flag("--version", std::string("dqskin ") + dqskin::kVersion, "Print the version and exit");
   app.footer("Exit status: 0 success, 1 some inputs failed, 2 usage or input error, 3 no OpenGL context.\n"
-             "Run 'dqskin COMMAND --help' for the options of a command.");
+             "Run 'dqskin COMMAND --help' for the options of a command.\n"
+             "Examples:\n"
+             "  dqskin info Fox.glb\n"
+             "  dqskin bake Fox.glb -o out --format glb,vat\n"
+             "  dqskin bench --quick");
 
   InfoSettings info;
   CLI::App* info_cmd = app.add_subcommand(
@@ -46,27 +50,36 @@ int main(int argc, char** argv) {
                        ".gltf or .glb files. Without any, the bundled twisted_cylinder rig is baked into a new "
                        "temporary folder, which is printed");
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
-  bake_cmd->add_option("--anim", bake.anim, "Animation to bake: all, a name, or an index")->capture_default_str();
+  bake_cmd->add_option("--anim", bake.anim, "Animation to bake: all, a name, or an index")
+      ->type_name("NAME|INDEX|all")
+      ->capture_default_str();
   bake_cmd->add_option("--fps", bake.fps, "Frames per second of the sampling grid; frame i is at i/fps seconds")
+      ->type_name("FPS")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   bake_cmd->add_option("--frames", bake.frames, "Only grid frames A to B inclusive, every step-th")->type_name("A:B[:step]");
   bake_cmd->add_flag("--keys", bake.keys, "Sample every key time of the animation instead of the fps grid");
   bake_cmd->add_option("--times", bake.times, "Sample these times in seconds instead of the fps grid")->type_name("T,T,...");
   bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
+      ->type_name("lbs|dqs|dib")
       ->capture_default_str();
   bake_cmd->add_option("--format", bake.formats, "Outputs, any of glb,ply,obj,vat,bones (comma-separated)")
+      ->type_name("LIST")
       ->capture_default_str();
   bake_cmd->add_option("--backend", bake.backend,
                        "Deformer: auto (EGL, then OSMesa), egl, osmesa, or cpu (the double-precision reference)")
+      ->type_name("NAME")
       ->capture_default_str();
-  bake_cmd->add_option("--scene", bake.scene, "Scene index (default: the file's default scene)");
+  bake_cmd->add_option("--scene", bake.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
   bake_cmd->add_option("--shard", bake.shard,
                        "Bake only shard I of N of the (input, animation, frame) work; the N shards' outputs "
                        "together equal the whole bake")
       ->type_name("I/N");
-  bake_cmd->add_option("-j,--jobs", bake.jobs, "Encoder threads (default: one per core)")->check(CLI::Range(1u, 1024u));
+  bake_cmd->add_option("-j,--jobs", bake.jobs, "Encoder threads (default: one per core)")
+      ->type_name("N")
+      ->check(CLI::Range(1u, 1024u));
   bake_cmd->add_option("--gpu-memory", bake.gpu_memory_mb, "GPU output buffer budget, in MiB")
+      ->type_name("MIB")
       ->capture_default_str()
       ->check(CLI::Range(size_t(1), size_t(1) << 20));
   bake_cmd->add_flag("-n,--dry-run", bake.dry_run, "List the files that would be written; write nothing");
