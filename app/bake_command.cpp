@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "default_input.hpp"
 #include "exit_codes.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/bake.hpp"
 #include "dqskin/error.hpp"
@@ -23,14 +24,6 @@
 
 namespace dqskin::cli {
 namespace {
-
-std::atomic<bool> g_cancel{false};
-volatile std::sig_atomic_t g_signal = 0;
-
-extern "C" void on_signal(int signal) {
-  g_signal = signal;
-  g_cancel = true;
-}
 
 std::string clock_text(double seconds) {
   const long s = long(seconds + 0.5);
@@ -98,7 +91,6 @@ BakeOptions to_options(const BakeSettings& s) {
   o.jobs = s.jobs;
   o.dry_run = s.dry_run;
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
-  o.cancel = &g_cancel;
   return o;
 }
 
@@ -167,11 +159,10 @@ int run_bake(const BakeSettings& given) {
   try {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input(settings));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
-    const BakeOptions options = to_options(settings);
+    BakeOptions options = to_options(settings);
+    options.cancel = catch_interrupts();
     if (!options.dry_run) std::filesystem::create_directories(options.out_dir);
 
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
     const BakeReport report = bake(settings.inputs, options, [&](const BakeProgress& p) { progress(p); });
     progress.done();
     if (options.dry_run) {
@@ -189,10 +180,7 @@ int run_bake(const BakeSettings& given) {
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
   } catch (const BakeCancelled&) {
     progress.done();
-    std::cerr << "dqskin: bake stopped by signal " << int(g_signal) << "; no partial files were left under final names\n";
-    std::signal(int(g_signal), SIG_DFL);
-    std::raise(int(g_signal));  // die of the signal, so that callers (make, shells) see it
-    return 128 + int(g_signal);
+    return die_of_interrupt("bake");
   } catch (const NoGpuContext& e) {
     progress.done();
     std::cerr << "dqskin: " << e.what() << '\n';

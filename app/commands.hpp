@@ -1,7 +1,10 @@
 // The dqskin commands: each one a settings struct that CLI11 fills and a function that runs it.
 #pragma once
 
+#include "dqskin/image_diff.hpp"
+
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,5 +46,41 @@ struct BakeSettings {
 
 // Bakes every input's animations into the asked formats. Returns an ExitCode.
 int run_bake(const BakeSettings& settings);
+
+struct RenderSettings {
+  std::vector<std::string> inputs;
+  std::string out_dir;
+  std::string anim = "all";
+  double fps = 30;
+  std::string frames, times, shard;
+  bool keys = false;
+  std::string mode = "dqs";
+  std::string backend = "auto";
+  int scene = -1;
+  std::string size = "512x512";
+  std::string background = "0.2,0.2,0.2";  // sRGB
+  int samples = 4;
+  std::string shade = "lit";
+  std::string joint;  // --shade weights
+  std::optional<double> yaw, pitch, distance, fov;
+  bool ortho = false;
+  std::string format = "png";
+  bool quiet = false, json_progress = false, force = false;
+};
+
+// Renders every frame of every input's animations into images. Returns an ExitCode.
+int run_render(const RenderSettings& settings);
+
+struct DiffSettings {
+  std::string a, b;
+  DiffThresholds thresholds;  // idiff's defaults
+  std::string out_dir;        // heat maps of failing pairs; none when empty
+  bool json = false;
+  std::string junit;          // JUnit XML report; none when empty
+};
+
+// Compares two images or two folders of images. Returns 0 (all pass), 1 (warnings only) or 2 (a failure,
+// or a usage or input error).
+int run_diff(const DiffSettings& settings);
 
 }  // namespace dqskin::cli

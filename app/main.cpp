@@ -99,6 +99,126 @@ int main(int argc, char** argv) {
       "  dqskin bake *.glb -o out --fps 24 --frames 0:47 --mode lbs\n"
       "  dqskin bake *.glb -o out --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT");
 
+  RenderSettings render;
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "Draw the deformed meshes of every frame offscreen into PNG (8-bit sRGB) or EXR (linear) images, "
+                "through the same headless OpenGL context as bake");
+  render_cmd->add_option("INPUT", render.inputs, ".gltf or .glb files")->required();
+  render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
+  render_cmd->add_option("--anim", render.anim, "Animation to render: all, a name, or an index")
+      ->type_name("NAME|INDEX|all")
+      ->capture_default_str();
+  render_cmd->add_option("--fps", render.fps, "Frames per second of the sampling grid; frame i is at i/fps seconds")
+      ->type_name("FPS")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  render_cmd->add_option("--frames", render.frames, "Only grid frames A to B inclusive, every step-th")->type_name("A:B[:step]");
+  render_cmd->add_flag("--keys", render.keys, "Sample every key time of the animation instead of the fps grid");
+  render_cmd->add_option("--times", render.times, "Sample these times in seconds instead of the fps grid")->type_name("T,T,...");
+  render_cmd->add_option("--mode", render.mode, "Blending: lbs (linear) or dqs (dual quaternion DLB)")
+      ->type_name("lbs|dqs")
+      ->capture_default_str();
+  render_cmd->add_option("--backend", render.backend, "Headless OpenGL backend: auto (EGL, then OSMesa), egl or osmesa")
+      ->type_name("NAME")
+      ->capture_default_str();
+  render_cmd->add_option("--scene", render.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
+  render_cmd->add_option("--shard", render.shard, "Render only shard I of N of the (input, animation, frame) work")
+      ->type_name("I/N");
+  render_cmd->add_option("--size", render.size, "Image size in pixels")->type_name("WxH")->capture_default_str();
+  render_cmd->add_option("--background", render.background, "Background color: R,G,B[,A] (0 to 1, sRGB) or #RRGGBB[AA]")
+      ->type_name("COLOR")
+      ->capture_default_str();
+  render_cmd->add_option("--samples", render.samples, "Multisample anti-aliasing samples per pixel")
+      ->type_name("N")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  render_cmd->add_option("--shade", render.shade,
+                         "lit (material base color, key light and ambient), normals (world normal as color), "
+                         "weights (influence of --joint as a heat map), mode-diff (distance between the lbs and dqs "
+                         "positions as a heat map, its scale printed)")
+      ->type_name("lit|normals|weights|mode-diff")
+      ->capture_default_str();
+  render_cmd->add_option("--joint", render.joint, "Joint node shown by --shade weights")->type_name("NAME");
+  render_cmd->add_option("--yaw", render.yaw, "Camera turn about +Y from the front (+Z), degrees (default 35)")
+      ->type_name("DEG");
+  render_cmd->add_option("--pitch", render.pitch, "Camera elevation, degrees (default 20)")
+      ->type_name("DEG")
+      ->check(CLI::Range(-90.0, 90.0));
+  render_cmd->add_option("--distance", render.distance,
+                         "Camera distance from the center of the animation's bounding box (default: fit the box)")
+      ->type_name("UNITS")
+      ->check(CLI::PositiveNumber);
+  render_cmd->add_option("--fov", render.fov, "Vertical field of view, degrees (default 35)")
+      ->type_name("DEG")
+      ->check(CLI::Range(1.0, 170.0));
+  render_cmd->add_flag("--ortho", render.ortho, "Orthographic projection fitted to the bounding box");
+  render_cmd->add_option("--format", render.format, "Image format: png (8-bit sRGB) or exr (32-bit linear float)")
+      ->type_name("png|exr")
+      ->capture_default_str();
+  render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+  render_cmd->add_flag("--json-progress", render.json_progress,
+                       "Print progress and the final summary as JSON lines on standard output");
+  render_cmd->add_flag("-f,--force", render.force,
+                       "Overwrite existing images that differ (without it they are an error; equal ones are kept)");
+  render_cmd->footer(
+      "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{png,exr}, frame numbers as bake names them. The camera\n"
+      "is framed once on the bounding box of the whole animation, so the frames of an animation are comparable.\n"
+      "Exit status: 0 success, 1 some inputs failed (the others rendered), 2 usage or input error, 3 no OpenGL context.\n"
+      "Examples:\n"
+      "  dqskin render Fox.glb -o frames\n"
+      "  dqskin render arm.gltf -o frames --mode lbs --shade normals --size 256x256 --yaw 90 --ortho");
+
+  DiffSettings diff;
+  CLI::App* diff_cmd = app.add_subcommand(
+      "diff", "Compare two images, or two folders of images paired by relative path, as OpenImageIO's idiff does: "
+              "max, mean and RMS error, PSNR and pixels over the thresholds, from ImageBufAlgo::compare");
+  diff_cmd->add_option("A", diff.a, "Reference image or folder")->required();
+  diff_cmd->add_option("B", diff.b, "Image or folder to check (for an image A and a folder B: B/<name of A>)")
+      ->required();
+  diff_cmd->add_option("--fail", diff.thresholds.fail, "A pixel is over --fail when any channel differs by more")
+      ->type_name("VAL")
+      ->capture_default_str();
+  diff_cmd->add_option("--failpercent", diff.thresholds.fail_percent,
+                       "A pair fails when more than this percentage of its pixels are over --fail")
+      ->type_name("PERCENT")
+      ->capture_default_str();
+  diff_cmd->add_option("--hardfail", diff.thresholds.hard_fail,
+                       "A pair fails when any channel differs by more, whatever the percentage")
+      ->type_name("VAL")
+      ->capture_default_str();
+  diff_cmd->add_option("--warn", diff.thresholds.warn, "A pixel is over --warn when any channel differs by more")
+      ->type_name("VAL")
+      ->capture_default_str();
+  diff_cmd->add_option("--warnpercent", diff.thresholds.warn_percent,
+                       "A pair warns when more than this percentage of its pixels are over --warn")
+      ->type_name("PERCENT")
+      ->capture_default_str();
+  diff_cmd->add_option("--hardwarn", diff.thresholds.hard_warn,
+                       "A pair warns when any channel differs by more, whatever the percentage")
+      ->type_name("VAL")
+      ->capture_default_str();
+  diff_cmd->add_option("-o,--out", diff.out_dir,
+                       "Write a heat map DIR/<name>.diff.png of every failing pair (folders created when missing)")
+      ->type_name("DIR");
+  diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
+  diff_cmd->add_option("--junit", diff.junit, "Also write a JUnit XML report, one testcase per pair, to FILE")
+      ->type_name("FILE");
+  diff_cmd->footer(
+      "Verdict (idiff's): a pair FAILs when more than --failpercent % of its pixels are over --fail, or any channel\n"
+      "differs by more than --hardfail, or a NaN or infinity meets another value; else it WARNs when more than\n"
+      "--warnpercent % are over --warn, or any channel differs by more than --hardwarn; else it PASSes. The defaults\n"
+      "are idiff's: any difference over 1e-6 fails. For warnings, set --fail above --warn or a --failpercent.\n"
+      "Images of different sizes or channel counts, files missing from one folder and unreadable files FAIL.\n"
+      "Pixels are read as float (8-bit 255 = 1.0); the first subimage is compared.\n"
+      "Folders: image files (exr, png, jpg, jpeg, tif, tiff, gif, hdr, tga, webp, ...) found recursively, paired\n"
+      "by relative path; other files are ignored.\n"
+      "Heat maps: each pixel's largest channel difference; black at most --fail, then viridis from dark purple (just\n"
+      "over --fail) to yellow (the pair's max error, printed in the report); white where it is NaN or infinite.\n"
+      "Exit status: 0 all pass, 1 warnings but no failure, 2 a failure, or a usage or input error.\n"
+      "Examples:\n"
+      "  dqskin diff golden/frame_0000.png out/frame_0000.png\n"
+      "  dqskin diff golden out --fail 0.02 --warn 0.004 --failpercent 0.1 --out diffs --junit diff.xml");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -115,6 +235,8 @@ int main(int argc, char** argv) {
   if (info_cmd->parsed()) return run_info(info);
   if (bench_cmd->parsed()) return run_bench(bench);
   if (bake_cmd->parsed()) return run_bake(bake);
+  if (diff_cmd->parsed()) return run_diff(diff);
+  if (render_cmd->parsed()) return run_render(render);
 
   // No command given: show what there is to run.
   std::cout << app.help();

@@ -3,18 +3,9 @@ set(bake_scratch ${CMAKE_CURRENT_BINARY_DIR}/bake_cli)
 file(MAKE_DIRECTORY ${bake_scratch}/tmp)
 set(rig ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
 
+include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
 function(dqskin_bake_test name expected)
-  cmake_parse_arguments(T "" "STDOUT;STDERR" "ARGS" ${ARGN})
-  string(REPLACE ";" "\\;" args "${T_ARGS}")  # one -DARGS= argument, not one per word
-  set(script_args -DCOMMAND=$<TARGET_FILE:dqskin_cli> "-DARGS=${args}" -DEXPECTED=${expected})
-  if(DEFINED T_STDOUT)
-    list(APPEND script_args "-DSTDOUT_REGEX=${T_STDOUT}")
-  endif()
-  if(DEFINED T_STDERR)
-    list(APPEND script_args "-DSTDERR_REGEX=${T_STDERR}")
-  endif()
-  add_test(NAME cli.bake_${name} COMMAND ${CMAKE_COMMAND} ${script_args} -P ${PROJECT_SOURCE_DIR}/app/tests/expect_run.cmake)
-  set_tests_properties(cli.bake_${name} PROPERTIES ENVIRONMENT "TMPDIR=${bake_scratch}/tmp;${bake_test_environment}")
+  dqskin_cli_test(cli.bake_${name} ${expected} ${ARGN} ENVIRONMENT "TMPDIR=${bake_scratch}/tmp" ${bake_test_environment})
 endfunction()
 
 dqskin_bake_test(help 0 ARGS bake --help

@@ -54,7 +54,39 @@ namespace dqskin::gpu {
   X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                              \
   X(PFNGLFENCESYNCPROC, FenceSync)                                      \
   X(PFNGLCLIENTWAITSYNCPROC, ClientWaitSync)                            \
-  X(PFNGLDELETESYNCPROC, DeleteSync)
+  X(PFNGLDELETESYNCPROC, DeleteSync)                                    \
+  /* rasterization (lib/render) */                                      \
+  X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                          \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                    \
+  X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                          \
+  X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, FramebufferRenderbuffer)          \
+  X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)            \
+  X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                          \
+  X(PFNGLGENRENDERBUFFERSPROC, GenRenderbuffers)                        \
+  X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                  \
+  X(PFNGLBINDRENDERBUFFERPROC, BindRenderbuffer)                        \
+  X(PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC, RenderbufferStorageMultisample)\
+  X(PFNGLVIEWPORTPROC, Viewport)                                        \
+  X(PFNGLENABLEPROC, Enable)                                            \
+  X(PFNGLDISABLEPROC, Disable)                                          \
+  X(PFNGLDEPTHFUNCPROC, DepthFunc)                                      \
+  X(PFNGLCLEARBUFFERFVPROC, ClearBufferfv)                              \
+  X(PFNGLREADBUFFERPROC, ReadBuffer)                                    \
+  X(PFNGLREADPIXELSPROC, ReadPixels)                                    \
+  X(PFNGLPIXELSTOREIPROC, PixelStorei)                                  \
+  X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                          \
+  X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                    \
+  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                          \
+  X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                  \
+  X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)          \
+  X(PFNGLDISABLEVERTEXATTRIBARRAYPROC, DisableVertexAttribArray)        \
+  X(PFNGLVERTEXATTRIB1FPROC, VertexAttrib1f)                            \
+  X(PFNGLVERTEXATTRIB3FPROC, VertexAttrib3f)                            \
+  X(PFNGLDRAWELEMENTSPROC, DrawElements)                                \
+  X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                        \
+  X(PFNGLUNIFORM1FPROC, Uniform1f)                                      \
+  X(PFNGLUNIFORM3FPROC, Uniform3f)                                      \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)
 
 // The function table of one context.
 struct Gl {

@@ -5,7 +5,7 @@
 #include "dqskin/error.hpp"
 #include "gl_functions.hpp"
 #include "ordered_worker.hpp"
-#include "shader_sources.hpp"
+#include "shader_program.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -28,47 +28,15 @@ struct Variant {
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
 
-// One line from a multi-line driver log.
-std::string one_line(std::string log) {
-  for (char& c : log)
-    if (c == '\n') c = ' ';
-  while (!log.empty() && log.back() == ' ') log.pop_back();
-  return log;
-}
-
-GLuint compile_program(const Gl& gl, const gpu::ShaderSource& source, const Variant& v) {
-  std::string header = "#version 430\n";
-  header += v.mode == BlendMode::kLbs ? "#define MODE_LBS\n" : "#define MODE_DQS\n";
-  header += "#define TEXELS " + std::to_string(v.texels) + "\n";
-  header += "#define INFLUENCES " + std::to_string(v.influences) + "\n";
-  header += "#define MORPH_TARGETS " + std::to_string(v.targets) + "\n";
-  if (v.normals) header += "#define HAS_NORMALS\n";
-  if (v.tangents) header += "#define HAS_TANGENTS\n";
-  header += "#line 1\n";  // so that the driver's line numbers are the file's
-  const char* parts[] = {header.c_str(), source.text};
-  const GLuint shader = gl.CreateShader(GL_COMPUTE_SHADER);
-  gl.ShaderSource(shader, 2, parts, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    gl.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-    gl.DeleteShader(shader);
-    throw std::runtime_error(std::string(source.file) + ": compile error: " + one_line(log));
-  }
-  const GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, shader);
-  gl.LinkProgram(program);
-  gl.DeleteShader(shader);
-  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    gl.GetProgramInfoLog(program, sizeof log, nullptr, log);
-    gl.DeleteProgram(program);
-    throw std::runtime_error(std::string(source.file) + ": link error: " + one_line(log));
-  }
-  return program;
+// skin.comp specialised for one variant (DESIGN.md's texels per joint, influences, morph targets).
+GLuint compile_program(const Gl& gl, const Variant& v) {
+  std::string defines = v.mode == BlendMode::kLbs ? "#define MODE_LBS\n" : "#define MODE_DQS\n";
+  defines += "#define TEXELS " + std::to_string(v.texels) + "\n";
+  defines += "#define INFLUENCES " + std::to_string(v.influences) + "\n";
+  defines += "#define MORPH_TARGETS " + std::to_string(v.targets) + "\n";
+  if (v.normals) defines += "#define HAS_NORMALS\n";
+  if (v.tangents) defines += "#define HAS_TANGENTS\n";
+  return gpu::build_program(gl, {{GL_COMPUTE_SHADER, gpu::kSkinComp}}, defines);
 }
 
 template <typename T>
@@ -227,7 +195,7 @@ struct GpuDeformer::Impl {
   GLuint program(const Variant& v) {
     const auto it = programs.find(v);
     if (it != programs.end()) return it->second;
-    const GLuint p = compile_program(gl, gpu::kSkinComp, v);
+    const GLuint p = compile_program(gl, v);
     programs.emplace(v, p);
     return p;
   }

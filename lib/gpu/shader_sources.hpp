@@ -8,6 +8,8 @@ struct ShaderSource {
   const char* text;
 };
 
-extern const ShaderSource kSkinComp;  // glsl/skin.comp
+extern const ShaderSource kSkinComp;    // glsl/skin.comp
+extern const ShaderSource kRenderVert;  // glsl/render.vert
+extern const ShaderSource kRenderFrag;  // glsl/render.frag
 
 }  // namespace dqskin::gpu

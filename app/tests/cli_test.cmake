@@ -1,0 +1,21 @@
+# dqskin_cli_test(NAME EXPECTED ARGS a b … [STDOUT regex] [STDERR regex] [ENVIRONMENT v=x …] [LABELS l …])
+# One CTest test running `dqskin ARGS` through expect_run.cmake: checks the exit status and, when given,
+# stdout and stderr against CMake regexes (without ";", the list separator: write "." for it).
+function(dqskin_cli_test name expected)
+  cmake_parse_arguments(T "" "STDOUT;STDERR" "ARGS;ENVIRONMENT;LABELS" ${ARGN})
+  string(REPLACE ";" "\\;" args "${T_ARGS}")  # one -DARGS= argument, not one per word
+  set(script_args -DCOMMAND=$<TARGET_FILE:dqskin_cli> "-DARGS=${args}" -DEXPECTED=${expected})
+  if(DEFINED T_STDOUT)
+    list(APPEND script_args "-DSTDOUT_REGEX=${T_STDOUT}")
+  endif()
+  if(DEFINED T_STDERR)
+    list(APPEND script_args "-DSTDERR_REGEX=${T_STDERR}")
+  endif()
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} ${script_args} -P ${PROJECT_SOURCE_DIR}/app/tests/expect_run.cmake)
+  if(T_ENVIRONMENT)
+    set_tests_properties(${name} PROPERTIES ENVIRONMENT "${T_ENVIRONMENT}")
+  endif()
+  if(T_LABELS)
+    set_tests_properties(${name} PROPERTIES LABELS "${T_LABELS}")
+  endif()
+endfunction()

@@ -1,0 +1,103 @@
+# `dqskin diff` on the command line: each case's exit status and report. The images are plain-text PPM
+# (P3) written here at configure time, so no binary file is committed; OpenImageIO reads them as 8-bit RGB.
+set(diff_scratch ${CMAKE_CURRENT_BINARY_DIR}/diff_cli)
+file(REMOVE_RECURSE ${diff_scratch})
+
+# A W×H PPM whose pixels are all `grey`, except the one at index `at` (-1: none), whose green is `green`.
+function(dqskin_diff_ppm path width height grey at green)
+  set(text "P3\n${width} ${height}\n255\n")
+  math(EXPR last "${width} * ${height} - 1")
+  foreach(i RANGE ${last})
+    if(i EQUAL at)
+      string(APPEND text "${grey} ${green} ${grey}\n")
+    else()
+      string(APPEND text "${grey} ${grey} ${grey}\n")
+    endif()
+  endforeach()
+  file(WRITE ${path} "${text}")
+endfunction()
+
+set(d ${diff_scratch}/in)
+dqskin_diff_ppm(${d}/a.ppm 2 2 128 -1 0)
+dqskin_diff_ppm(${d}/same.ppm 2 2 128 -1 0)
+dqskin_diff_ppm(${d}/slight.ppm 2 2 128 1 129)  # one step of 255 in one channel: 0.00392157
+dqskin_diff_ppm(${d}/very.ppm 2 2 0 -1 0)       # 128/255 everywhere: 0.501961
+dqskin_diff_ppm(${d}/wide.ppm 3 2 128 -1 0)
+file(WRITE ${d}/bad.png "this is not a PNG file\n")
+# Two folders: same.ppm equal, sub/slight.ppm a step apart, gone.ppm only in A, extra.ppm only in B; other
+# files are ignored.
+dqskin_diff_ppm(${d}/A/same.ppm 2 2 128 -1 0)
+dqskin_diff_ppm(${d}/B/same.ppm 2 2 128 -1 0)
+dqskin_diff_ppm(${d}/A/sub/slight.ppm 2 2 128 -1 0)
+dqskin_diff_ppm(${d}/B/sub/slight.ppm 2 2 128 1 129)
+dqskin_diff_ppm(${d}/A/gone.ppm 2 2 128 -1 0)
+dqskin_diff_ppm(${d}/B/extra.ppm 2 2 128 -1 0)
+file(WRITE ${d}/A/notes.txt "not an image\n")
+
+include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
+function(dqskin_diff_test name expected)
+  dqskin_cli_test(cli.diff_${name} ${expected} ${ARGN} )
+endfunction()
+
+set(pass_line "max 0  mean 0  RMS 0  PSNR inf dB  over warn 0 \\(0%\\)  over fail 0 \\(0%\\)")
+set(slight_metrics "max 0.00392157 at \\(1, 0, G\\)  mean 0.000326797  RMS 0.00113206  PSNR 58.9226 dB")
+
+dqskin_diff_test(help 0 ARGS diff --help
+  STDOUT "A.*B.*--fail VAL=1e-06 .*--failpercent PERCENT=0 .*--hardfail VAL=inf .*--warn VAL=1e-06 .*--warnpercent PERCENT=0 .*--hardwarn VAL=inf .*--out.*--json.*--junit.*Exit status: 0 all pass, 1 warnings but no failure, 2 a failure")
+dqskin_diff_test(identical_passes 0 ARGS diff ${d}/a.ppm ${d}/same.ppm
+  STDOUT "^PASS  [^\n]*/a.ppm  ${pass_line}\nsummary: PASS \\(1 pair: 1 pass, 0 warn, 0 fail\\)\n$" STDERR "^$")
+# idiff's defaults: a single 8-bit step is over --fail 1e-6.
+dqskin_diff_test(slightly_different_fails_by_default 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm
+  STDOUT "^FAIL  [^\n]*/a.ppm  ${slight_metrics}  over warn 1 \\(25%\\)  over fail 1 \\(25%\\)\nsummary: FAIL \\(1 pair: 0 pass, 0 warn, 1 fail\\)\n$"
+  STDERR "^$")
+dqskin_diff_test(slightly_different_warns 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --fail 0.01 --warn 0.001
+  STDOUT "^WARN  [^\n]*/a.ppm  ${slight_metrics}  over warn 1 \\(25%\\)  over fail 0 \\(0%\\)\nsummary: WARN \\(1 pair: 0 pass, 1 warn, 0 fail\\)\n$"
+  STDERR "^$")
+dqskin_diff_test(failpercent_lets_a_few_pixels_warn 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --failpercent 30
+  STDOUT "^WARN  ")
+dqskin_diff_test(very_different_fails 2 ARGS diff ${d}/a.ppm ${d}/very.ppm --fail 0.01 --warn 0.001 --out ${diff_scratch}/heat
+  STDOUT "^FAIL  [^\n]*/a.ppm  max 0.501961 at \\(0, 0, R\\)  mean 0.501961  RMS 0.501961  PSNR 5.9866 dB  over warn 4 \\(100%\\)  over fail 4 \\(100%\\)  heat map [^\n]*/heat/a.ppm.diff.png\nsummary: FAIL \\(1 pair: 0 pass, 0 warn, 1 fail\\)\n$"
+  STDERR "^$")
+# The heat map is a complete image: equal to itself.
+dqskin_diff_test(heat_map_is_an_image 0 ARGS diff ${diff_scratch}/heat/a.ppm.diff.png ${diff_scratch}/heat/a.ppm.diff.png
+  STDOUT "^PASS  ")
+set_tests_properties(cli.diff_very_different_fails PROPERTIES FIXTURES_SETUP diff_heat_map)
+set_tests_properties(cli.diff_heat_map_is_an_image PROPERTIES FIXTURES_REQUIRED diff_heat_map)
+dqskin_diff_test(size_mismatch_fails 2 ARGS diff ${d}/a.ppm ${d}/wide.ppm
+  STDOUT "^FAIL  [^\n]*/a.ppm  size 2x2 vs 3x2\nsummary: FAIL \\(1 pair: 0 pass, 0 warn, 1 fail\\)\n$" STDERR "^$")
+dqskin_diff_test(missing_file_fails 2 ARGS diff ${d}/a.ppm ${d}/none.ppm
+  STDOUT "^FAIL  [^\n]*/a.ppm  cannot read [^\n]*/none.ppm: No such file or directory\nsummary: FAIL "
+  STDERR "^dqskin: [^\n]*/none.ppm: No such file or directory\n$")
+dqskin_diff_test(unreadable_file_fails 2 ARGS diff ${d}/a.ppm ${d}/bad.png
+  STDOUT "^FAIL  [^\n]*/a.ppm  cannot read [^\n]*/bad.png: [^\n]+\nsummary: FAIL "
+  STDERR "^dqskin: [^\n]*/bad.png: [^\n]+\n$")
+# Folders: one line per relative path in byte order; missing and extra files fail.
+dqskin_diff_test(folders_pair_by_relative_path 2 ARGS diff ${d}/A ${d}/B --fail 0.01 --warn 0.001
+  STDOUT "^FAIL  extra.ppm  missing in A, only in B\nFAIL  gone.ppm  missing in B, only in A\nPASS  same.ppm  ${pass_line}\nWARN  sub/slight.ppm  ${slight_metrics}  over warn 1 \\(25%\\)  over fail 0 \\(0%\\)\nsummary: FAIL \\(4 pairs: 1 pass, 1 warn, 2 fail\\)\n$"
+  STDERR "^$")
+dqskin_diff_test(image_and_folder_compare_the_same_name 0 ARGS diff ${d}/A/same.ppm ${d}/B
+  STDOUT "^PASS  [^\n]*/A/same.ppm  ")
+dqskin_diff_test(json_is_one_document 2 ARGS diff ${d}/A ${d}/B --json
+  STDOUT "^{\n  \"a\": \"[^\n]*/A\",\n  \"b\": \"[^\n]*/B\",\n  \"thresholds\": {\n    \"fail\": 1e-06,\n.*\"name\": \"sub/slight.ppm\",.*\"psnr\": 58.92[0-9]*,\n.*\"summary\": {\n    \"status\": \"FAIL\",\n    \"pairs\": 4,\n    \"pass\": 1,\n    \"warn\": 0,\n    \"fail\": 3\n  }\n}\n$"
+  STDERR "^$")
+dqskin_diff_test(junit_report_is_written 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --fail 0.01 --warn 0.001 --junit ${diff_scratch}/junit.xml
+  STDOUT "^WARN  ")
+add_test(NAME cli.diff_junit_report_content COMMAND ${CMAKE_COMMAND} -E cat ${diff_scratch}/junit.xml)
+set_tests_properties(cli.diff_junit_report_content PROPERTIES
+  PASS_REGULAR_EXPRESSION "^<\\?xml version=\"1.0\" encoding=\"UTF-8\"\\?>\n<testsuites name=\"dqskin diff\" tests=\"1\" failures=\"0\" errors=\"0\">\n.*<testcase classname=\"dqskin.diff\" name=\"[^\"]*/a.ppm\">\n      <system-out>WARN: 1 pixel \\(25%\\) over --warn 0.001, more than --warnpercent 0\n.*</testsuites>\n$"
+  FIXTURES_REQUIRED diff_junit)
+set_tests_properties(cli.diff_junit_report_is_written PROPERTIES FIXTURES_SETUP diff_junit)
+
+# Usage and input errors: one line, exit status 2, no report.
+dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1
+  STDOUT "^$" STDERR "^dqskin: --fail must be at least 0, not -1\n$")
+dqskin_diff_test(percent_over_100_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --warnpercent 150
+  STDOUT "^$" STDERR "^dqskin: --warnpercent must be from 0 to 100, not 150\n$")
+dqskin_diff_test(folder_against_image_exits_2 2 ARGS diff ${d}/A ${d}/a.ppm
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/a.ppm: not a folder, but A \\([^\n]*/A\\) is one. give two images or two folders\n$")
+dqskin_diff_test(folder_against_nothing_exits_2 2 ARGS diff ${d}/A ${d}/no-such-folder
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/no-such-folder: no such folder \\(A, [^\n]*/A, is a folder\\)\n$")
+dqskin_diff_test(one_argument_exits_2 2 ARGS diff ${d}/a.ppm
+  STDOUT "^$" STDERR "^dqskin: B is required \\(see dqskin --help\\)\n$")
+dqskin_diff_test(unwritable_junit_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --junit /proc/dqskin-cannot-write-here/report.xml
+  STDERR "^dqskin: /proc/dqskin-cannot-write-here/report.xml: [^\n]*\n$")

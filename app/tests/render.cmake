@@ -1,0 +1,51 @@
+# `dqskin render` on the command line: help, file names, exit statuses and messages. Processes that make a
+# GL context run with bake_test_environment (LeakSanitizer off under the sanitizers, see bake.cmake).
+set(render_scratch ${CMAKE_CURRENT_BINARY_DIR}/render_cli)
+set(render_rig ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
+
+include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
+function(dqskin_render_test name expected)
+  dqskin_cli_test(cli.render_${name} ${expected} ${ARGN} ENVIRONMENT ${bake_test_environment} LABELS gpu)
+endfunction()
+
+dqskin_render_test(help 0 ARGS render --help
+  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--format.*--quiet.*--json-progress.*Exit status")
+# Names as bake gives them; the summary on stderr; --json-progress one line per frame, then a summary.
+dqskin_render_test(writes_frames_named_like_bake 0 ARGS render ${render_rig} -o ${render_scratch}/frames --frames 0:2 --size 64x48
+  STDERR "^rendered 3 frames of 1 input in [0-9.]+ s into [^\n]*/frames\n$")
+dqskin_render_test(json_progress 0 ARGS render ${render_rig} -o ${render_scratch}/json --times 0,0.5 --size 32x32 --format exr --json-progress
+  STDOUT "^{[^\n]*\"event\":\"progress\"[^\n]*\"frames_done\":1[^\n]*\n{[^\n]*\"frames_done\":2[^\n]*\n{[^\n]*\"event\":\"summary\"[^\n]*\"files\":2")
+dqskin_render_test(quiet_prints_nothing 0 ARGS render ${render_rig} -o ${render_scratch}/quiet --times 0 --size 32x32 --quiet
+  STDOUT "^$" STDERR "^$")
+dqskin_render_test(missing_input_exits_2 2 ARGS render ${render_scratch}/missing.gltf -o ${render_scratch}/missing
+  STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
+dqskin_render_test(some_inputs_failed_exits_1 1 ARGS render ${render_scratch}/missing.gltf ${render_rig} -o ${render_scratch}/some --times 0 --size 32x32 --quiet
+  STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
+dqskin_render_test(out_dir_required 2 ARGS render ${render_rig} STDERR "^dqskin: -o OUTDIR is required\n$")
+dqskin_render_test(bad_size_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --size 64 STDERR "^dqskin: --size '64' is not WxH")
+dqskin_render_test(bad_background_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --background red
+  STDERR "^dqskin: --background 'red' is not")
+dqskin_render_test(unknown_shade_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --shade toon
+  STDERR "^dqskin: --shade 'toon' is not one of lit, normals, weights, mode-diff\n$")
+dqskin_render_test(weights_need_a_joint 2 ARGS render ${render_rig} -o ${render_scratch}/x --shade weights
+  STDERR "^dqskin: --shade weights needs --joint NAME\n$")
+dqskin_render_test(unknown_joint_fails_the_input 2 ARGS render ${render_rig} -o ${render_scratch}/x --shade weights --joint nobody --times 0
+  STDERR "^dqskin: [^\n]*bending_arm.gltf: --joint 'nobody': no node has that name\n$")
+dqskin_render_test(mode_diff_prints_its_scale 0 ARGS render ${render_rig} -o ${render_scratch}/diff --shade mode-diff --frames 0:30:10 --size 32x32
+  STDERR "^mode-diff [^\n]*bending_arm.gltf bend: red = [0-9.e-]+ \\(largest \\|lbs - dqs\\| position distance\\), dark blue = 0\n")
+dqskin_render_test(unknown_format_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --format jpg
+  STDERR "^dqskin: --format 'jpg' is not one of png, exr\n$")
+dqskin_render_test(dib_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --mode dib
+  STDERR "^dqskin: --mode 'dib' is not one of lbs, dqs\n$")
+dqskin_render_test(bad_shard_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --shard 2/2
+  STDERR "^dqskin: --shard '2/2': I must be at least 0 and less than N\n$")
+dqskin_render_test(no_gl_context_exits_3 3 ARGS render ${render_rig} -o ${render_scratch}/nogl --backend egl
+  STDERR "^dqskin: no OpenGL 4.3 core context: ")
+set_property(TEST cli.render_no_gl_context_exits_3 APPEND PROPERTY ENVIRONMENT
+  "__EGL_VENDOR_LIBRARY_FILENAMES=${CMAKE_CURRENT_BINARY_DIR}/no-such-vendor.json")
+
+# The files of a render, by name: frames 0..2 of the rig's only clip, and nothing else.
+add_test(NAME cli.render_file_names COMMAND ${CMAKE_COMMAND} -DDIR=${render_scratch}/frames
+  -P ${PROJECT_SOURCE_DIR}/app/tests/render_files.cmake)
+set_tests_properties(cli.render_writes_frames_named_like_bake PROPERTIES FIXTURES_SETUP render_frames)
+set_tests_properties(cli.render_file_names PROPERTIES FIXTURES_REQUIRED render_frames)

@@ -1,0 +1,544 @@
+// `dqskin diff`: images compared by OpenImageIO's ImageBufAlgo::compare with idiff's thresholds, heat maps
+// of failing pairs, and text, JSON and JUnit XML reports (include/dqskin/image_diff.hpp).
+#include "dqskin/image_diff.hpp"
+
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/error.hpp"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <system_error>
+#include <utility>
+
+namespace dqskin {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;  // keys in the order written
+
+// Images larger than this (as float pixels) are refused rather than allocated: a corrupt header may claim
+// any size. 16 GiB holds a 32k × 32k RGBA float image.
+constexpr uint64_t kMaxImageBytes = uint64_t(16) << 30;
+
+// OpenImageIO's message as one line (it may hold several), never empty.
+std::string one_line(std::string message) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at)) message.replace(at, 1, "; ");
+  return message.empty() ? "OpenImageIO reported no reason" : message;
+}
+
+// %g, with "inf", "-inf" and "nan" spelled the same on every platform.
+std::string number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// idiff's percentage: 3 significant digits.
+std::string percent(uint64_t count, uint64_t pixels) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * double(count) / double(std::max<uint64_t>(pixels, 1)));
+  return text;
+}
+
+std::string pixels_text(uint64_t count) { return std::to_string(count) + (count == 1 ? " pixel" : " pixels"); }
+
+// The verdict and, unless it is PASS, the rule that decided it, in words. idiff's rule (OpenImageIO
+// 2.4 src/idiff/idiff.cpp) without its --allowfailures short cut, which in 2.4 also skips the warning
+// tests whenever no pixel is over --fail.
+std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_error, uint64_t over_warn,
+                                         uint64_t over_fail, uint64_t pixels) {
+  const double n = double(std::max<uint64_t>(pixels, 1));
+  if (!std::isfinite(max_error))
+    return {DiffStatus::kFail, "max error " + number(max_error) + ": a NaN or infinity in one image only"};
+  if (double(over_fail) > t.fail_percent / 100.0 * n)
+    return {DiffStatus::kFail, pixels_text(over_fail) + " (" + percent(over_fail, pixels) + ") over --fail " +
+                                   number(t.fail) + ", more than --failpercent " + number(t.fail_percent)};
+  if (max_error > t.hard_fail)
+    return {DiffStatus::kFail, "max error " + number(max_error) + " over --hardfail " + number(t.hard_fail)};
+  if (double(over_warn) > t.warn_percent / 100.0 * n)
+    return {DiffStatus::kWarn, pixels_text(over_warn) + " (" + percent(over_warn, pixels) + ") over --warn " +
+                                   number(t.warn) + ", more than --warnpercent " + number(t.warn_percent)};
+  if (max_error > t.hard_warn)
+    return {DiffStatus::kWarn, "max error " + number(max_error) + " over --hardwarn " + number(t.hard_warn)};
+  return {DiffStatus::kPass, ""};
+}
+
+// Reads the first subimage of `path` as float pixels into `image`. Returns why it cannot, or "".
+std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (error) return error.message();
+  if (fs::is_directory(status)) return "is a folder";
+  OIIO::geterror();  // forget earlier messages
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  if (!in) return one_line(OIIO::geterror());
+  OIIO::ImageSpec spec = in->spec();
+  if (spec.deep) return "deep (multi-sample) images are not compared";
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0 || spec.nchannels <= 0)
+    return "the image has no pixels";
+  spec.set_format(OIIO::TypeDesc::FLOAT);
+  if (spec.image_bytes() == 0 || spec.image_bytes() > kMaxImageBytes)
+    return std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels of " +
+           std::to_string(spec.nchannels) + " channels are too large to compare";
+  image.reset(spec, OIIO::InitializePixels::No);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.localpixels()))
+    return one_line(in->geterror());
+  return "";
+}
+
+std::string window_text(const OIIO::ImageSpec& s) {
+  std::string text = std::to_string(s.width) + "x" + std::to_string(s.height);
+  if (s.depth != 1) text += "x" + std::to_string(s.depth);
+  if (s.x != 0 || s.y != 0 || s.z != 0)
+    text += " at (" + std::to_string(s.x) + ", " + std::to_string(s.y) + (s.z ? ", " + std::to_string(s.z) : "") + ")";
+  return text;
+}
+
+// Why two images cannot be compared pixel for pixel, or "".
+std::string mismatch(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b) {
+  if (a.x != b.x || a.y != b.y || a.z != b.z || a.width != b.width || a.height != b.height || a.depth != b.depth)
+    return "size " + window_text(a) + " vs " + window_text(b);
+  if (a.nchannels != b.nchannels)
+    return std::to_string(a.nchannels) + " channels vs " + std::to_string(b.nchannels);
+  return "";
+}
+
+// The difference of one channel as ImageBufAlgo::compare counts it: NaN matches NaN and infinity matches
+// infinity; any other non-finite pair differs infinitely.
+float channel_difference(float a, float b) {
+  if (!std::isfinite(a) || !std::isfinite(b)) {
+    if (std::isnan(a) == std::isnan(b) && std::isinf(a) == std::isinf(b)) return 0.0f;
+    return std::numeric_limits<float>::infinity();
+  }
+  return std::abs(a - b);
+}
+
+// A linear value (OpenImageIO's colormaps are linear) as an 8-bit sRGB-encoded byte (IEC 61966-2-1).
+uint8_t to_srgb_byte(float linear) {
+  const double v = std::clamp(double(linear), 0.0, 1.0);
+  const double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+  return uint8_t(std::lround(encoded * 255.0));
+}
+
+// Writes the heat map of two same-sized float images (see DiffOptions::heat_map_dir) to `path`.
+void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, double fail) {
+  const OIIO::ImageSpec& spec = a.spec();
+  const size_t width = size_t(spec.width), rows = size_t(spec.height) * size_t(spec.depth);
+  const size_t channels = size_t(spec.nchannels), count = width * rows;
+  const auto* pa = static_cast<const float*>(a.localpixels());
+  const auto* pb = static_cast<const float*>(b.localpixels());
+  assert(pa && pb);
+
+  // Each pixel's largest channel difference, and the largest finite one over the threshold: the top of the
+  // colormap. The threshold is compared as compare does: a double against the float it was given.
+  const double threshold = double(float(fail));
+  std::vector<float> largest(count, 0.0f);
+  float top = 0.0f;
+  for (size_t i = 0; i < count; ++i) {
+    float d = 0.0f;
+    for (size_t c = 0; c < channels; ++c) d = std::max(d, channel_difference(pa[i * channels + c], pb[i * channels + c]));
+    largest[i] = d;
+    if (std::isfinite(d) && double(d) > threshold) top = std::max(top, d);
+  }
+
+  // Position in the colormap: 0 just over the threshold, 1 at the top.
+  OIIO::ImageBuf level(OIIO::ImageSpec(int(width), int(rows), 1, OIIO::TypeDesc::FLOAT));
+  auto* lp = static_cast<float*>(level.localpixels());
+  const double low = threshold, span = double(top) - threshold;
+  for (size_t i = 0; i < count; ++i)
+    lp[i] = span > 0 && std::isfinite(largest[i]) ? float((double(largest[i]) - low) / span) : 1.0f;
+  const OIIO::ImageBuf colors = OIIO::ImageBufAlgo::color_map(level, 0, "viridis", {}, 1);
+  if (colors.has_error() || colors.nchannels() != 3)
+    throw OutputError(path + ": OpenImageIO color_map: " + one_line(colors.geterror()));
+  const auto* cp = static_cast<const float*>(colors.localpixels());
+
+  std::vector<uint8_t> rgb(count * 3);
+  for (size_t i = 0; i < count; ++i) {
+    const float d = largest[i];
+    for (size_t c = 0; c < 3; ++c) {
+      uint8_t v = 0;  // black: not over the threshold
+      if (!std::isfinite(d)) v = 255;
+      else if (double(d) > threshold) v = to_srgb_byte(cp[i * 3 + c]);
+      rgb[i * 3 + c] = v;
+    }
+  }
+
+  std::error_code error;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, error);
+  if (error) throw OutputError(parent.string() + ": cannot create folder: " + error.message());
+
+  AtomicFile file(path);
+  const std::string& temporary = file.hand_over();
+  OIIO::ImageSpec out_spec(int(width), int(rows), 3, OIIO::TypeDesc::UINT8);
+  out_spec.attribute("oiio:ColorSpace", "sRGB");  // an sRGB chunk: the bytes are sRGB-encoded
+  // The only text in the file; no time stamp, so the same inputs give the same bytes.
+  out_spec.attribute("ImageDescription", "dqskin diff heat map: largest channel difference per pixel; black at most "
+                                         "--fail " + number(fail) + ", viridis from there to " + number(top) +
+                                         ", white not finite");
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
+  if (!out) throw OutputError(path + ": " + one_line(OIIO::geterror()));
+  if (!out->open(temporary, out_spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close())
+    throw OutputError(path + ": " + one_line(out->geterror()));
+  out.reset();
+  file.commit(Overwrite::kReplace);
+}
+
+// XML text or attribute value: markup escaped, invalid UTF-8 and the control characters XML 1.0 cannot hold
+// replaced by U+FFFD, line breaks kept (as character references in attributes).
+std::string xml(const std::string& text, bool attribute) {
+  std::string out;
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const size_t n = text.size();
+  for (size_t i = 0; i < n;) {
+    const unsigned char c = s[i];
+    if (c < 0x80) {
+      switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += attribute ? "&quot;" : "\""; break;
+        case '\'': out += attribute ? "&apos;" : "'"; break;
+        case '\n': out += attribute ? "&#10;" : "\n"; break;
+        case '\r': out += "&#13;"; break;
+        case '\t': out += attribute ? "&#9;" : "\t"; break;
+        default: out += c < 0x20 || c == 0x7f ? "\xEF\xBF\xBD" : std::string(1, char(c));
+      }
+      ++i;
+      continue;
+    }
+    // A well-formed UTF-8 sequence of 2 to 4 bytes (no overlong forms, surrogates or values past U+10FFFF).
+    size_t length = 0;
+    uint32_t code = 0;
+    if (c >= 0xC2 && c <= 0xDF) length = 2, code = c & 0x1Fu;
+    else if (c >= 0xE0 && c <= 0xEF) length = 3, code = c & 0x0Fu;
+    else if (c >= 0xF0 && c <= 0xF4) length = 4, code = c & 0x07u;
+    bool valid = length > 0 && i + length <= n;
+    for (size_t k = 1; valid && k < length; ++k) {
+      valid = (s[i + k] & 0xC0u) == 0x80u;
+      code = (code << 6) | (s[i + k] & 0x3Fu);
+    }
+    valid = valid && !(length == 3 && code < 0x800) && !(length == 4 && (code < 0x10000 || code > 0x10FFFF)) &&
+            !(code >= 0xD800 && code <= 0xDFFF) && code != 0xFFFE && code != 0xFFFF;
+    if (valid) {
+      out.append(text, i, length);
+      i += length;
+    } else {
+      out += "\xEF\xBF\xBD";
+      ++i;
+    }
+  }
+  return out;
+}
+
+Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+std::string max_text(const ImageDiff& d) {
+  std::string text = number(d.max_error);
+  if (d.max_error != 0)
+    text += " at (" + std::to_string(d.max_x) + ", " + std::to_string(d.max_y) + ", " + d.max_channel + ")";
+  return text;
+}
+
+// The metrics of a compared pair, one per line, for JUnit's failure text.
+std::string metrics_lines(const ImageDiff& d) {
+  std::string text = "A: " + (d.a.empty() ? "(missing)" : d.a) + "\nB: " + (d.b.empty() ? "(missing)" : d.b) + "\n";
+  if (!d.compared) return text + d.problem + "\n";
+  text += "max error: " + max_text(d) + "\nmean error: " + number(d.mean_error) + "\nRMS error: " +
+          number(d.rms_error) + "\nPSNR: " + number(d.psnr) + " dB\npixels over --warn: " + std::to_string(d.over_warn) +
+          " (" + percent(d.over_warn, d.pixels) + ")\npixels over --fail: " + std::to_string(d.over_fail) + " (" +
+          percent(d.over_fail, d.pixels) + ")\npixels: " + std::to_string(d.pixels) + "\n";
+  if (!d.heat_map.empty()) text += "heat map: " + d.heat_map + "\n";
+  return text;
+}
+
+std::string summary_counts(const DiffReport& r) {
+  const size_t n = r.pairs.size();
+  return std::to_string(n) + (n == 1 ? " pair: " : " pairs: ") + std::to_string(r.count(DiffStatus::kPass)) + " pass, " +
+         std::to_string(r.count(DiffStatus::kWarn)) + " warn, " + std::to_string(r.count(DiffStatus::kFail)) + " fail";
+}
+
+}  // namespace
+
+std::string check_thresholds(const DiffThresholds& t) {
+  const std::pair<const char*, double> values[] = {
+      {"--fail", t.fail}, {"--warn", t.warn}, {"--hardfail", t.hard_fail}, {"--hardwarn", t.hard_warn}};
+  for (const auto& [name, value] : values)
+    if (!(value >= 0)) return std::string(name) + " must be at least 0, not " + number(value);
+  const std::pair<const char*, double> percents[] = {{"--failpercent", t.fail_percent},
+                                                     {"--warnpercent", t.warn_percent}};
+  for (const auto& [name, value] : percents)
+    if (!(value >= 0 && value <= 100)) return std::string(name) + " must be from 0 to 100, not " + number(value);
+  return "";
+}
+
+const char* status_name(DiffStatus status) {
+  switch (status) {
+    case DiffStatus::kPass: return "PASS";
+    case DiffStatus::kWarn: return "WARN";
+    case DiffStatus::kFail: return "FAIL";
+  }
+  return "FAIL";
+}
+
+DiffStatus diff_verdict(const DiffThresholds& thresholds, double max_error, uint64_t over_warn, uint64_t over_fail,
+                        uint64_t pixels) {
+  return judge(thresholds, max_error, over_warn, over_fail, pixels).first;
+}
+
+DiffStatus DiffReport::status() const {
+  DiffStatus worst = DiffStatus::kPass;
+  for (const ImageDiff& p : pairs) worst = std::max(worst, p.status);
+  return worst;
+}
+
+size_t DiffReport::count(DiffStatus status) const {
+  return size_t(std::count_if(pairs.begin(), pairs.end(), [status](const ImageDiff& p) { return p.status == status; }));
+}
+
+bool is_image_name(const std::string& path) {
+  static const char* const kExtensions[] = {"exr", "png", "jpg", "jpeg", "tif", "tiff", "tx",   "gif", "hdr",
+                                            "tga", "bmp", "dpx", "cin",  "webp", "ppm",  "pgm", "pbm", "pnm",
+                                            "pfm", "jp2", "j2k", "dds",  "psd",  "sgi",  "heic", "avif"};
+  const size_t dot = path.find_last_of("./");
+  if (dot == std::string::npos || path[dot] != '.') return false;
+  std::string extension = path.substr(dot + 1);
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
+                     [&extension](const char* e) { return extension == e; });
+}
+
+std::vector<DiffPair> pair_inputs(const std::string& a, const std::string& b) {
+  std::error_code error;
+  const bool a_folder = fs::is_directory(a, error);
+  const bool b_folder = fs::is_directory(b, error);
+  if (a_folder && !b_folder) {
+    if (!fs::exists(b, error)) throw InputError(b + ": no such folder (A, " + a + ", is a folder)");
+    throw InputError(b + ": not a folder, but A (" + a + ") is one; give two images or two folders");
+  }
+  if (!a_folder) {
+    const std::string name = fs::path(a).filename().string();
+    DiffPair pair{a, a, b, name + ".diff.png"};
+    if (b_folder) pair.b = (fs::path(b) / name).string();  // idiff: IMAGE FOLDER compares IMAGE with FOLDER/IMAGE
+    return {pair};
+  }
+
+  // Both folders: image files under each, by '/'-separated relative path.
+  auto list = [](const std::string& root) {
+    std::map<std::string, std::string> files;
+    try {
+      for (const fs::directory_entry& e : fs::recursive_directory_iterator(root)) {
+        std::error_code ignored;
+        if (!e.is_regular_file(ignored) || !is_image_name(e.path().filename().string())) continue;
+        files[e.path().lexically_relative(root).generic_string()] = e.path().string();
+      }
+    } catch (const fs::filesystem_error& e) {
+      throw InputError((e.path1().empty() ? root : e.path1().string()) + ": " + e.code().message());
+    }
+    return files;
+  };
+  const std::map<std::string, std::string> in_a = list(a), in_b = list(b);
+  std::vector<DiffPair> pairs;
+  auto ia = in_a.begin();
+  auto ib = in_b.begin();
+  while (ia != in_a.end() || ib != in_b.end()) {
+    const bool take_a = ib == in_b.end() || (ia != in_a.end() && ia->first <= ib->first);
+    const bool take_b = ia == in_a.end() || (ib != in_b.end() && ib->first <= ia->first);
+    const std::string& name = take_a ? ia->first : ib->first;
+    DiffPair pair{name, take_a ? ia->second : "", take_b ? ib->second : "", name + ".diff.png"};
+    pairs.push_back(std::move(pair));
+    if (take_a) ++ia;
+    if (take_b) ++ib;
+  }
+  if (pairs.empty()) throw InputError(a + ": no image files here or in " + b);
+  return pairs;
+}
+
+ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) {
+  assert(!pair.a.empty() || !pair.b.empty());
+  ImageDiff d;
+  d.name = pair.name;
+  d.a = pair.a;
+  d.b = pair.b;
+  d.status = DiffStatus::kFail;  // until compared
+  if (pair.a.empty() || pair.b.empty()) {
+    d.problem = pair.a.empty() ? "missing in A, only in B" : "missing in B, only in A";
+    d.reason = d.problem;
+    return d;
+  }
+
+  OIIO::ImageBuf images[2];
+  const std::string* paths[2] = {&pair.a, &pair.b};
+  for (size_t i = 0; i < 2; ++i) {
+    const std::string why = read_image(*paths[i], images[i]);
+    if (!why.empty()) {
+      d.unreadable = *paths[i];
+      d.read_error = why;
+      d.problem = "cannot read " + *paths[i] + ": " + why;
+      d.reason = d.problem;
+      return d;
+    }
+  }
+  const OIIO::ImageBuf& a = images[0];
+  const OIIO::ImageBuf& b = images[1];
+  d.problem = mismatch(a.spec(), b.spec());
+  if (!d.problem.empty()) {
+    d.reason = d.problem;
+    return d;
+  }
+
+  const DiffThresholds& t = options.thresholds;
+  const OIIO::ImageBufAlgo::CompareResults cr =
+      OIIO::ImageBufAlgo::compare(a, b, float(t.fail), float(t.warn), 0.0f, 0.0f, {}, 1);
+  // `error` is also set whenever a pixel is over `fail` (OpenImageIO 2.4); a real error leaves a message.
+  if (cr.error && a.has_error()) {
+    d.problem = "OpenImageIO cannot compare them: " + one_line(a.geterror());
+    d.reason = d.problem;
+    return d;
+  }
+  d.compared = true;
+  d.max_error = cr.maxerror;
+  d.mean_error = cr.meanerror;
+  d.rms_error = cr.rms_error;
+  d.psnr = cr.PSNR;
+  d.max_x = cr.maxx;
+  d.max_y = cr.maxy;
+  const std::vector<std::string>& names = a.spec().channelnames;
+  d.max_channel = cr.maxc >= 0 && size_t(cr.maxc) < names.size() && !names[size_t(cr.maxc)].empty()
+                      ? names[size_t(cr.maxc)]
+                      : std::to_string(cr.maxc);
+  d.pixels = uint64_t(a.spec().width) * uint64_t(a.spec().height) * uint64_t(a.spec().depth);
+  d.over_warn = cr.nwarn;
+  d.over_fail = cr.nfail;
+  std::tie(d.status, d.reason) = judge(t, d.max_error, d.over_warn, d.over_fail, d.pixels);
+  if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {
+    d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
+    write_heat_map(d.heat_map, a, b, t.fail);
+  }
+  return d;
+}
+
+DiffReport diff_images(const std::string& a, const std::string& b, const DiffOptions& options) {
+  DiffReport report;
+  report.a = a;
+  report.b = b;
+  report.thresholds = options.thresholds;
+  for (const DiffPair& pair : pair_inputs(a, b)) report.pairs.push_back(diff_pair(pair, options));
+  return report;
+}
+
+std::string diff_text(const DiffReport& report) {
+  std::string text;
+  for (const ImageDiff& d : report.pairs) {
+    text += std::string(status_name(d.status)) + "  " + d.name + "  ";
+    if (!d.compared) {
+      text += d.problem + "\n";
+      continue;
+    }
+    text += "max " + max_text(d) + "  mean " + number(d.mean_error) + "  RMS " + number(d.rms_error) + "  PSNR " +
+            number(d.psnr) + " dB  over warn " + std::to_string(d.over_warn) + " (" + percent(d.over_warn, d.pixels) +
+            ")  over fail " + std::to_string(d.over_fail) + " (" + percent(d.over_fail, d.pixels) + ")";
+    if (!d.heat_map.empty()) text += "  heat map " + d.heat_map;
+    text += "\n";
+  }
+  text += "summary: " + std::string(status_name(report.status())) + " (" + summary_counts(report) + ")\n";
+  return text;
+}
+
+std::string diff_json(const DiffReport& report) {
+  const DiffThresholds& t = report.thresholds;
+  Json pairs = Json::array();
+  for (const ImageDiff& d : report.pairs) {
+    Json p;
+    p["name"] = d.name;
+    p["a"] = d.a.empty() ? Json(nullptr) : Json(d.a);
+    p["b"] = d.b.empty() ? Json(nullptr) : Json(d.b);
+    p["status"] = status_name(d.status);
+    if (!d.compared) {
+      p["problem"] = d.problem;
+    } else {
+      p["reason"] = d.reason.empty() ? Json(nullptr) : Json(d.reason);
+      p["max_error"] = finite_or_null(d.max_error);
+      p["max_at"] = {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}};
+      p["mean_error"] = finite_or_null(d.mean_error);
+      p["rms_error"] = finite_or_null(d.rms_error);
+      p["psnr"] = finite_or_null(d.psnr);
+      p["pixels"] = d.pixels;
+      p["pixels_over_warn"] = d.over_warn;
+      p["pixels_over_fail"] = d.over_fail;
+      p["heat_map"] = d.heat_map.empty() ? Json(nullptr) : Json(d.heat_map);
+    }
+    pairs.push_back(std::move(p));
+  }
+  Json doc;
+  doc["a"] = report.a;
+  doc["b"] = report.b;
+  doc["thresholds"] = {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
+                       {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
+                       {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)}};
+  doc["pairs"] = std::move(pairs);
+  doc["summary"] = {{"status", status_name(report.status())},
+                    {"pairs", report.pairs.size()},
+                    {"pass", report.count(DiffStatus::kPass)},
+                    {"warn", report.count(DiffStatus::kWarn)},
+                    {"fail", report.count(DiffStatus::kFail)}};
+  // File names come from the file system: invalid UTF-8 is replaced rather than refused.
+  return doc.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+std::string diff_junit(const DiffReport& report) {
+  const DiffThresholds& t = report.thresholds;
+  const std::string tests = std::to_string(report.pairs.size());
+  const std::string failures = std::to_string(report.count(DiffStatus::kFail));
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += "<testsuites name=\"dqskin diff\" tests=\"" + tests + "\" failures=\"" + failures + "\" errors=\"0\">\n";
+  x += "  <testsuite name=\"" + xml("dqskin diff " + report.a + " " + report.b, true) + "\" tests=\"" + tests +
+       "\" failures=\"" + failures + "\" errors=\"0\" skipped=\"0\">\n";
+  x += "    <properties>\n";
+  const std::pair<const char*, std::string> properties[] = {
+      {"a", report.a},
+      {"b", report.b},
+      {"fail", number(t.fail)},
+      {"failpercent", number(t.fail_percent)},
+      {"hardfail", number(t.hard_fail)},
+      {"warn", number(t.warn)},
+      {"warnpercent", number(t.warn_percent)},
+      {"hardwarn", number(t.hard_warn)}};
+  for (const auto& [name, value] : properties)
+    x += "      <property name=\"" + std::string(name) + "\" value=\"" + xml(value, true) + "\"/>\n";
+  x += "    </properties>\n";
+  for (const ImageDiff& d : report.pairs) {
+    x += "    <testcase classname=\"dqskin.diff\" name=\"" + xml(d.name, true) + "\"";
+    if (d.status == DiffStatus::kPass) {
+      x += "/>\n";
+      continue;
+    }
+    x += ">\n";
+    if (d.status == DiffStatus::kFail)
+      x += "      <failure type=\"FAIL\" message=\"" + xml(d.reason, true) + "\">" + xml(metrics_lines(d), false) +
+           "</failure>\n";
+    else
+      x += "      <system-out>" + xml("WARN: " + d.reason + "\n" + metrics_lines(d), false) + "</system-out>\n";
+    x += "    </testcase>\n";
+  }
+  x += "  </testsuite>\n</testsuites>\n";
+  return x;
+}
+
+}  // namespace dqskin

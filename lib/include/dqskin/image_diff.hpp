@@ -1,0 +1,135 @@
+// Comparing images the way OpenImageIO's idiff does, for renders checked in CI: two images, or two folders
+// paired by relative path. The numbers are ImageBufAlgo::compare's (max, mean and RMS error, PSNR, pixels
+// over the warn and fail thresholds); the verdict applies idiff's thresholds to them. Also writes heat maps
+// of failing pairs and the reports (text, JSON, JUnit XML). OpenImageIO stays out of this header.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace dqskin {
+
+// idiff's thresholds and defaults (idiff --help, OpenImageIO 2.4). A pixel is "over" a threshold when any
+// of its channels differs by more than it. A pair fails when more than fail_percent % of its pixels are
+// over `fail`, or when any channel differs by more than hard_fail; otherwise it warns when more than
+// warn_percent % are over `warn`, or any channel differs by more than hard_warn; otherwise it passes.
+// With the defaults (warn = fail) any difference over 1e-6 fails: warnings need a `fail` above `warn`
+// or a nonzero fail_percent.
+struct DiffThresholds {
+  double fail = 1e-6;
+  double fail_percent = 0;
+  double hard_fail = std::numeric_limits<double>::infinity();
+  double warn = 1e-6;
+  double warn_percent = 0;
+  double hard_warn = std::numeric_limits<double>::infinity();
+};
+
+// Empty when the thresholds are usable; otherwise what is wrong, naming the option ("--fail must be at
+// least 0"). Thresholds are at least 0 (hard ones may be infinite), percentages from 0 to 100, none NaN.
+std::string check_thresholds(const DiffThresholds& thresholds);
+
+enum class DiffStatus { kPass, kWarn, kFail };
+
+// "PASS", "WARN" or "FAIL".
+const char* status_name(DiffStatus status);
+
+// The verdict of `thresholds` for ImageBufAlgo::compare's numbers of one pair (`pixels` of them, at least
+// 1). A max error that is not finite (a NaN or infinity where the other image has something else) fails
+// whatever the thresholds: idiff would let it pass unless --hardfail is finite.
+DiffStatus diff_verdict(const DiffThresholds& thresholds, double max_error, uint64_t over_warn, uint64_t over_fail,
+                        uint64_t pixels);
+
+// Two files to compare; in folder mode `name` is their relative path, and a side that is missing is empty.
+struct DiffPair {
+  std::string name;  // what the reports call the pair
+  std::string a, b;  // the files; one may be empty (missing from its folder), not both
+  std::string heat_map_name;  // relative path of the heat map under DiffOptions::heat_map_dir
+};
+
+// The outcome for one pair. Metrics are valid only when `compared`; otherwise `problem` says why the pair
+// failed without being compared.
+struct ImageDiff {
+  std::string name, a, b;
+  DiffStatus status = DiffStatus::kPass;
+  bool compared = false;
+  std::string problem;     // "missing in B", "size 8x8 vs 4x4", "cannot read FILE: reason"; empty if compared
+  std::string unreadable;  // the file that could not be read, when that was the problem,
+  std::string read_error;  // and why (one line: "No such file or directory", OpenImageIO's message)
+  std::string reason;      // why it failed or warned, in words ("3 pixels (18.8%) over --fail 1e-06"); empty on PASS
+
+  // ImageBufAlgo::compare's results (first subimage, MIP level 0; pixels read as float).
+  double max_error = 0, mean_error = 0, rms_error = 0;
+  double psnr = 0;                   // +infinity for identical images
+  int max_x = 0, max_y = 0;          // where max_error was found (0, 0 when it is 0)
+  std::string max_channel;           // the channel's name there ("R"), or its index when unnamed
+  uint64_t pixels = 0;               // width × height × depth
+  uint64_t over_warn = 0, over_fail = 0;
+
+  std::string heat_map;  // the heat map written for this pair, or empty
+};
+
+struct DiffOptions {
+  DiffThresholds thresholds;
+  // When set, a heat map is written for every failing pair that could be compared, to
+  // heat_map_dir/heat_map_name (folders created as needed): an 8-bit RGB PNG of each pixel's largest
+  // channel difference, black where it is at most `fail`, else the viridis colormap from dark (just over
+  // `fail`) to yellow (the pair's max error); white where the difference is not finite. Written atomically
+  // (a complete file or none) and the same bytes for the same inputs.
+  std::string heat_map_dir;
+};
+
+struct DiffReport {
+  std::string a, b;  // the command's two arguments
+  DiffThresholds thresholds;
+  std::vector<ImageDiff> pairs;  // in name order
+
+  // FAIL when any pair failed, else WARN when any warned, else PASS (also when there are no pairs).
+  DiffStatus status() const;
+  size_t count(DiffStatus status) const;
+};
+
+// True when `path` ends in an image extension diff looks for in folders (case-insensitive): exr, png, jpg,
+// jpeg, tif, tiff, tx, gif, hdr, tga, bmp, dpx, cin, webp, ppm, pgm, pbm, pnm, pfm, jp2, j2k, dds, psd, sgi,
+// heic, avif.
+bool is_image_name(const std::string& path);
+
+// The pairs to compare for the arguments A and B: two files give one pair (named A); a file and a folder
+// give A and B/filename(A), as idiff does; two folders give one pair per image file (is_image_name) found
+// under either, recursively, matched by relative path ('/'-separated, in byte order), with the side that
+// lacks it left empty. Other files are ignored. Throws InputError for a folder A with a file B, a folder
+// that cannot be listed, and two folders without any image file. A path that does not exist is a file
+// (the comparison reports it as unreadable).
+std::vector<DiffPair> pair_inputs(const std::string& a, const std::string& b);
+
+// Compares one pair: reads both files (first subimage, as float), checks that their sizes (data windows)
+// and channel counts match, runs ImageBufAlgo::compare with the thresholds and applies diff_verdict.
+// Missing, unreadable, deep or mismatched images give a failing ImageDiff with a `problem`, not an
+// exception. Writes the heat map of a failing pair when options.heat_map_dir is set; throws OutputError
+// naming the file when it cannot be written.
+ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options);
+
+// pair_inputs, then diff_pair for every pair, in order. Throws as they do.
+DiffReport diff_images(const std::string& a, const std::string& b, const DiffOptions& options);
+
+// The reports. Numbers are printed with 6 significant digits (%g) in text and JUnit, shortest round-trip
+// in JSON; the same report gives the same bytes.
+//
+// Text: one line per pair, "STATUS  name  max M at (x, y, C)  mean M  RMS R  PSNR P dB  over warn N (p%)
+// over fail N (p%)" or "STATUS  name  problem", with "  heat map FILE" when one was written, then
+// "summary: STATUS (N pairs: P pass, W warn, F fail)".
+std::string diff_text(const DiffReport& report);
+
+// One JSON document: {"a", "b", "thresholds", "pairs": [...], "summary"}; each pair has name, a, b (null
+// when missing), status, and either problem or the metrics, reason and heat_map. Values that are not
+// finite (PSNR of identical images, an infinite hard_fail) are null.
+std::string diff_json(const DiffReport& report);
+
+// JUnit XML: one testsuite, its thresholds as properties, one testcase per pair (classname "dqskin.diff",
+// name the pair's name); a failing pair has a <failure> whose message is the reason and whose text holds
+// the files and metrics; a warning is reported in <system-out> (JUnit has no warning state). No times or
+// host names, so the same inputs give the same file.
+std::string diff_junit(const DiffReport& report);
+
+}  // namespace dqskin

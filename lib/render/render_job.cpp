@@ -1,0 +1,211 @@
+// `dqskin render` as a library call: inputs planned as bake plans them, each clip deformed on the GPU once
+// for its bounding box and once more, a chunk of frames at a time, to render this shard's frames.
+#include "dqskin/render.hpp"
+
+#include "../bake/bake_plan.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/gpu_deform.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <optional>
+
+namespace dqskin {
+
+using namespace bake_detail;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Frames deformed per GpuDeformer::run: the deformer hands batches to a thread of its own, but GL may
+// only be used from this one, so a chunk's batches are kept and rendered after the run.
+// Small enough to bound that copy, large enough that the GPU still works in batches.
+constexpr size_t kFramesPerChunk = 16;
+
+// The distance between two deformations of the same vertices, per primitive and vertex.
+std::vector<std::vector<float>> distances(const FrameView& a, const FrameView& b) {
+  std::vector<std::vector<float>> out(a.primitives.size());
+  for (size_t p = 0; p < a.primitives.size(); ++p) {
+    const std::span<const float> pa = a.primitives[p].positions, pb = b.primitives[p].positions;
+    out[p].resize(a.primitives[p].vertices);
+    for (size_t v = 0; v < out[p].size(); ++v)
+      out[p][v] = glm::length(glm::vec3(pa[3 * v], pa[3 * v + 1], pa[3 * v + 2]) - glm::vec3(pb[3 * v], pb[3 * v + 1], pb[3 * v + 2]));
+  }
+  return out;
+}
+
+class InputRenderer {
+public:
+  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report,
+                const std::function<void(const BakeProgress&)>& progress)
+      : input_(input), options_(options), report_(report), progress_(progress),
+        deformer_(context, *input.asset, input.instances, deform_options(options.mode)),
+        renderer_(context, *input.asset, input.instances, options.renderer) {
+    if (options.renderer.shade == Shade::kWeights) {
+      if (options.joint.empty()) throw InputError("--shade weights needs --joint NAME");
+      scalars_ = joint_weights(*input.asset, input.instances, options.joint);
+    }
+    if (options.renderer.shade == Shade::kModeDiff)  // the other mode of lbs and dqs
+      other_ = std::make_unique<GpuDeformer>(context, *input.asset, input.instances,
+                                             deform_options(options.mode == BlendMode::kLbs ? BlendMode::kDqs : BlendMode::kLbs));
+  }
+
+  void render_clip(const ClipPlan& clip) {
+    check_cancel();
+    std::vector<size_t> mine;
+    for (size_t f = 0; f < clip.times.size(); ++f)
+      if (clip.frame_mine[f]) mine.push_back(f);
+    if (mine.empty()) return;
+    std::filesystem::create_directories(options_.out_dir + "/" + clip.folder);
+
+    // The box (and the largest mode difference) over every frame, not only this shard's, so that every
+    // shard frames the same camera and colors with the same scale.
+    Bounds box;
+    double max_distance = 0;
+    std::vector<size_t> all(clip.times.size());
+    for (size_t f = 0; f < all.size(); ++f) all[f] = f;
+    for_each_frame(clip, all, [&](size_t, const FrameView& frame, const FrameView* other) {
+      box.add(frame);
+      if (other)
+        for (const std::vector<float>& d : distances(frame, *other))
+          for (float x : d) max_distance = std::max(max_distance, double(x));
+    });
+    if (box.empty()) throw InputError("the scene has no vertices to frame");
+    const Camera camera =
+        frame_camera(box, options_.camera, double(options_.renderer.width) / double(options_.renderer.height));
+    if (other_) report_.mode_diff.push_back({input_.path, clip.name, max_distance});
+
+    for_each_frame(clip, mine, [&](size_t f, const FrameView& frame, const FrameView* other) {
+      check_cancel();
+      if (other) {
+        scalars_ = distances(frame, *other);
+        // Scaled by the animation's largest difference; an animation where both modes agree stays cold.
+        for (std::vector<float>& d : scalars_)
+          for (float& x : d) x = max_distance > 0 ? float(double(x) / max_distance) : 0.0f;
+      }
+      const Image image = renderer_.render(frame, camera, scalars_);
+      const std::string relative = clip.frame_file(f, extension(options_.format));
+      write_image(options_.out_dir + "/" + relative, image, options_.format, options_.overwrite);
+      report_.outputs.push_back(relative);
+      if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
+    });
+  }
+
+  size_t frames_done() const { return frames_done_; }
+
+private:
+  static GpuDeformOptions deform_options(BlendMode mode) {
+    GpuDeformOptions o;
+    o.mode = mode;
+    return o;
+  }
+
+  void check_cancel() const {
+    if (options_.cancel && options_.cancel->load()) throw BakeCancelled();
+  }
+
+  static std::vector<DeformedBatch> deform(GpuDeformer& deformer, const Clip* clip, const std::vector<double>& times) {
+    std::vector<DeformedBatch> batches;
+    deformer.run(clip, times, [&](const DeformedBatch& batch) { batches.push_back(batch); });
+    return batches;
+  }
+
+  // Calls visit(frame index, frame, the other mode's frame or null) for `frames` of the clip, in order,
+  // a chunk at a time on this thread.
+  template <typename Visit>
+  void for_each_frame(const ClipPlan& clip, const std::vector<size_t>& frames, Visit visit) {
+    for (size_t first = 0; first < frames.size(); first += kFramesPerChunk) {
+      const size_t count = std::min(kFramesPerChunk, frames.size() - first);
+      std::vector<double> times;
+      for (size_t i = first; i < first + count; ++i) times.push_back(clip.times[frames[i]]);
+      const std::vector<DeformedBatch> batches = deform(deformer_, clip.clip, times);
+      const std::vector<DeformedBatch> others = other_ ? deform(*other_, clip.clip, times) : std::vector<DeformedBatch>{};
+      size_t other_batch = 0, other_k = 0;  // the two deformers may batch differently
+      for (const DeformedBatch& batch : batches)
+        for (size_t k = 0; k < batch.frame_count; ++k) {
+          std::optional<FrameView> other;
+          if (other_) {
+            if (other_k == others.at(other_batch).frame_count) ++other_batch, other_k = 0;
+            other = frame_view(others.at(other_batch), other_k++);
+          }
+          visit(frames[first + batch.first_frame + k], frame_view(batch, k), other ? &*other : nullptr);
+        }
+    }
+  }
+
+  const InputPlan& input_;
+  const RenderOptions& options_;
+  RenderReport& report_;
+  const std::function<void(const BakeProgress&)>& progress_;
+  GpuDeformer deformer_;
+  std::unique_ptr<GpuDeformer> other_;  // mode-diff: the other blend mode
+  Renderer renderer_;
+  std::vector<std::vector<float>> scalars_;
+  size_t frames_done_ = 0;
+};
+
+}  // namespace
+
+bool RenderReport::any_failed() const {
+  return std::any_of(inputs.begin(), inputs.end(), [](const BakeInputResult& r) { return !r.error.empty(); });
+}
+
+RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
+                    const std::function<void(const BakeProgress&)>& progress) {
+  const Clock::time_point start = Clock::now();
+  if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
+  GpuBackend backend = GpuBackend::kAuto;
+  if (!parse_gpu_backend(options.backend, backend))
+    throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa");
+  if (options.mode == BlendMode::kDib) throw InputError("render deforms on the GPU: --mode lbs or dqs");
+
+  BakeOptions plan_options;  // the planner's view of a render: which frames, clips and names
+  plan_options.out_dir = options.out_dir;
+  plan_options.clips = options.clips;
+  plan_options.frames = options.frames;
+  plan_options.scene = options.scene;
+  plan_options.shard_index = options.shard_index;
+  plan_options.shard_count = options.shard_count;
+  double load_seconds = 0;
+  const std::vector<InputPlan> plans = plan_bake(inputs, plan_options, load_seconds);
+
+  RenderReport report;
+  for (const InputPlan& plan : plans)
+    for (const ClipPlan& clip : plan.clips) report.frames_total += size_t(std::count(clip.frame_mine.begin(), clip.frame_mine.end(), true));
+
+  std::unique_ptr<GpuContext> context;
+  size_t done = 0;
+  for (const InputPlan& plan : plans) {
+    BakeInputResult result{plan.path, plan.error, 0};
+    if (plan.error.empty()) {
+      try {
+        if (!context) {
+          context = create_gpu_context(backend);  // NoGpuContext ends the render: exit status 3
+          report.gpu = context->info();
+        }
+        // Progress counts over all inputs.
+        const std::function<void(const BakeProgress&)> counted = [&](const BakeProgress& p) {
+          if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
+        };
+        InputRenderer renderer(plan, options, *context, report, counted);
+        for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
+        result.frames = renderer.frames_done();
+        done += result.frames;
+      } catch (const BakeCancelled&) {
+        throw;
+      } catch (const NoGpuContext&) {
+        throw;
+      } catch (const std::exception& e) {
+        result.error = e.what();
+      }
+    }
+    report.inputs.push_back(std::move(result));
+  }
+  std::sort(report.outputs.begin(), report.outputs.end());
+  report.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return report;
+}
+
+}  // namespace dqskin

@@ -1,0 +1,245 @@
+// The rasterizer of `dqskin render`: glsl/render.vert and glsl/render.frag drawing deformed frames into an
+// offscreen MSAA framebuffer of the borrowed headless context, resolved and read back as linear floats.
+#include "dqskin/render.hpp"
+
+#include "dqskin/error.hpp"
+#include "gl_functions.hpp"
+#include "mesh.hpp"
+#include "shader_program.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <stdexcept>
+
+namespace dqskin {
+namespace {
+
+using gpu::Gl;
+
+GLuint link_program(const Gl& gl, const std::string& defines) {
+  return gpu::build_program(gl, {{GL_VERTEX_SHADER, gpu::kRenderVert}, {GL_FRAGMENT_SHADER, gpu::kRenderFrag}}, defines);
+}
+
+const char* shade_define(Shade shade) {
+  switch (shade) {
+    case Shade::kNormals: return "#define SHADE_NORMALS\n";
+    case Shade::kWeights:
+    case Shade::kModeDiff: return "#define SHADE_WEIGHTS\n";  // both a scalar as a heat map
+    case Shade::kLit: break;
+  }
+  return "#define SHADE_LIT\n";
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  struct Prim {
+    size_t vertices = 0;
+    GLsizei index_count = 0;  // 0: not drawn (points, lines, or no triangles)
+    glm::vec4 base_color{1.0f};
+    GLuint vao = 0, indices = 0, positions = 0, normals = 0, scalars = 0;
+  };
+
+  GpuContext& context;
+  Gl gl;
+  RendererOptions options;
+  std::vector<Prim> prims;
+  GLuint program = 0;
+  GLuint msaa_fbo = 0, resolve_fbo = 0;
+  GLuint msaa_color = 0, msaa_depth = 0, resolve_color = 0;
+
+  Impl(GpuContext& c, const Asset& asset, const std::vector<MeshInstance>& instances, const RendererOptions& o)
+      : context(c), options(o) {
+    context.make_current();
+    if (const std::string missing = gl.load(context); !missing.empty())
+      throw NoGpuContext("the OpenGL context has no " + missing);
+    try {
+      make_framebuffers();
+      program = link_program(gl, shade_define(options.shade));
+      upload(asset, instances);
+    } catch (...) {
+      release();
+      throw;
+    }
+  }
+
+  ~Impl() { release(); }
+
+  void release() {
+    context.make_current();
+    for (Prim& p : prims) {
+      const GLuint b[] = {p.indices, p.positions, p.normals, p.scalars};
+      gl.DeleteBuffers(GLsizei(std::size(b)), b);
+      gl.DeleteVertexArrays(1, &p.vao);
+    }
+    prims.clear();
+    if (program) gl.DeleteProgram(program);
+    const GLuint fbos[] = {msaa_fbo, resolve_fbo};
+    gl.DeleteFramebuffers(2, fbos);
+    const GLuint rbs[] = {msaa_color, msaa_depth, resolve_color};
+    gl.DeleteRenderbuffers(3, rbs);
+    program = msaa_fbo = resolve_fbo = msaa_color = msaa_depth = resolve_color = 0;
+  }
+
+  void make_framebuffers() {
+    GLint max_size = 0, max_samples = 0;
+    gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+    gl.GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (options.width < 1 || options.height < 1 || options.width > max_size || options.height > max_size)
+      throw InputError("image size " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                       " is outside 1 to " + std::to_string(max_size) + " pixels a side on this GPU");
+    if (options.samples < 1 || options.samples > max_samples)
+      throw InputError("--samples " + std::to_string(options.samples) + " is outside 1 to " + std::to_string(max_samples) +
+                       " on this GPU");
+    auto renderbuffer = [&](GLsizei samples, GLenum format) {
+      GLuint rb = 0;
+      gl.GenRenderbuffers(1, &rb);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, rb);
+      gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, options.width, options.height);
+      return rb;
+    };
+    // RGBA16F: linear values with enough precision for EXR output and for sRGB encoding without banding.
+    const GLsizei samples = options.samples == 1 ? 0 : options.samples;
+    msaa_color = renderbuffer(samples, GL_RGBA16F);
+    msaa_depth = renderbuffer(samples, GL_DEPTH_COMPONENT24);
+    resolve_color = renderbuffer(0, GL_RGBA16F);
+    gl.GenFramebuffers(1, &msaa_fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth);
+    check_framebuffer("multisampled");
+    gl.GenFramebuffers(1, &resolve_fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color);
+    check_framebuffer("resolve");
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  void check_framebuffer(const char* which) const {
+    const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error(std::string("the ") + which + " framebuffer is incomplete (status " +
+                               std::to_string(status) + ")");
+  }
+
+  void upload(const Asset& asset, const std::vector<MeshInstance>& instances) {
+    for (const MeshInstance& inst : instances) {
+      for (const Primitive& src : asset.meshes[size_t(inst.mesh)].primitives) {
+        Prim p;
+        p.vertices = src.vertex_count();
+        if (src.material >= 0 && size_t(src.material) < asset.materials.size())
+          p.base_color = asset.materials[size_t(src.material)].base_color;
+        const bool triangles = src.mode == PrimitiveMode::kTriangles || src.mode == PrimitiveMode::kTriangleStrip ||
+                               src.mode == PrimitiveMode::kTriangleFan;
+        gl.GenVertexArrays(1, &p.vao);
+        gl.BindVertexArray(p.vao);
+        if (triangles) {
+          const std::vector<uint32_t> list = gltf::triangle_list(src);
+          p.index_count = GLsizei(list.size());
+          gl.GenBuffers(1, &p.indices);
+          gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, p.indices);  // recorded in the VAO
+          gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(std::max<size_t>(4, list.size() * 4)),
+                        list.empty() ? nullptr : list.data(), GL_STATIC_DRAW);
+        }
+        GLuint* buffers[] = {&p.positions, &p.normals, &p.scalars};
+        for (GLuint* b : buffers) gl.GenBuffers(1, b);
+        gl.BindVertexArray(0);
+        prims.push_back(p);
+      }
+    }
+  }
+
+  // Points `location` of the bound VAO at `data` (components floats per vertex), or sets the constant
+  // `fallback` when data is empty.
+  void attribute(GLuint buffer, GLuint location, GLint components, std::span<const float> data, float fallback) {
+    if (data.empty()) {
+      gl.DisableVertexAttribArray(location);
+      if (components == 1) gl.VertexAttrib1f(location, fallback);
+      else gl.VertexAttrib3f(location, 0.0f, 0.0f, 1.0f);
+      return;
+    }
+    gl.BindBuffer(GL_ARRAY_BUFFER, buffer);
+    gl.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * 4), data.data(), GL_STREAM_DRAW);
+    gl.VertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl.EnableVertexAttribArray(location);
+  }
+
+  Image render(const FrameView& frame, const Camera& camera, std::span<const std::vector<float>> scalars) {
+    assert(frame.primitives.size() == prims.size());
+    context.make_current();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo);
+    gl.Viewport(0, 0, options.width, options.height);
+    gl.ClearBufferfv(GL_COLOR, 0, glm::value_ptr(options.background));
+    const float far_depth = 1.0f;
+    gl.ClearBufferfv(GL_DEPTH, 0, &far_depth);
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthFunc(GL_LESS);
+    gl.Enable(GL_MULTISAMPLE);
+
+    gl.UseProgram(program);
+    const glm::mat4 view_projection = camera.projection * camera.view;
+    gl.UniformMatrix4fv(gl.GetUniformLocation(program, "view_projection"), 1, GL_FALSE, glm::value_ptr(view_projection));
+    gl.Uniform3f(gl.GetUniformLocation(program, "eye"), camera.eye.x, camera.eye.y, camera.eye.z);
+    // The key light comes from above, to the left of the camera: fixed to the view, so every model and
+    // every yaw is lit the same way (world-fixed lights leave the back of a turned model dark).
+    const glm::mat3 camera_to_world = glm::transpose(glm::mat3(camera.view));
+    const glm::vec3 key = glm::normalize(camera_to_world * glm::vec3(-0.5f, 0.8f, 0.6f));
+    gl.Uniform3f(gl.GetUniformLocation(program, "key_direction"), key.x, key.y, key.z);
+    const GLint base_color = gl.GetUniformLocation(program, "base_color");
+    const GLint has_normals = gl.GetUniformLocation(program, "has_normals");
+
+    for (size_t i = 0; i < prims.size(); ++i) {
+      const Prim& p = prims[i];
+      const PrimitiveView& view = frame.primitives[i];
+      if (p.index_count == 0) continue;
+      assert(view.vertices == p.vertices && view.positions.size() == p.vertices * 3);
+      gl.BindVertexArray(p.vao);
+      attribute(p.positions, 0, 3, view.positions, 0.0f);
+      attribute(p.normals, 1, 3, view.normals, 0.0f);
+      const std::span<const float> s = i < scalars.size() ? std::span<const float>(scalars[i]) : std::span<const float>();
+      attribute(p.scalars, 2, 1, s.size() == p.vertices ? s : std::span<const float>(), 0.0f);
+      gl.Uniform4f(base_color, p.base_color.r, p.base_color.g, p.base_color.b, p.base_color.a);
+      gl.Uniform1i(has_normals, view.normals.empty() ? 0 : 1);
+      gl.DrawElements(GL_TRIANGLES, p.index_count, GL_UNSIGNED_INT, nullptr);
+    }
+    gl.BindVertexArray(0);
+
+    // Resolve the samples (a box filter over each pixel's samples) and read the result back.
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo);
+    gl.BlitFramebuffer(0, 0, options.width, options.height, 0, 0, options.width, options.height, GL_COLOR_BUFFER_BIT,
+                       GL_NEAREST);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    Image image;
+    image.width = options.width;
+    image.height = options.height;
+    const size_t row = size_t(options.width) * 4;
+    std::vector<float> bottom_up(row * size_t(options.height));
+    gl.ReadPixels(0, 0, options.width, options.height, GL_RGBA, GL_FLOAT, bottom_up.data());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.Disable(GL_DEPTH_TEST);
+    if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
+      throw std::runtime_error("OpenGL error " + std::to_string(e) + " while rendering");
+    // GL's rows start at the bottom; image files start at the top.
+    image.rgba.resize(bottom_up.size());
+    for (size_t y = 0; y < size_t(options.height); ++y)
+      std::memcpy(&image.rgba[y * row], &bottom_up[(size_t(options.height) - 1 - y) * row], row * sizeof(float));
+    return image;
+  }
+};
+
+Renderer::Renderer(GpuContext& context, const Asset& asset, std::vector<MeshInstance> instances,
+                   const RendererOptions& options)
+    : impl_(std::make_unique<Impl>(context, asset, instances, options)) {}
+Renderer::~Renderer() = default;
+
+Image Renderer::render(const FrameView& frame, const Camera& camera, std::span<const std::vector<float>> scalars) {
+  return impl_->render(frame, camera, scalars);
+}
+
+}  // namespace dqskin
