@@ -65,6 +65,8 @@ struct RenderSettings {
   std::optional<double> yaw, pitch, distance, fov;
   bool ortho = false;
   std::string format = "png";
+  bool sheet = false, gif = false;
+  int sheet_cell = 256;
   bool quiet = false, json_progress = false, force = false;
 };
 

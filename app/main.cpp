@@ -155,6 +155,13 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--format", render.format, "Image format: png (8-bit sRGB) or exr (32-bit linear float)")
       ->type_name("png|exr")
       ->capture_default_str();
+  render_cmd->add_flag("--sheet", render.sheet,
+                       "Also write a contact sheet per animation: OUTDIR/<input name>/<animation>/sheet.png");
+  render_cmd->add_option("--sheet-cell", render.sheet_cell, "Width of a contact sheet cell in pixels (aspect kept)")
+      ->type_name("PIXELS")
+      ->capture_default_str();
+  render_cmd->add_flag("--gif", render.gif,
+                       "Also write an animated GIF per animation: OUTDIR/<input name>/<animation>/animation.gif");
   render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
   render_cmd->add_flag("--json-progress", render.json_progress,
                        "Print progress and the final summary as JSON lines on standard output");
@@ -163,6 +170,8 @@ int main(int argc, char** argv) {
   render_cmd->footer(
       "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{png,exr}, frame numbers as bake names them. The camera\n"
       "is framed once on the bounding box of the whole animation, so the frames of an animation are comparable.\n"
+      "--sheet and --gif show the frames this run renders; with --shard I/N only the shard's own frames, in\n"
+      "sheet_shardIofN.png and animation_shardIofN.gif.\n"
       "Exit status: 0 success, 1 some inputs failed (the others rendered), 2 usage or input error, 3 no OpenGL context.\n"
       "Examples:\n"
       "  dqskin render Fox.glb -o frames\n"

@@ -103,6 +103,10 @@ RenderOptions to_options(const RenderSettings& s) {
   if (s.fov) o.camera.fov = *s.fov;
   o.camera.distance = s.distance;
   o.camera.ortho = s.ortho;
+  if (s.sheet_cell < 1 || s.sheet_cell > 4096) throw InputError("--sheet-cell " + std::to_string(s.sheet_cell) + ": must be 1 to 4096 pixels");
+  o.sheet = s.sheet;
+  o.sheet_cell = s.sheet_cell;
+  o.gif = s.gif;
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
   return o;
 }
@@ -157,7 +161,9 @@ int run_render(const RenderSettings& settings) {
                        .dump()
                 << std::endl;
     } else if (!settings.quiet && failed < report.inputs.size()) {
-      std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\n", report.outputs.size(),
+      size_t frames = 0;  // not report.outputs: --sheet and --gif add files that are not frames
+      for (const BakeInputResult& in : report.inputs) frames += in.frames;
+      std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\n", frames,
                    report.inputs.size() - failed, report.inputs.size() - failed == 1 ? "" : "s", report.wall_seconds,
                    options.out_dir.c_str());
     }

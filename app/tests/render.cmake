@@ -9,7 +9,7 @@ function(dqskin_render_test name expected)
 endfunction()
 
 dqskin_render_test(help 0 ARGS render --help
-  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--format.*--quiet.*--json-progress.*Exit status")
+  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--format.*--sheet.*--sheet-cell.*--gif.*--quiet.*--json-progress.*Exit status")
 # Names as bake gives them; the summary on stderr; --json-progress one line per frame, then a summary.
 dqskin_render_test(writes_frames_named_like_bake 0 ARGS render ${render_rig} -o ${render_scratch}/frames --frames 0:2 --size 64x48
   STDERR "^rendered 3 frames of 1 input in [0-9.]+ s into [^\n]*/frames\n$")
@@ -49,3 +49,25 @@ add_test(NAME cli.render_file_names COMMAND ${CMAKE_COMMAND} -DDIR=${render_scra
   -P ${PROJECT_SOURCE_DIR}/app/tests/render_files.cmake)
 set_tests_properties(cli.render_writes_frames_named_like_bake PROPERTIES FIXTURES_SETUP render_frames)
 set_tests_properties(cli.render_file_names PROPERTIES FIXTURES_REQUIRED render_frames)
+
+# --sheet and --gif: five frames of 64x48 in 32-pixel cells make a 3x2 grid (104x54 with the gaps) and a
+# 64x48 GIF; a second run into the same folder (without --force) keeps every file, which it only does when
+# the bytes are equal. With --shard the shard's own frames get files of their own.
+dqskin_render_test(sheet_and_gif 0 ARGS render ${render_rig} -o ${render_scratch}/sheet --frames 0:4 --size 64x48
+  --sheet --sheet-cell 32 --gif --force STDERR "^rendered 5 frames of 1 input in [0-9.]+ s into [^\n]*/sheet\n$")
+dqskin_render_test(sheet_and_gif_again 0 ARGS render ${render_rig} -o ${render_scratch}/sheet --frames 0:4 --size 64x48
+  --sheet --sheet-cell 32 --gif --quiet)
+add_test(NAME cli.render_sheet_files COMMAND ${CMAKE_COMMAND} -DDIR=${render_scratch}/sheet/bending_arm/bend
+  -P ${PROJECT_SOURCE_DIR}/app/tests/render_sheet_files.cmake)
+set_tests_properties(cli.render_sheet_and_gif PROPERTIES FIXTURES_SETUP render_sheet)
+set_tests_properties(cli.render_sheet_and_gif_again cli.render_sheet_files PROPERTIES FIXTURES_REQUIRED render_sheet)
+set_tests_properties(cli.render_sheet_files PROPERTIES DEPENDS cli.render_sheet_and_gif_again)
+dqskin_render_test(bad_sheet_cell_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --sheet --sheet-cell 0
+  STDERR "^dqskin: --sheet-cell 0: must be 1 to 4096 pixels\n$")
+dqskin_render_test(sheet_of_a_shard 0 ARGS render ${render_rig} -o ${render_scratch}/sheet_shard --frames 0:4 --size 32x32
+  --sheet --gif --shard 1/2 --force --quiet)
+add_test(NAME cli.render_sheet_of_a_shard_files COMMAND ${CMAKE_COMMAND}
+  -DFILES=${render_scratch}/sheet_shard/bending_arm/bend/sheet_shard1of2.png\;${render_scratch}/sheet_shard/bending_arm/bend/animation_shard1of2.gif
+  -P ${PROJECT_SOURCE_DIR}/app/tests/render_sheet_files.cmake)
+set_tests_properties(cli.render_sheet_of_a_shard PROPERTIES FIXTURES_SETUP render_sheet_shard)
+set_tests_properties(cli.render_sheet_of_a_shard_files PROPERTIES FIXTURES_REQUIRED render_sheet_shard)

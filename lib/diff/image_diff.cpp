@@ -190,7 +190,7 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
   out_spec.attribute("oiio:ColorSpace", "sRGB");  // an sRGB chunk: the bytes are sRGB-encoded
   // The only text in the file; no time stamp, so the same inputs give the same bytes.
   out_spec.attribute("ImageDescription", "dqskin diff heat map: largest channel difference per pixel; black at most "
-                                         "--fail " + number(fail) + ", viridis from there to " + number(top) +
+                                         "--fail " + number(fail) + ", viridis from there to " + number(double(top)) +
                                          ", white not finite");
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
   if (!out) throw OutputError(path + ": " + one_line(OIIO::geterror()));

@@ -77,6 +77,18 @@ public:
         frame_camera(box, options_.camera, double(options_.renderer.width) / double(options_.renderer.height));
     if (other_) report_.mode_diff.push_back({input_.path, clip.name, max_distance});
 
+    // Whole-animation review images of this shard's frames, built as the frames arrive: the sheet keeps
+    // only its resized cells, the GIF writes each frame at once.
+    std::optional<ContactSheet> sheet;
+    if (options_.sheet) sheet.emplace(options_.sheet_cell);
+    std::unique_ptr<GifWriter> gif;
+    // Shards write into one folder, each with its own frames: their sheets and GIFs get the shard's name.
+    const std::string suffix = options_.shard_count > 1
+                                   ? "_shard" + std::to_string(options_.shard_index) + "of" + std::to_string(options_.shard_count)
+                                   : "";
+    const std::string gif_file = clip.folder + "/animation" + suffix + ".gif";
+    if (options_.gif) gif = std::make_unique<GifWriter>(options_.out_dir + "/" + gif_file, clip.fps > 0 ? clip.fps : options_.frames.fps);
+
     for_each_frame(clip, mine, [&](size_t f, const FrameView& frame, const FrameView* other) {
       check_cancel();
       if (other) {
@@ -89,8 +101,19 @@ public:
       const std::string relative = clip.frame_file(f, extension(options_.format));
       write_image(options_.out_dir + "/" + relative, image, options_.format, options_.overwrite);
       report_.outputs.push_back(relative);
+      if (sheet) sheet->add(image, clip.numbers[f]);
+      if (gif) gif->add(image);
       if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
     });
+    if (sheet) {
+      const std::string relative = clip.folder + "/sheet" + suffix + ".png";
+      sheet->write(options_.out_dir + "/" + relative, options_.overwrite);
+      report_.outputs.push_back(relative);
+    }
+    if (gif) {
+      gif->commit(options_.overwrite);
+      report_.outputs.push_back(gif_file);
+    }
   }
 
   size_t frames_done() const { return frames_done_; }
@@ -160,6 +183,8 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
   if (!parse_gpu_backend(options.backend, backend))
     throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa");
   if (options.mode == BlendMode::kDib) throw InputError("render deforms on the GPU: --mode lbs or dqs");
+  if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
+    throw InputError("--sheet-cell must be 1 to 4096 pixels");
 
   BakeOptions plan_options;  // the planner's view of a render: which frames, clips and names
   plan_options.out_dir = options.out_dir;

@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace dqskin {
 namespace {
@@ -220,6 +222,87 @@ TEST(RenderOutput, PngIsEightBitSrgbAndExrIsLinearFloat) {
   float exr[8] = {};
   read(dir / "a.exr", OIIO::TypeDesc::FLOAT, exr);
   for (size_t i = 0; i < 8; ++i) EXPECT_EQ(exr[i], image.rgba[i]) << "value " << i;
+  fs::remove_all(dir);
+}
+
+
+// A frame of one flat color, for the sheet and GIF tests (no GPU needed).
+Image flat_frame(int width, int height, float gray) {
+  Image image;
+  image.width = width;
+  image.height = height;
+  image.rgba.assign(size_t(width) * size_t(height) * 4, gray);
+  for (size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 1.0f;
+  return image;
+}
+
+std::vector<char> file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Five 64x48 frames in 32-pixel cells: 3 columns (ceil(sqrt(5))), 2 rows of 32x24 cells with gaps.
+TEST(RenderOutput, ContactSheetIsANearSquareGridWithFrameNumbers) {
+  const fs::path dir = fs::temp_directory_path() / ("dqskin_sheet_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ContactSheet sheet(32);
+  for (int i = 0; i < 5; ++i) sheet.add(flat_frame(64, 48, 0.5f), 10 + i);
+  const Image8 image = sheet.compose();
+  EXPECT_EQ(image.width, 3 * 32 + 4 * kSheetGap);
+  EXPECT_EQ(image.height, 2 * 24 + 3 * kSheetGap);
+  auto pixel = [&](int x, int y) { return image.rgba[(size_t(y) * size_t(image.width) + size_t(x)) * 4]; };
+  const uint8_t gray = to_srgb8(flat_frame(1, 1, 0.5f)).rgba[0];
+  // Away from the label the cell is the frame; in the label (top left) the digit "1" of "10" is white
+  // (its glyph's top row sets column 2) on a black box.
+  EXPECT_EQ(pixel(kSheetGap + 20, kSheetGap + 20), gray);
+  EXPECT_EQ(pixel(kSheetGap + 1 + 2, kSheetGap + 1), 255);
+  EXPECT_EQ(pixel(kSheetGap, kSheetGap), 0);
+  int label_differs = 0;
+  for (int y = kSheetGap; y < kSheetGap + 9; ++y)
+    for (int x = kSheetGap; x < kSheetGap + 13; ++x) label_differs += pixel(x, y) != gray;
+  EXPECT_GT(label_differs, 13 * 9 / 2);
+  // The sixth cell is empty: the gap color.
+  EXPECT_NE(pixel(image.width - kSheetGap - 10, image.height - kSheetGap - 10), gray);
+
+  sheet.write((dir / "a.png").string());
+  sheet.write((dir / "b.png").string());
+  auto in = OIIO::ImageInput::open((dir / "a.png").string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().width, image.width);
+  EXPECT_EQ(in->spec().height, image.height);
+  in.reset();
+  EXPECT_EQ(file_bytes(dir / "a.png"), file_bytes(dir / "b.png"));
+  fs::remove_all(dir);
+}
+
+TEST(RenderOutput, GifHasOneSubimagePerFrame) {
+  const fs::path dir = fs::temp_directory_path() / ("dqskin_gif_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* name : {"a.gif", "b.gif"}) {
+    GifWriter gif((dir / name).string(), 25);
+    for (int i = 0; i < 3; ++i) gif.add(flat_frame(40, 30, 0.25f * float(i)));
+    EXPECT_EQ(gif.frames(), 3u);
+    gif.commit();
+  }
+  EXPECT_EQ(file_bytes(dir / "a.gif"), file_bytes(dir / "b.gif"));
+  auto in = OIIO::ImageInput::open((dir / "a.gif").string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().width, 40);
+  EXPECT_EQ(in->spec().height, 30);
+  int subimages = 0;
+  while (in->seek_subimage(subimages, 0)) ++subimages;
+  EXPECT_EQ(subimages, 3);
+  in.reset();
+  // 25 frames per second: every Graphic Control Extension (21 F9 04) delays 4 hundredths of a second.
+  const std::vector<char> bytes = file_bytes(dir / "a.gif");
+  int delays = 0;
+  for (size_t i = 0; i + 5 < bytes.size(); ++i)
+    if (bytes[i] == '\x21' && bytes[i + 1] == '\xF9' && bytes[i + 2] == '\x04') {
+      EXPECT_EQ(bytes[i + 4], 4);
+      EXPECT_EQ(bytes[i + 5], 0);
+      ++delays;
+    }
+  EXPECT_EQ(delays, 3);
   fs::remove_all(dir);
 }
 

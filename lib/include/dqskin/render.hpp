@@ -10,6 +10,7 @@
 #include "dqskin/gpu_context.hpp"
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -103,6 +104,61 @@ const char* extension(ImageFormat format);
 Committed write_image(const std::string& path, const Image& image, ImageFormat format,
                       Overwrite overwrite = Overwrite::kReplace);
 
+// 8-bit sRGB RGBA pixels, top row first: what PNG and GIF store, and what a contact sheet keeps per frame.
+struct Image8 {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+};
+
+// `image` encoded as write_image encodes PNGs (sRGB color, linear alpha, rounded to nearest).
+Image8 to_srgb8(const Image& image);
+
+// Contact sheets (--sheet): one PNG with every frame of a clip as a cell of a near-square grid
+// (columns = ceil(sqrt(n)), rows as needed, frames left to right then top to bottom), each cell the frame
+// resized (OpenImageIO's resize, single-threaded, in linear light) to `cell_width` pixels wide with its
+// aspect kept, its frame number drawn in its top-left corner in a built-in 5x7 digit font (white on
+// black, no system fonts), and a gap of kSheetGap dark pixels around and between the cells. Only the
+// cells are kept while a clip renders, not the full frames.
+constexpr int kSheetGap = 2;
+class ContactSheet {
+public:
+  explicit ContactSheet(int cell_width = 256);
+  void add(const Image& frame, int number);  // resizes the frame now
+  size_t size() const { return cells_.size(); }
+  Image8 compose() const;  // throws InputError when empty
+  // compose() written atomically as an 8-bit sRGB PNG. Throws OutputError naming `path`.
+  Committed write(const std::string& path, Overwrite overwrite = Overwrite::kReplace) const;
+
+private:
+  int cell_width_;
+  int frames_width_ = 0, frames_height_ = 0;
+  std::vector<Image8> cells_;
+  std::vector<int> numbers_;
+};
+
+// Draws `number` (decimal digits) at (x, y) in the built-in 5x7 font, every font pixel a `scale` square,
+// on a black box with a one-font-pixel margin; clipped to the image. Returns the box's width.
+int draw_number(Image8& image, int x, int y, int number, int scale);
+
+// Animated GIFs (--gif): frames appended as they arrive (OpenImageIO's GIF writer, 256-color palette per
+// frame, looping), so that no frame is kept; written to a temporary and renamed by commit(). `fps` sets
+// the frame delay (GIF counts it in hundredths of a second). Throws OutputError naming `path`.
+class GifWriter {
+public:
+  GifWriter(std::string path, double fps);
+  ~GifWriter();
+  GifWriter(const GifWriter&) = delete;
+  GifWriter& operator=(const GifWriter&) = delete;
+  void add(const Image& frame);  // every frame the size of the first
+  size_t frames() const { return frames_; }
+  Committed commit(Overwrite overwrite = Overwrite::kReplace);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  size_t frames_ = 0;
+};
+
 // `dqskin render` as a library call: the inputs' animations planned as bake plans them (same frames,
 // clips, shards and names: OUT/<stem>/<anim>/frame_NNNN.png), each clip deformed twice on the GPU: once
 // for its bounding box over every frame (so that all frames, and all shards, share one camera), once to
@@ -120,6 +176,12 @@ struct RenderOptions {
   std::string joint;  // Shade::kWeights: the joint node whose influence is shown
   ImageFormat format = ImageFormat::kPng;
   Overwrite overwrite = Overwrite::kRefuseDifferent;
+  // Per clip, after its frames: OUT/<stem>/<anim>/sheet.png and OUT/<stem>/<anim>/animation.gif, of the
+  // frames this shard renders (all of them when not sharded); with --shard I/N they are named
+  // sheet_shardIofN.png and animation_shardIofN.gif, so that the shards' files do not collide.
+  bool sheet = false;
+  int sheet_cell = 256;  // cell width in pixels
+  bool gif = false;
   const std::atomic<bool>* cancel = nullptr;  // set from a signal handler: stop between frames
 };
 

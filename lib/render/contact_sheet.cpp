@@ -1,0 +1,188 @@
+// Whole-animation review images: contact sheets (a grid of resized frames with their numbers drawn in a
+// built-in digit font) and animated GIFs, both through OpenImageIO and written atomically.
+#include "dqskin/render.hpp"
+
+#include "dqskin/error.hpp"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace dqskin {
+namespace {
+
+std::string one_line(std::string message) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at)) message.replace(at, 1, "; ");
+  return message.empty() ? "OpenImageIO reported no reason" : message;
+}
+
+// 5x7 digit glyphs, one byte per row from the top, bit 4 the leftmost pixel.
+constexpr std::array<std::array<uint8_t, 7>, 10> kDigits{{
+    {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E},  // 0
+    {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E},  // 1
+    {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F},  // 2
+    {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E},  // 3
+    {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02},  // 4
+    {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E},  // 5
+    {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E},  // 6
+    {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08},  // 7
+    {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E},  // 8
+    {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C},  // 9
+}};
+
+constexpr std::array<uint8_t, 4> kGapColor{16, 16, 16, 255};
+
+void fill(Image8& image, int x0, int y0, int w, int h, const std::array<uint8_t, 4>& color) {
+  for (int y = std::max(0, y0); y < std::min(image.height, y0 + h); ++y)
+    for (int x = std::max(0, x0); x < std::min(image.width, x0 + w); ++x)
+      std::copy(color.begin(), color.end(), image.rgba.data() + (size_t(y) * size_t(image.width) + size_t(x)) * 4);
+}
+
+}  // namespace
+
+Image8 to_srgb8(const Image& image) {
+  auto srgb8 = [](float linear) {
+    const double c = std::clamp(double(linear), 0.0, 1.0);
+    const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+    return uint8_t(std::lround(s * 255.0));
+  };
+  Image8 out{image.width, image.height, std::vector<uint8_t>(image.rgba.size())};
+  for (size_t i = 0; i < out.rgba.size(); ++i)
+    out.rgba[i] = i % 4 == 3 ? uint8_t(std::lround(std::clamp(double(image.rgba[i]), 0.0, 1.0) * 255.0)) : srgb8(image.rgba[i]);
+  return out;
+}
+
+int draw_number(Image8& image, int x, int y, int number, int scale) {
+  const std::string digits = std::to_string(std::max(0, number));
+  const int width = scale * (6 * int(digits.size()) + 1), height = scale * 9;
+  fill(image, x, y, width, height, {0, 0, 0, 255});
+  for (size_t d = 0; d < digits.size(); ++d) {
+    const auto& glyph = kDigits[size_t(digits[d] - '0')];
+    for (int row = 0; row < 7; ++row)
+      for (int col = 0; col < 5; ++col)
+        if (glyph[size_t(row)] & (0x10 >> col))
+          fill(image, x + scale * (1 + 6 * int(d) + col), y + scale * (1 + row), scale, scale, {255, 255, 255, 255});
+  }
+  return width;
+}
+
+ContactSheet::ContactSheet(int cell_width) : cell_width_(cell_width) {
+  if (cell_width < 1) throw InputError("contact sheet cells must be at least 1 pixel wide");
+}
+
+void ContactSheet::add(const Image& frame, int number) {
+  if (!cells_.empty() && (frame.width != frames_width_ || frame.height != frames_height_))
+    throw InputError("contact sheet frames differ in size");
+  frames_width_ = frame.width, frames_height_ = frame.height;
+  const int height = std::max(1, int(std::lround(double(cell_width_) * frame.height / frame.width)));
+  OIIO::ImageBuf source(OIIO::ImageSpec(frame.width, frame.height, 4, OIIO::TypeDesc::FLOAT));
+  source.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, frame.rgba.data());
+  OIIO::ImageBuf cell(OIIO::ImageSpec(cell_width_, height, 4, OIIO::TypeDesc::FLOAT));
+  // One thread, so that the result cannot depend on how the work is split.
+  if (!OIIO::ImageBufAlgo::resize(cell, source, "", 0, OIIO::ROI(), 1))
+    throw InputError("contact sheet: " + one_line(cell.geterror()));
+  Image resized{cell_width_, height, std::vector<float>(size_t(cell_width_) * size_t(height) * 4)};
+  cell.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, resized.rgba.data());
+  cells_.push_back(to_srgb8(resized));
+  numbers_.push_back(number);
+}
+
+Image8 ContactSheet::compose() const {
+  if (cells_.empty()) throw InputError("a contact sheet needs at least one frame");
+  const int n = int(cells_.size());
+  const int columns = int(std::ceil(std::sqrt(double(n)) - 1e-9)), rows = (n + columns - 1) / columns;
+  const int cw = cells_[0].width, ch = cells_[0].height;
+  Image8 sheet{columns * cw + (columns + 1) * kSheetGap, rows * ch + (rows + 1) * kSheetGap, {}};
+  sheet.rgba.resize(size_t(sheet.width) * size_t(sheet.height) * 4);
+  fill(sheet, 0, 0, sheet.width, sheet.height, kGapColor);
+  const int scale = std::max(1, cw / 128);
+  for (int i = 0; i < n; ++i) {
+    const int x0 = kSheetGap + (i % columns) * (cw + kSheetGap), y0 = kSheetGap + (i / columns) * (ch + kSheetGap);
+    const Image8& cell = cells_[size_t(i)];
+    for (int y = 0; y < ch; ++y)
+      std::copy_n(cell.rgba.data() + size_t(y) * size_t(cw) * 4, size_t(cw) * 4,
+                  sheet.rgba.data() + (size_t(y0 + y) * size_t(sheet.width) + size_t(x0)) * 4);
+    // The label stays inside its cell: clip it to the cell by drawing into a copy of the cell's area.
+    Image8 label{cw, ch, std::vector<uint8_t>(cell.rgba)};
+    draw_number(label, 0, 0, numbers_[size_t(i)], scale);
+    for (int y = 0; y < ch; ++y)
+      std::copy_n(label.rgba.data() + size_t(y) * size_t(cw) * 4, size_t(cw) * 4,
+                  sheet.rgba.data() + (size_t(y0 + y) * size_t(sheet.width) + size_t(x0)) * 4);
+  }
+  return sheet;
+}
+
+Committed ContactSheet::write(const std::string& path, Overwrite overwrite) const {
+  const Image8 sheet = compose();
+  AtomicFile file(path, false);
+  const std::string& temporary = file.hand_over();
+  OIIO::ImageSpec spec(sheet.width, sheet.height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
+  if (!out) throw OutputError(path + ": " + one_line(OIIO::geterror()));
+  if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, sheet.rgba.data()) || !out->close())
+    throw OutputError(path + ": " + one_line(out->geterror()));
+  out.reset();
+  return file.commit(overwrite);
+}
+
+struct GifWriter::Impl {
+  AtomicFile file;
+  std::string temporary;
+  std::unique_ptr<OIIO::ImageOutput> out;
+  OIIO::ImageSpec spec;
+  double fps;
+  Impl(std::string path, double f) : file(std::move(path), false), temporary(file.hand_over()), fps(f) {}
+  [[noreturn]] void fail() const {
+    throw OutputError(file.path() + ": " + one_line(out ? out->geterror() : OIIO::geterror()));
+  }
+};
+
+GifWriter::GifWriter(std::string path, double fps) : impl_(std::make_unique<Impl>(std::move(path), fps)) {
+  if (!(fps > 0)) throw InputError("a GIF needs frames per second above 0");
+  impl_->out = OIIO::ImageOutput::create("gif");
+  if (!impl_->out) impl_->fail();
+}
+
+GifWriter::~GifWriter() {
+  if (impl_ && impl_->out && frames_ > 0) impl_->out->close();
+}
+
+void GifWriter::add(const Image& frame) {
+  Impl& g = *impl_;
+  if (frames_ > 0 && (frame.width != g.spec.width || frame.height != g.spec.height))
+    throw InputError("GIF frames differ in size");
+  if (frames_ == 0) {
+    g.spec = OIIO::ImageSpec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8);
+    g.spec.attribute("oiio:ColorSpace", "sRGB");
+    // GIF counts delays in hundredths of a second; a rational keeps fractional rates such as 29.97.
+    const int rate[2] = {int(std::lround(g.fps * 1000)), 1000};
+    g.spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
+    g.spec.attribute("oiio:Movie", 1);
+    g.spec.attribute("gif:LoopCount", 0);  // loop forever
+  }
+  if (!g.out->open(g.temporary, g.spec, frames_ == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendSubimage))
+    g.fail();
+  // GIF has no partial transparency: color only.
+  const Image8 pixels = to_srgb8(frame);
+  std::vector<uint8_t> rgb(size_t(frame.width) * size_t(frame.height) * 3);
+  for (size_t p = 0; p < rgb.size() / 3; ++p) std::copy_n(pixels.rgba.data() + p * 4, 3, rgb.data() + p * 3);
+  if (!g.out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) g.fail();
+  ++frames_;
+}
+
+Committed GifWriter::commit(Overwrite overwrite) {
+  Impl& g = *impl_;
+  if (frames_ == 0) throw OutputError(g.file.path() + ": a GIF needs at least one frame");
+  if (!g.out->close()) g.fail();
+  g.out.reset();
+  return g.file.commit(overwrite);
+}
+
+}  // namespace dqskin
