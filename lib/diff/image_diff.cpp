@@ -1,6 +1,7 @@
 // `dqskin diff`: images compared by OpenImageIO's ImageBufAlgo::compare with idiff's thresholds, heat maps
 // of failing pairs, and text, JSON and JUnit XML reports (include/dqskin/image_diff.hpp).
 #include "dqskin/image_diff.hpp"
+#include "../io/oiio_message.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
@@ -32,13 +33,6 @@ using Json = nlohmann::ordered_json;  // keys in the order written
 // Images larger than this (as float pixels) are refused rather than allocated: a corrupt header may claim
 // any size. 16 GiB holds a 32k × 32k RGBA float image.
 constexpr uint64_t kMaxImageBytes = uint64_t(16) << 30;
-
-// OpenImageIO's message as one line (it may hold several), never empty.
-std::string one_line(std::string message) {
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-  for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at)) message.replace(at, 1, "; ");
-  return message.empty() ? "OpenImageIO reported no reason" : message;
-}
 
 // %g, with "inf", "-inf" and "nan" spelled the same on every platform.
 std::string number(double value) {
@@ -87,7 +81,7 @@ std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
   if (fs::is_directory(status)) return "is a folder";
   OIIO::geterror();  // forget earlier messages
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-  if (!in) return one_line(OIIO::geterror());
+  if (!in) return oiio_message(OIIO::geterror());
   OIIO::ImageSpec spec = in->spec();
   if (spec.deep) return "deep (multi-sample) images are not compared";
   if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0 || spec.nchannels <= 0)
@@ -98,7 +92,7 @@ std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
            std::to_string(spec.nchannels) + " channels are too large to compare";
   image.reset(spec, OIIO::InitializePixels::No);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.localpixels()))
-    return one_line(in->geterror());
+    return oiio_message(in->geterror());
   return "";
 }
 
@@ -165,7 +159,7 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
     lp[i] = span > 0 && std::isfinite(largest[i]) ? float((double(largest[i]) - low) / span) : 1.0f;
   const OIIO::ImageBuf colors = OIIO::ImageBufAlgo::color_map(level, 0, "viridis", {}, 1);
   if (colors.has_error() || colors.nchannels() != 3)
-    throw OutputError(path + ": OpenImageIO color_map: " + one_line(colors.geterror()));
+    throw OutputError(path + ": OpenImageIO color_map: " + oiio_message(colors.geterror()));
   const auto* cp = static_cast<const float*>(colors.localpixels());
 
   std::vector<uint8_t> rgb(count * 3);
@@ -193,9 +187,9 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
                                          "--fail " + number(fail) + ", viridis from there to " + number(double(top)) +
                                          ", white not finite");
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
-  if (!out) throw OutputError(path + ": " + one_line(OIIO::geterror()));
+  if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
   if (!out->open(temporary, out_spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close())
-    throw OutputError(path + ": " + one_line(out->geterror()));
+    throw OutputError(path + ": " + oiio_message(out->geterror()));
   out.reset();
   file.commit(Overwrite::kReplace);
 }
@@ -408,7 +402,7 @@ ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) {
       OIIO::ImageBufAlgo::compare(a, b, float(t.fail), float(t.warn), 0.0f, 0.0f, {}, 1);
   // `error` is also set whenever a pixel is over `fail` (OpenImageIO 2.4); a real error leaves a message.
   if (cr.error && a.has_error()) {
-    d.problem = "OpenImageIO cannot compare them: " + one_line(a.geterror());
+    d.problem = "OpenImageIO cannot compare them: " + oiio_message(a.geterror());
     d.reason = d.problem;
     return d;
   }

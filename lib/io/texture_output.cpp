@@ -1,6 +1,7 @@
 // Vertex-animation textures and bone textures as OpenEXR files with JSON side files (shared/DESIGN.md
 // "Vertex-animation texture (VAT) layout" and "BoneTexture layout").
 #include "dqskin/texture_output.hpp"
+#include "oiio_message.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -25,14 +26,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;  // keys in the order written, for people reading the side files
 
-// OpenImageIO's message as one line (it may hold several), never empty.
-std::string one_line(std::string message) {
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-  for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at))
-    message.replace(at, 1, "; ");
-  return message.empty() ? "OpenImageIO reported no reason" : message;
-}
-
 // An RGBA32F EXR being written to `file`'s temporary; the final name is for messages. Members are
 // destroyed in reverse order: the image is closed before the AtomicFile removes an uncommitted temporary.
 class ExrImage {
@@ -54,7 +47,7 @@ public:
     // software name or other varying attribute (the tests check the header and the bytes).
     spec.attribute("DateTime", "");
     out_ = OIIO::ImageOutput::create("openexr");
-    if (!out_) throw OutputError(file_.path() + ": " + one_line(OIIO::geterror()));
+    if (!out_) throw OutputError(file_.path() + ": " + oiio_message(OIIO::geterror()));
     // Scanline (not tiled) with increasing Y: rows are compressed and written as they come, so the writer
     // holds one block of rows, not the image.
     if (!out_->open(temporary_, spec)) fail();
@@ -83,7 +76,7 @@ public:
   const std::string& temporary() const { return temporary_; }
 
 private:
-  [[noreturn]] void fail() { throw OutputError(file_.path() + ": " + one_line(out_->geterror())); }
+  [[noreturn]] void fail() { throw OutputError(file_.path() + ": " + oiio_message(out_->geterror())); }
 
   // The file as OpenEXR lays out a single-part scanline image: magic and version, the header's attributes
   // up to an empty name, one offset per block of 16 rows (ZIP), then the blocks, each an int32 row and an

@@ -1,6 +1,7 @@
 // Whole-animation review images: contact sheets (a grid of resized frames with their numbers drawn in a
 // built-in digit font) and animated GIFs, both through OpenImageIO and written atomically.
 #include "dqskin/render.hpp"
+#include "../io/oiio_message.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -14,12 +15,6 @@
 
 namespace dqskin {
 namespace {
-
-std::string one_line(std::string message) {
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-  for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at)) message.replace(at, 1, "; ");
-  return message.empty() ? "OpenImageIO reported no reason" : message;
-}
 
 // 5x7 digit glyphs, one byte per row from the top, bit 4 the leftmost pixel.
 constexpr std::array<std::array<uint8_t, 7>, 10> kDigits{{
@@ -85,7 +80,7 @@ void ContactSheet::add(const Image& frame, int number) {
   OIIO::ImageBuf cell(OIIO::ImageSpec(cell_width_, height, 4, OIIO::TypeDesc::FLOAT));
   // One thread, so that the result cannot depend on how the work is split.
   if (!OIIO::ImageBufAlgo::resize(cell, source, "", 0, OIIO::ROI(), 1))
-    throw InputError("contact sheet: " + one_line(cell.geterror()));
+    throw InputError("contact sheet: " + oiio_message(cell.geterror()));
   Image resized{cell_width_, height, std::vector<float>(size_t(cell_width_) * size_t(height) * 4)};
   cell.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, resized.rgba.data());
   cells_.push_back(to_srgb8(resized));
@@ -125,9 +120,9 @@ Committed ContactSheet::write(const std::string& path, Overwrite overwrite) cons
   spec.attribute("oiio:ColorSpace", "sRGB");
   spec.attribute("oiio:UnassociatedAlpha", 1);
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
-  if (!out) throw OutputError(path + ": " + one_line(OIIO::geterror()));
+  if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
   if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, sheet.rgba.data()) || !out->close())
-    throw OutputError(path + ": " + one_line(out->geterror()));
+    throw OutputError(path + ": " + oiio_message(out->geterror()));
   out.reset();
   return file.commit(overwrite);
 }
@@ -140,7 +135,7 @@ struct GifWriter::Impl {
   double fps;
   Impl(std::string path, double f) : file(std::move(path), false), temporary(file.hand_over()), fps(f) {}
   [[noreturn]] void fail() const {
-    throw OutputError(file.path() + ": " + one_line(out ? out->geterror() : OIIO::geterror()));
+    throw OutputError(file.path() + ": " + oiio_message(out ? out->geterror() : OIIO::geterror()));
   }
 };
 

@@ -1,6 +1,7 @@
 // Rendered images as files through OpenImageIO: PNG (8-bit sRGB) or OpenEXR (32-bit linear float), written
 // to an AtomicFile's temporary and renamed when complete.
 #include "dqskin/render.hpp"
+#include "../io/oiio_message.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -12,12 +13,6 @@
 
 namespace dqskin {
 namespace {
-
-std::string one_line(std::string message) {
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-  for (size_t at = message.find('\n'); at != std::string::npos; at = message.find('\n', at)) message.replace(at, 1, "; ");
-  return message.empty() ? "OpenImageIO reported no reason" : message;
-}
 
 // IEC 61966-2-1 transfer function, linear [0, 1] to an 8-bit code, rounded to nearest. Done here, not by
 // an sRGB framebuffer, so that the PNG bytes do not depend on the driver's conversion.
@@ -56,8 +51,8 @@ Committed write_image(const std::string& path, const Image& image, ImageFormat f
     spec.attribute("DateTime", "");        // else OpenImageIO stamps the current time (capDate)
   }
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(png ? "png" : "openexr");
-  if (!out) throw OutputError(path + ": " + one_line(OIIO::geterror()));
-  auto fail = [&]() { throw OutputError(path + ": " + one_line(out->geterror())); };
+  if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
+  auto fail = [&]() { throw OutputError(path + ": " + oiio_message(out->geterror())); };
   if (!out->open(temporary, spec)) fail();
   bool ok = false;
   if (png) {
