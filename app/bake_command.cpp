@@ -75,13 +75,8 @@ private:
 BakeOptions to_options(const BakeSettings& s) {
   BakeOptions o;
   o.out_dir = s.out_dir;
-  o.clips = s.anim;
-  o.frames.fps = s.fps;
-  if (!s.frames.empty()) parse_frame_range(s.frames, o.frames);
-  if (!s.times.empty()) o.frames.times = parse_times(s.times);
-  o.frames.keys = s.keys;
-  if (int(s.keys) + int(!s.times.empty()) + int(!s.frames.empty()) > 1)
-    throw InputError("--frames, --keys and --times choose frames in different ways; give one of them");
+  o.clips = s.selection.anim;
+  o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   o.formats = parse_bake_formats(s.formats);
   o.backend = s.backend;

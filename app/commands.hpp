@@ -1,7 +1,10 @@
 // The dqskin commands: each one a settings struct that CLI11 fills and a function that runs it.
 #pragma once
 
+#include "dqskin/animation.hpp"
 #include "dqskin/image_diff.hpp"
+
+#include <CLI/CLI.hpp>
 
 #include <cstddef>
 #include <optional>
@@ -28,13 +31,26 @@ struct BenchSettings {
 // Measures vertex-frames per second of every deformation path. Returns an ExitCode.
 int run_bench(const BenchSettings& settings);
 
+// Which animations and frames a command works on (--anim, --fps, --frames, --keys, --times), shared by
+// bake and render so that both read the same flags the same way.
+struct FrameSelection {
+  std::string anim = "all";
+  double fps = 30;
+  std::string frames, times;
+  bool keys = false;
+};
+
+// Adds the FrameSelection flags to a command; `verb` goes into the help ("Animation to bake: …").
+void add_frame_selection(CLI::App& command, FrameSelection& selection, const char* verb);
+
+// The FrameSpec they ask for. Throws InputError for a bad range or list, or more than one way given.
+FrameSpec to_frame_spec(const FrameSelection& selection);
+
 struct BakeSettings {
   std::vector<std::string> inputs;  // empty: the bundled default input
   std::string out_dir;
-  std::string anim = "all";
-  double fps = 30;
-  std::string frames, times, shard;
-  bool keys = false;
+  FrameSelection selection;
+  std::string shard;
   std::string mode = "dqs";
   std::string formats = "glb";
   std::string backend = "auto";
@@ -50,10 +66,8 @@ int run_bake(const BakeSettings& settings);
 struct RenderSettings {
   std::vector<std::string> inputs;
   std::string out_dir;
-  std::string anim = "all";
-  double fps = 30;
-  std::string frames, times, shard;
-  bool keys = false;
+  FrameSelection selection;
+  std::string shard;
   std::string mode = "dqs";
   std::string backend = "auto";
   int scene = -1;

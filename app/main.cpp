@@ -50,16 +50,7 @@ int main(int argc, char** argv) {
                        ".gltf or .glb files. Without any, the bundled twisted_cylinder rig is baked into a new "
                        "temporary folder, which is printed");
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
-  bake_cmd->add_option("--anim", bake.anim, "Animation to bake: all, a name, or an index")
-      ->type_name("NAME|INDEX|all")
-      ->capture_default_str();
-  bake_cmd->add_option("--fps", bake.fps, "Frames per second of the sampling grid; frame i is at i/fps seconds")
-      ->type_name("FPS")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  bake_cmd->add_option("--frames", bake.frames, "Only grid frames A to B inclusive, every step-th")->type_name("A:B[:step]");
-  bake_cmd->add_flag("--keys", bake.keys, "Sample every key time of the animation instead of the fps grid");
-  bake_cmd->add_option("--times", bake.times, "Sample these times in seconds instead of the fps grid")->type_name("T,T,...");
+  add_frame_selection(*bake_cmd, bake.selection, "bake");
   bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
       ->type_name("lbs|dqs|dib")
       ->capture_default_str();
@@ -105,16 +96,7 @@ int main(int argc, char** argv) {
                 "through the same headless OpenGL context as bake");
   render_cmd->add_option("INPUT", render.inputs, ".gltf or .glb files")->required();
   render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
-  render_cmd->add_option("--anim", render.anim, "Animation to render: all, a name, or an index")
-      ->type_name("NAME|INDEX|all")
-      ->capture_default_str();
-  render_cmd->add_option("--fps", render.fps, "Frames per second of the sampling grid; frame i is at i/fps seconds")
-      ->type_name("FPS")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  render_cmd->add_option("--frames", render.frames, "Only grid frames A to B inclusive, every step-th")->type_name("A:B[:step]");
-  render_cmd->add_flag("--keys", render.keys, "Sample every key time of the animation instead of the fps grid");
-  render_cmd->add_option("--times", render.times, "Sample these times in seconds instead of the fps grid")->type_name("T,T,...");
+  add_frame_selection(*render_cmd, render.selection, "render");
   render_cmd->add_option("--mode", render.mode, "Blending: lbs (linear) or dqs (dual quaternion DLB)")
       ->type_name("lbs|dqs")
       ->capture_default_str();

@@ -72,13 +72,8 @@ glm::vec4 parse_background(const std::string& text) {
 RenderOptions to_options(const RenderSettings& s) {
   RenderOptions o;
   o.out_dir = s.out_dir;
-  o.clips = s.anim;
-  o.frames.fps = s.fps;
-  if (int(s.keys) + int(!s.times.empty()) + int(!s.frames.empty()) > 1)
-    throw InputError("--frames, --keys and --times choose frames in different ways; give one of them");
-  if (!s.frames.empty()) parse_frame_range(s.frames, o.frames);
-  if (!s.times.empty()) o.frames.times = parse_times(s.times);
-  o.frames.keys = s.keys;
+  o.clips = s.selection.anim;
+  o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode) || o.mode == BlendMode::kDib)
     throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs");
   GpuBackend backend = GpuBackend::kAuto;
