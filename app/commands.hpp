@@ -71,13 +71,14 @@ struct RenderSettings {
   std::string mode = "dqs";
   std::string backend = "auto";
   int scene = -1;
-  std::string size = "512x512";
+  std::string size;  // WxH; empty: 512x512, or 512 high in a --camera's aspect ratio
   std::string background = "0.2,0.2,0.2";  // sRGB
   int samples = 4;
   std::string shade = "lit";
   std::string joint;  // --shade weights
   std::optional<double> yaw, pitch, distance, fov;
   bool ortho = false;
+  std::string camera;  // a node with a glTF camera
   std::string format = "png";
   bool sheet = false, gif = false;
   int sheet_cell = 256;

@@ -97,16 +97,21 @@ int main(int argc, char** argv) {
   render_cmd->add_option("INPUT", render.inputs, ".gltf or .glb files")->required();
   render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*render_cmd, render.selection, "render");
-  render_cmd->add_option("--mode", render.mode, "Blending: lbs (linear) or dqs (dual quaternion DLB)")
-      ->type_name("lbs|dqs")
+  render_cmd->add_option("--mode", render.mode,
+                         "Blending: lbs (linear), dqs (dual quaternion DLB) or dib (iterative, deformed on the CPU)")
+      ->type_name("lbs|dqs|dib")
       ->capture_default_str();
-  render_cmd->add_option("--backend", render.backend, "Headless OpenGL backend: auto (EGL, then OSMesa), egl or osmesa")
+  render_cmd->add_option("--backend", render.backend,
+                         "Headless OpenGL backend that draws (and deforms): auto (EGL, then OSMesa), egl, osmesa, or "
+                         "cpu (deform with the double-precision CPU reference, draw with auto)")
       ->type_name("NAME")
       ->capture_default_str();
   render_cmd->add_option("--scene", render.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
   render_cmd->add_option("--shard", render.shard, "Render only shard I of N of the (input, animation, frame) work")
       ->type_name("I/N");
-  render_cmd->add_option("--size", render.size, "Image size in pixels")->type_name("WxH")->capture_default_str();
+  render_cmd->add_option("--size", render.size,
+                         "Image size in pixels (default 512x512; with --camera, 512 high in the camera's aspect ratio)")
+      ->type_name("WxH");
   render_cmd->add_option("--background", render.background, "Background color: R,G,B[,A] (0 to 1, sRGB) or #RRGGBB[AA]")
       ->type_name("COLOR")
       ->capture_default_str();
@@ -115,7 +120,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   render_cmd->add_option("--shade", render.shade,
-                         "lit (material base color, key light and ambient), normals (world normal as color), "
+                         "lit (material base color factor, texture and COLOR_0; key light and ambient), normals (world normal as color), "
                          "weights (influence of --joint as a heat map), mode-diff (distance between the lbs and dqs "
                          "positions as a heat map, its scale printed)")
       ->type_name("lit|normals|weights|mode-diff")
@@ -134,6 +139,10 @@ int main(int argc, char** argv) {
       ->type_name("DEG")
       ->check(CLI::Range(1.0, 170.0));
   render_cmd->add_flag("--ortho", render.ortho, "Orthographic projection fitted to the bounding box");
+  render_cmd->add_option("--camera", render.camera,
+                         "See the frames through the glTF camera of the node NAME, following its animation, instead "
+                         "of the automatic camera (not with --yaw/--pitch/--distance/--fov/--ortho)")
+      ->type_name("NODE");
   render_cmd->add_option("--format", render.format, "Image format: png (8-bit sRGB) or exr (32-bit linear float)")
       ->type_name("png|exr")
       ->capture_default_str();
@@ -152,12 +161,15 @@ int main(int argc, char** argv) {
   render_cmd->footer(
       "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{png,exr}, frame numbers as bake names them. The camera\n"
       "is framed once on the bounding box of the whole animation, so the frames of an animation are comparable.\n"
+      "Surfaces are drawn from both sides (open meshes and mirrored instances stay visible); alphaMode MASK cuts\n"
+      "out, BLEND is blended after the opaque surfaces in file order.\n"
       "--sheet and --gif show the frames this run renders; with --shard I/N only the shard's own frames, in\n"
       "sheet_shardIofN.png and animation_shardIofN.gif.\n"
       "Exit status: 0 success, 1 some inputs failed (the others rendered), 2 usage or input error, 3 no OpenGL context.\n"
       "Examples:\n"
       "  dqskin render Fox.glb -o frames\n"
-      "  dqskin render arm.gltf -o frames --mode lbs --shade normals --size 256x256 --yaw 90 --ortho");
+      "  dqskin render arm.gltf -o frames --mode lbs --shade normals --size 256x256 --yaw 90 --ortho\n"
+      "  dqskin render shot.glb -o frames --camera ShotCam --anim Walk --sheet");
 
   DiffSettings diff;
   CLI::App* diff_cmd = app.add_subcommand(

@@ -74,10 +74,10 @@ RenderOptions to_options(const RenderSettings& s) {
   o.out_dir = s.out_dir;
   o.clips = s.selection.anim;
   o.frames = to_frame_spec(s.selection);
-  if (!parse_blend_mode(s.mode, o.mode) || o.mode == BlendMode::kDib)
-    throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs");
+  if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   GpuBackend backend = GpuBackend::kAuto;
-  if (!parse_gpu_backend(s.backend, backend)) throw InputError("--backend '" + s.backend + "' is not one of auto, egl, osmesa");
+  if (s.backend != "cpu" && !parse_gpu_backend(s.backend, backend))
+    throw InputError("--backend '" + s.backend + "' is not one of auto, egl, osmesa, cpu");
   o.backend = s.backend;
   o.scene = s.scene;
   if (!s.shard.empty()) {
@@ -86,7 +86,8 @@ RenderOptions to_options(const RenderSettings& s) {
     o.shard_index = shard.shard_index;
     o.shard_count = shard.shard_count;
   }
-  parse_size(s.size, o.renderer);
+  parse_size(s.size.empty() ? "512x512" : s.size, o.renderer);
+  o.size_from_camera = s.size.empty();
   o.renderer.samples = s.samples;
   o.renderer.background = parse_background(s.background);
   if (!parse_shade(s.shade, o.renderer.shade)) throw InputError("--shade '" + s.shade + "' is not one of lit, normals, weights, mode-diff");
@@ -98,6 +99,9 @@ RenderOptions to_options(const RenderSettings& s) {
   if (s.fov) o.camera.fov = *s.fov;
   o.camera.distance = s.distance;
   o.camera.ortho = s.ortho;
+  if (!s.camera.empty() && (s.yaw || s.pitch || s.distance || s.fov || s.ortho))
+    throw InputError("--camera sets the view; it cannot be combined with --yaw, --pitch, --distance, --fov or --ortho");
+  o.camera_node = s.camera;
   if (s.sheet_cell < 1 || s.sheet_cell > 4096) throw InputError("--sheet-cell " + std::to_string(s.sheet_cell) + ": must be 1 to 4096 pixels");
   o.sheet = s.sheet;
   o.sheet_cell = s.sheet_cell;
@@ -145,8 +149,8 @@ int run_render(const RenderSettings& settings) {
     for (const ModeDiffScale& m : report.mode_diff) {
       scales.push_back({{"input", m.input}, {"animation", m.clip}, {"max_distance", m.max_distance}});
       if (!settings.quiet && !settings.json_progress)
-        std::fprintf(stderr, "mode-diff %s %s: red = %.6g (largest |lbs - dqs| position distance), dark blue = 0\n",
-                     m.input.c_str(), m.clip.c_str(), m.max_distance);
+        std::fprintf(stderr, "mode-diff %s %s: red = %.6g (largest |lbs - %s| position distance), dark blue = 0\n",
+                     m.input.c_str(), m.clip.c_str(), m.max_distance, settings.mode == "lbs" ? "dqs" : settings.mode.c_str());
     }
     if (settings.json_progress) {
       std::cout << nlohmann::json{{"event", "summary"},           {"mode_diff", scales},          {"frames", report.frames_total},

@@ -4,8 +4,14 @@
 in vec3 world_position;
 in vec3 world_normal;
 in float vertex_scalar;
+in vec2 texture_uv;
+in vec4 color_0;
 
 uniform vec4 base_color;      // the material's baseColorFactor, linear
+uniform bool has_texture;     // base_color_texture is bound
+uniform sampler2D base_color_texture;  // sRGB: the GL returns linear color
+uniform int alpha_mode;       // 0 opaque, 1 mask, 2 blend (glTF alphaMode)
+uniform float alpha_cutoff;   // mask: fragments with a lower alpha are not drawn
 uniform bool has_normals;     // false: the face normal from screen-space derivatives
 uniform vec3 eye;             // camera position, world space
 uniform vec3 key_direction;   // towards the key light, world space, unit
@@ -35,7 +41,13 @@ void main() {
 #if defined(SHADE_WEIGHTS)
   color = vec4(heat(vertex_scalar) * (0.35 + 0.65 * light), 1.0);
 #else
-  color = vec4(base_color.rgb * light, 1.0);
+  // glTF 2.0 §3.9.2: base color = factor × texture × COLOR_0.
+  vec4 albedo = base_color * color_0;
+  if (has_texture) albedo *= texture(base_color_texture, texture_uv);
+  if (alpha_mode == 1 && albedo.a < alpha_cutoff) discard;
+  // Opaque ignores alpha; blend writes premultiplied color for GL_ONE, GL_ONE_MINUS_SRC_ALPHA.
+  const float alpha = alpha_mode == 2 ? albedo.a : 1.0;
+  color = vec4(albedo.rgb * light * alpha, alpha);
 #endif
 #endif
 }

@@ -4,16 +4,22 @@
 layout(location = 0) in vec3 position;  // world space
 layout(location = 1) in vec3 normal;    // world space, unit; a constant when the primitive has none
 layout(location = 2) in float scalar;   // Shade weights: the value shown as a heat map
+layout(location = 3) in vec2 uv;        // the TEXCOORD_n set of the base color texture
+layout(location = 4) in vec4 vertex_color;  // COLOR_0, linear; (1, 1, 1, 1) when the primitive has none
 
 uniform mat4 view_projection;
 
 out vec3 world_position;
 out vec3 world_normal;
 out float vertex_scalar;
+out vec2 texture_uv;
+out vec4 color_0;
 
 void main() {
   world_position = position;
   world_normal = normal;
   vertex_scalar = scalar;
+  texture_uv = uv;
+  color_0 = vertex_color;
   gl_Position = view_projection * vec4(position, 1.0);
 }

@@ -24,6 +24,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 FLOAT, UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT = 5126, 5121, 5123, 5125
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
@@ -68,7 +69,7 @@ class Gltf:
 
     # -- buffer data ----------------------------------------------------------------------------------
 
-    def accessor(self, values, element_type, component_type=FLOAT, target=None, with_bounds=False):
+    def accessor(self, values, element_type, component_type=FLOAT, target=None, with_bounds=False, normalized=False):
         """Appends `values` (a list of numbers, or of tuples of numbers) as one accessor in its own
         bufferView; returns the accessor's index. Floats are rounded to float32."""
         flat = []
@@ -98,6 +99,8 @@ class Gltf:
             "count": count,
             "type": element_type,
         }
+        if normalized:
+            acc["normalized"] = True
         if with_bounds:
             acc["min"] = [min(flat[i::n]) for i in range(n)]
             acc["max"] = [max(flat[i::n]) for i in range(n)]
@@ -123,10 +126,12 @@ class Gltf:
         self.doc["nodes"].append(n)
         return len(self.doc["nodes"]) - 1
 
-    def skinned_mesh(self, name, geometry, influence_sets, targets=None, default_weights=None):
+    def skinned_mesh(self, name, geometry, influence_sets, targets=None, default_weights=None, extra=None,
+                     material=None):
         """geometry: dict with positions, normals, indices. influence_sets: list of (joints, weights)
         pairs, one per JOINTS_n/WEIGHTS_n set, each a per-vertex list of 4-tuples. targets: list of
-        (position_deltas, normal_deltas). Returns the mesh index."""
+        (position_deltas, normal_deltas). extra: {attribute: accessor index} added to the primitive.
+        Returns the mesh index."""
         attributes = {
             "POSITION": self.accessor(geometry["positions"], "VEC3", target=ARRAY_BUFFER, with_bounds=True),
             "NORMAL": self.accessor(geometry["normals"], "VEC3", target=ARRAY_BUFFER),
@@ -135,11 +140,14 @@ class Gltf:
             joint_type = UNSIGNED_BYTE if max(max(j) for j in joints) < 256 else UNSIGNED_SHORT
             attributes["JOINTS_%d" % i] = self.accessor(joints, "VEC4", joint_type, target=ARRAY_BUFFER)
             attributes["WEIGHTS_%d" % i] = self.accessor(weights, "VEC4", target=ARRAY_BUFFER)
+        attributes.update(extra or {})
         primitive = {
             "attributes": attributes,
             "indices": self.accessor(geometry["indices"], "SCALAR", UNSIGNED_SHORT, target=ELEMENT_ARRAY_BUFFER),
             "mode": 4,
         }
+        if material is not None:
+            primitive["material"] = material
         mesh = {"name": name, "primitives": [primitive]}
         if targets:
             primitive["targets"] = [
@@ -186,6 +194,36 @@ class Gltf:
             )
             chans.append({"sampler": len(samplers) - 1, "target": {"node": node, "path": path}})
         self.doc["animations"].append({"name": name, "channels": chans, "samplers": samplers})
+
+    def png_texture(self, name, png, sampler):
+        """An embedded PNG (its own bufferView) as image, sampler and texture; returns the texture index."""
+        offset = len(self.buffer)
+        self.buffer.extend(png)
+        self.doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": len(png)})
+        while len(self.buffer) % 4:
+            self.buffer.append(0)
+        self.doc.setdefault("images", []).append(
+            {"name": name, "bufferView": len(self.doc["bufferViews"]) - 1, "mimeType": "image/png"})
+        self.doc.setdefault("samplers", []).append(sampler)
+        self.doc.setdefault("textures", []).append(
+            {"source": len(self.doc["images"]) - 1, "sampler": len(self.doc["samplers"]) - 1})
+        return len(self.doc["textures"]) - 1
+
+    def material(self, name, base_color_factor=None, base_color_texture=None):
+        pbr = {"metallicFactor": 0.0}
+        if base_color_factor is not None:
+            pbr["baseColorFactor"] = [f32(x) for x in base_color_factor]
+        if base_color_texture is not None:
+            pbr["baseColorTexture"] = {"index": base_color_texture}
+        self.doc.setdefault("materials", []).append({"name": name, "pbrMetallicRoughness": pbr})
+        return len(self.doc["materials"]) - 1
+
+    def camera(self, name, projection):
+        """projection: {"perspective": {...}} or {"orthographic": {...}}; returns the camera index."""
+        (kind, values), = projection.items()
+        self.doc.setdefault("cameras", []).append(
+            {"name": name, "type": kind, kind: {k: f32(v) for k, v in values.items()}})
+        return len(self.doc["cameras"]) - 1
 
     def scene(self, name, roots):
         self.doc["scenes"].append({"name": name, "nodes": list(roots)})
@@ -240,6 +278,31 @@ def tube(axis, radius, stations, around, center=(0.0, 0.0, 0.0)):
     return {"positions": positions, "normals": normals, "indices": indices, "station": station_of}
 
 
+def textured_tube(radius, stations, around):
+    """The y-axis tube of tube() with a UV seam: each ring has around + 1 vertices, the last one at the
+    first one's position with u = 1. u goes once around (counter-clockwise seen from +y), v from 0 at
+    the top station to 1 at the bottom one (glTF's v = 0 is the image's top row)."""
+    positions, normals, uvs, station_of = [], [], [], []
+    top, bottom = stations[-1], stations[0]
+    for s, a in enumerate(stations):
+        for k in range(around + 1):
+            angle = 2 * math.pi * (k % around) / around
+            c, d = snap(math.cos(angle)), snap(math.sin(angle))
+            positions.append((radius * c, a, radius * d))
+            normals.append((c, 0.0, d))
+            uvs.append((k / around, (top - a) / (top - bottom)))
+            station_of.append(s)
+    ring = around + 1
+    indices = []
+    for s in range(len(stations) - 1):
+        for k in range(around):
+            a0, a1 = s * ring + k, s * ring + k + 1
+            b0, b1 = a0 + ring, a1 + ring
+            for tri in ((a0, b0, a1), (a1, b0, b1)):
+                indices.extend(orient(tri, positions, normals))
+    return {"positions": positions, "normals": normals, "indices": indices, "station": station_of, "uv": uvs}
+
+
 def box_strip(length, half, columns):
     """A box along +x from 0 to `length` with a square cross-section of side 2·half, `columns` + 1
     rings of 4 corner vertices (no end caps). Normals point away from the axis (diagonals)."""
@@ -260,6 +323,18 @@ def box_strip(length, half, columns):
             for tri in ((a0, b0, a1), (a1, b0, b1)):
                 indices.extend(orient(tri, positions, normals))
     return {"positions": positions, "normals": normals, "indices": indices, "station": station_of}
+
+
+def png_rgb(width, height, pixel):
+    """A PNG (8-bit RGB) of pixel(x, y) -> (r, g, b), top row first. The image data is stored without
+    compression (deflate level 0), so the bytes do not depend on the zlib version."""
+    raw = b"".join(b"\x00" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height))
+
+    def chunk(tag, data):
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 0)) + chunk(b"IEND", b"")
 
 
 def orient(tri, positions, normals):
@@ -329,8 +404,9 @@ def twisted_cylinder():
     return g
 
 
-def bending_arm():
-    """An arm along +x: shoulder at x = 0, elbow at x = 2; the elbow bends 90° about z."""
+def bending_arm(with_cameras=False):
+    """An arm along +x: shoulder at x = 0, elbow at x = 2; the elbow bends 90° about z. with_cameras adds
+    camera_dolly()'s cameras."""
     g = Gltf()
     stations = [4.0 * i / 16 for i in range(17)]  # x = 0 .. 4 in steps of 1/4
     geo = tube("x", 0.4, stations, 16)
@@ -340,9 +416,62 @@ def bending_arm():
     shoulder = g.node("shoulder", children=[2])
     elbow = g.node("elbow", translation=(2.0, 0.0, 0.0))
     g.skin("arm_skin", [shoulder, elbow], [(0.0, 0.0, 0.0), (2.0, 0.0, 0.0)])
-    g.animation("bend", [(elbow, "rotation", "LINEAR", [0.0, 0.5, 1.0],
-                          [tuple(quat_axis_angle((0, 0, 1), a)) for a in (0.0, 45.0, 90.0)])])
-    g.scene("scene", [0, shoulder])
+    times = [0.0, 0.5, 1.0]
+    channels = [(elbow, "rotation", "LINEAR", times, [tuple(quat_axis_angle((0, 0, 1), a)) for a in (0.0, 45.0, 90.0)])]
+    roots = [0, shoulder]
+    if with_cameras:
+        dolly_cam = g.camera("dolly", {"perspective": {"yfov": 0.6, "aspectRatio": 1.5, "znear": 0.1}})
+        top_cam = g.camera("top", {"orthographic": {"xmag": 3.0, "ymag": 2.0, "znear": 0.5, "zfar": 20.0}})
+        dolly = g.node("dolly", translation=(1.0, 1.0, 9.0))
+        g.doc["nodes"][dolly]["camera"] = dolly_cam
+        top = g.node("top", translation=(2.0, 8.0, 0.0), rotation=quat_axis_angle((1, 0, 0), -90.0))
+        g.doc["nodes"][top]["camera"] = top_cam
+        channels += [
+            (dolly, "translation", "LINEAR", times, [(1.0, 1.0, 9.0), (2.0, 1.0, 8.0), (3.0, 1.0, 7.0)]),
+            (dolly, "rotation", "LINEAR", times, [tuple(quat_axis_angle((0, 1, 0), a)) for a in (0.0, 5.0, 10.0)]),
+        ]
+        roots += [dolly, top]
+    g.animation("bend", channels)
+    g.scene("scene", roots)
+    return g
+
+
+def camera_dolly():
+    """The bending arm seen by two glTF cameras: `dolly`, a perspective camera (yfov 0.6, aspect ratio
+    1.5, no zfar, so an infinite projection) that moves along +x and turns during the clip, and `top`, a
+    static orthographic camera (xmag 3, ymag 2) looking straight down."""
+    return bending_arm(with_cameras=True)
+
+
+def textured_cylinder():
+    """The twisting cylinder of twisted_cylinder() with a surface the renderer can show the twist on: a
+    checker base color texture (an embedded PNG through TEXCOORD_0, with a UV seam), a baseColorFactor
+    and a COLOR_0 gradient (normalized unsigned bytes), which glTF multiplies."""
+    g = Gltf()
+    stations = [4.0 * i / 32 for i in range(33)]
+    geo = textured_tube(0.5, stations, 24)
+    joints, weights = two_joint_weights(stations, geo["station"], 1.0, 3.0)
+    orange, cream = (230, 120, 40), (245, 235, 215)
+    # 8 squares around and 8 up the 64x64 image; the first column of squares is blue, to mark u = 0.
+    png = png_rgb(64, 64, lambda x, y: (40, 90, 200) if x < 8 and (y // 8) % 2 == 0 else
+                  orange if (x // 8 + y // 8) % 2 == 0 else cream)
+    texture = g.png_texture("checker", png, {"magFilter": 9728, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071})
+    material = g.material("checker", base_color_factor=(1.0, 1.0, 1.0, 1.0), base_color_texture=texture)
+    # COLOR_0: white at the bottom to a light green at the top, in 1/255 steps.
+    colors = [(255, 255, round(255 - 60 * p[1] / 4.0), 255) for p in geo["positions"]]
+    extra = {
+        "TEXCOORD_0": g.accessor(geo["uv"], "VEC2", target=ARRAY_BUFFER),
+        "COLOR_0": g.accessor(colors, "VEC4", UNSIGNED_BYTE, target=ARRAY_BUFFER, normalized=True),
+    }
+    mesh = g.skinned_mesh("cylinder", geo, [(joints, weights)], extra=extra, material=material)
+    g.node("cylinder", mesh=mesh, skin=0)
+    root = g.node("root", children=[2])
+    child = g.node("child", translation=(0.0, 2.0, 0.0))
+    g.skin("cylinder_skin", [root, child], [(0.0, 0.0, 0.0), (0.0, 2.0, 0.0)])
+    times = [0.0, 0.25, 0.5, 0.75, 1.0]
+    g.animation("twist", [(child, "rotation", "LINEAR", times,
+                           [tuple(quat_axis_angle((0, 1, 0), 45.0 * i)) for i in range(5)])])
+    g.scene("scene", [0, root])
     return g
 
 
@@ -523,6 +652,8 @@ RIGS = {
     "interpolation_modes.gltf": interpolation_modes,
     "morph_skin.gltf": morph_skin,
     "two_skins.gltf": two_skins,
+    "textured_cylinder.gltf": textured_cylinder,
+    "camera_dolly.gltf": camera_dolly,
 }
 
 

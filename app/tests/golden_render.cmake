@@ -13,7 +13,7 @@ if(NOT DEFINED BACKEND)
 endif()
 file(REMOVE_RECURSE ${OUT})
 # Every clip of every rig lasts 1 s: its start, middle and end.
-set(common --size 256x256 --times 0,0.5,1 --backend ${BACKEND} --quiet)
+set(common --times 0,0.5,1 --backend ${BACKEND} --quiet)
 file(GLOB rigs ${TESTDATA}/*.gltf)
 list(SORT rigs)
 if(DEFINED ONLY)
@@ -25,11 +25,17 @@ function(golden_render)
     message(FATAL_ERROR "dqskin render ${ARGN} ${common}: exit status ${status}\n${err}")
   endif()
 endfunction()
-# lit, every rig: OUT/<rig>/<animation>/frame_NNNN.png
-golden_render(${rigs} -o ${OUT} --mode ${MODE} --shade lit)
+# lit, every rig: OUT/<rig>/<animation>/frame_NNNN.png (automatic camera)
+golden_render(${rigs} -o ${OUT} --mode ${MODE} --shade lit --size 256x256)
 if(DEFINED ONLY)
   return()
 endif()
 # the candy wrapper of the twisted cylinder: the lbs-dqs heat map, and lbs normals
-golden_render(${TESTDATA}/twisted_cylinder.gltf -o ${OUT}/mode-diff --shade mode-diff)
-golden_render(${TESTDATA}/twisted_cylinder.gltf -o ${OUT}/lbs-normals --mode lbs --shade normals)
+golden_render(${TESTDATA}/twisted_cylinder.gltf -o ${OUT}/mode-diff --shade mode-diff --size 256x256)
+golden_render(${TESTDATA}/twisted_cylinder.gltf -o ${OUT}/lbs-normals --mode lbs --shade normals --size 256x256)
+# dib, deformed by the CPU reference, on the textured cylinder
+golden_render(${TESTDATA}/textured_cylinder.gltf -o ${OUT}/dib --mode dib --size 256x256)
+# the glTF cameras of camera_dolly: the moving perspective one and the orthographic one, in their aspect
+# ratio (3:2), which is also what they give without --size
+golden_render(${TESTDATA}/camera_dolly.gltf -o ${OUT}/camera-dolly --camera dolly --size 384x256)
+golden_render(${TESTDATA}/camera_dolly.gltf -o ${OUT}/camera-top --camera top --size 384x256)

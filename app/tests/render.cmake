@@ -9,7 +9,7 @@ function(dqskin_render_test name expected)
 endfunction()
 
 dqskin_render_test(help 0 ARGS render --help
-  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--format.*--sheet.*--sheet-cell.*--gif.*--quiet.*--json-progress.*Exit status")
+  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--camera.*--format.*--sheet.*--sheet-cell.*--gif.*--quiet.*--json-progress.*Exit status")
 # Names as bake gives them; the summary on stderr; --json-progress one line per frame, then a summary.
 dqskin_render_test(writes_frames_named_like_bake 0 ARGS render ${render_rig} -o ${render_scratch}/frames --frames 0:2 --size 64x48
   STDERR "^rendered 3 frames of 1 input in [0-9.]+ s into [^\n]*/frames\n$")
@@ -35,8 +35,27 @@ dqskin_render_test(mode_diff_prints_its_scale 0 ARGS render ${render_rig} -o ${r
   STDERR "^mode-diff [^\n]*bending_arm.gltf bend: red = [0-9.e-]+ \\(largest \\|lbs - dqs\\| position distance\\), dark blue = 0\n")
 dqskin_render_test(unknown_format_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --format jpg
   STDERR "^dqskin: --format 'jpg' is not one of png, exr\n$")
-dqskin_render_test(dib_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --mode dib
-  STDERR "^dqskin: --mode 'dib' is not one of lbs, dqs\n$")
+dqskin_render_test(unknown_mode_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --mode slerp
+  STDERR "^dqskin: --mode 'slerp' is not one of lbs, dqs, dib\n$")
+dqskin_render_test(unknown_backend_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --backend vulkan
+  STDERR "^dqskin: --backend 'vulkan' is not one of auto, egl, osmesa, cpu\n$")
+# dib has only the CPU reference; --backend cpu deforms there too. Both draw on the headless context.
+dqskin_render_test(dib_renders 0 ARGS render ${render_rig} -o ${render_scratch}/dib --mode dib --times 0.5 --size 32x32 --quiet)
+dqskin_render_test(cpu_backend_renders 0 ARGS render ${render_rig} -o ${render_scratch}/cpu --backend cpu --times 0.5 --size 32x32 --quiet)
+
+# --camera: a glTF camera by node name, in its aspect ratio when no --size is given.
+set(camera_rig ${PROJECT_SOURCE_DIR}/testdata/camera_dolly.gltf)
+dqskin_render_test(camera_unknown_exits_2 2 ARGS render ${camera_rig} -o ${render_scratch}/x --camera nobody --times 0
+  STDERR "^dqskin: [^\n]*camera_dolly.gltf: --camera 'nobody': no node of that name has a camera \\(camera nodes: 'dolly', 'top'\\)\n$")
+dqskin_render_test(camera_on_a_file_without_cameras_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --camera dolly --times 0
+  STDERR "--camera 'dolly': no node of that name has a camera \\(the file has none\\)\n$")
+dqskin_render_test(camera_with_yaw_exits_2 2 ARGS render ${camera_rig} -o ${render_scratch}/x --camera dolly --yaw 10
+  STDERR "^dqskin: --camera sets the view; it cannot be combined with --yaw, --pitch, --distance, --fov or --ortho\n$")
+dqskin_render_test(camera_sets_the_size 0 ARGS render ${camera_rig} -o ${render_scratch}/camera --camera dolly --times 0 --quiet)
+add_test(NAME cli.render_camera_size COMMAND ${CMAKE_COMMAND} -DPNG=${render_scratch}/camera/camera_dolly/bend/frame_0000.png
+  -DWIDTH=768 -DHEIGHT=512 -P ${PROJECT_SOURCE_DIR}/app/tests/png_size.cmake)
+set_tests_properties(cli.render_camera_sets_the_size PROPERTIES FIXTURES_SETUP render_camera)
+set_tests_properties(cli.render_camera_size PROPERTIES FIXTURES_REQUIRED render_camera)
 dqskin_render_test(bad_shard_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --shard 2/2
   STDERR "^dqskin: --shard '2/2': I must be at least 0 and less than N\n$")
 dqskin_render_test(no_gl_context_exits_3 3 ARGS render ${render_rig} -o ${render_scratch}/nogl --backend egl

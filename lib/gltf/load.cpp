@@ -4,6 +4,7 @@
 
 #include "accessor.hpp"
 #include "dqskin/error.hpp"
+#include "materials.hpp"
 #include "mesh.hpp"
 #include "model_io.hpp"
 
@@ -118,28 +119,6 @@ void read_nodes(const tinygltf::Model& m, Asset& asset) {
     if (p >= 0 && state[size_t(p)] == kOnPath) fail(at("node", size_t(p)) + ": is its own ancestor (the hierarchy has a cycle)");
     for (size_t n : path) state[n] = kRooted;
   }
-}
-
-void read_materials(const tinygltf::Model& m, Asset& asset) {
-  for (size_t i = 0; i < m.materials.size(); ++i) {
-    const tinygltf::Material& mat = m.materials[i];
-    Material out;
-    out.name = mat.name;
-    const std::vector<double>& factor = mat.pbrMetallicRoughness.baseColorFactor;
-    if (factor.size() != 4) fail(at("material", i) + ": baseColorFactor must have 4 numbers");
-    for (int c = 0; c < 4; ++c) {
-      const double x = factor[size_t(c)];
-      // §5.22.2: each component in [0, 1]
-      if (!(x >= 0 && x <= 1)) fail(at("material", i) + ": baseColorFactor must be 4 numbers in [0, 1]");
-      out.base_color[c] = float(x);
-    }
-    asset.materials.push_back(std::move(out));
-  }
-  for (size_t i = 0; i < asset.meshes.size(); ++i)
-    for (size_t j = 0; j < asset.meshes[i].primitives.size(); ++j)
-      if (asset.meshes[i].primitives[j].material >= int(asset.materials.size()))
-        fail(at("mesh", i) + " primitive " + std::to_string(j) + ": material " +
-             std::to_string(asset.meshes[i].primitives[j].material) + " does not exist");
 }
 
 void read_scenes(const tinygltf::Model& m, Asset& asset) {
@@ -304,7 +283,7 @@ Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptio
   read_scenes(m, asset);
   read_skins(m, reader, asset);
   gltf::read_meshes(m, reader, asset);
-  read_materials(m, asset);
+  gltf::read_appearance(m, asset);
   read_animations(m, reader, asset);
   add_warnings(m, asset);
   return asset;

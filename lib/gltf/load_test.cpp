@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 
 namespace dqskin {
@@ -210,6 +212,159 @@ TEST(LoadErrors, MessagesNameThePartThatIsWrong) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("uses joint 1, but skin 0 has 1 joints"), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Appearance and cameras: what the renderer reads, every index checked.
+
+// The triangle (unskinned) with TEXCOORD_0/1, a COLOR_0 of `color_type` ("VEC3" float or "VEC4" unsigned
+// short normalized), a textured material, and a perspective and an orthographic camera on two nodes.
+GltfBuilder textured_triangle(const std::string& color_type) {
+  GltfBuilder b = triangle(false);
+  json& attributes = b.doc["meshes"][0]["primitives"][0]["attributes"];
+  attributes["TEXCOORD_0"] = b.accessor({{"bufferView", b.view(std::vector<float>{0, 0, 1, 0, 0, 1})},
+                                         {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
+  // Normalized unsigned bytes, as §3.7.2.1 allows for texture coordinates: 255 = 1.
+  attributes["TEXCOORD_1"] = b.accessor({{"bufferView", b.view(std::vector<uint8_t>{0, 0, 255, 0, 0, 255, 0, 0})},
+                                         {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}});
+  if (color_type == "VEC3")
+    attributes["COLOR_0"] = b.accessor({{"bufferView", b.view(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1})},
+                                        {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+  else
+    attributes["COLOR_0"] = b.accessor({{"bufferView", b.view(std::vector<uint16_t>{65535, 0, 0, 0, 0, 65535, 0, 32768, 0, 0, 65535, 65535})},
+                                        {"componentType", 5123}, {"normalized", true}, {"count", 3}, {"type", "VEC4"}});
+  b.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  b.doc["materials"] = json::array({{{"name", "skin"},
+                                     {"alphaMode", "MASK"},
+                                     {"alphaCutoff", 0.25},
+                                     {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}},
+                                                               {"baseColorTexture", {{"index", 0}, {"texCoord", 1}}}}}}});
+  b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+  b.doc["samplers"] = json::array({{{"magFilter", 9728}, {"wrapS", 33071}}});
+  // A PNG signature is enough: the loader keeps the bytes, only the renderer decodes them.
+  b.doc["images"] = json::array({{{"name", "albedo"}, {"mimeType", "image/png"},
+                                  {"bufferView", b.view(std::vector<uint8_t>{0x89, 'P', 'N', 'G', 13, 10, 26, 10})}}});
+  b.doc["cameras"] = json::array({{{"name", "persp"}, {"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}},
+                                  {{"type", "orthographic"},
+                                   {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 10}}}}});
+  b.doc["nodes"].push_back({{"name", "cam_a"}, {"camera", 0}});
+  b.doc["nodes"].push_back({{"name", "cam_b"}, {"camera", 1}});
+  b.doc["scenes"][0]["nodes"] = {0, 1, 2};
+  return b;
+}
+
+TEST(LoadAppearance, MaterialTextureSamplerImageAndVertexColorsAreKept) {
+  const Asset asset = textured_triangle("VEC3").load();
+  const Primitive& p = asset.meshes[0].primitives[0];
+  ASSERT_EQ(p.uv0.size(), 3u);
+  ASSERT_EQ(p.uv1.size(), 3u);
+  EXPECT_EQ(p.uv1[1], glm::vec2(1, 0));
+  ASSERT_EQ(p.colors.size(), 3u);
+  EXPECT_EQ(p.colors[1], glm::vec4(0, 1, 0, 1)) << "RGB colors get alpha 1";
+  ASSERT_EQ(asset.materials.size(), 1u);
+  const Material& m = asset.materials[0];
+  EXPECT_EQ(m.base_color, glm::vec4(0.5f, 0.25f, 1, 1));
+  EXPECT_EQ(m.base_color_texture.texture, 0);
+  EXPECT_EQ(m.base_color_texture.texcoord, 1);
+  EXPECT_EQ(m.alpha_mode, AlphaMode::kMask);
+  EXPECT_EQ(m.alpha_cutoff, 0.25f);
+  ASSERT_EQ(asset.textures.size(), 1u);
+  EXPECT_EQ(asset.textures[0].image, 0);
+  EXPECT_EQ(asset.textures[0].sampler.mag_filter, 9728);
+  EXPECT_EQ(asset.textures[0].sampler.min_filter, 0) << "left to the viewer";
+  EXPECT_EQ(asset.textures[0].sampler.wrap_s, 33071);
+  EXPECT_EQ(asset.textures[0].sampler.wrap_t, 10497) << "REPEAT by default";
+  ASSERT_EQ(asset.images.size(), 1u);
+  EXPECT_EQ(asset.images[0].name, "albedo");
+  EXPECT_EQ(asset.images[0].mime_type, "image/png");
+  EXPECT_EQ(asset.images[0].bytes.size(), 8u);
+  EXPECT_TRUE(asset.images[0].uri.empty()) << "embedded";
+}
+
+TEST(LoadAppearance, NormalizedRgbaColorsDecodeToUnitRange) {
+  const Asset asset = textured_triangle("VEC4").load();
+  const std::vector<glm::vec4>& c = asset.meshes[0].primitives[0].colors;
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0], glm::vec4(1, 0, 0, 0));
+  EXPECT_FLOAT_EQ(c[1].w, 32768.0f / 65535.0f);
+}
+
+TEST(LoadCameras, PerspectiveAndOrthographicCamerasAndTheirNodes) {
+  const Asset asset = textured_triangle("VEC3").load();
+  ASSERT_EQ(asset.cameras.size(), 2u);
+  EXPECT_EQ(asset.cameras[0].name, "persp");
+  EXPECT_FALSE(asset.cameras[0].orthographic);
+  EXPECT_DOUBLE_EQ(asset.cameras[0].yfov, 0.7);
+  EXPECT_EQ(asset.cameras[0].aspect_ratio, 0) << "the viewport's";
+  EXPECT_EQ(asset.cameras[0].zfar, 0) << "infinite";
+  EXPECT_TRUE(asset.cameras[1].orthographic);
+  EXPECT_EQ(asset.cameras[1].xmag, 2);
+  EXPECT_EQ(asset.cameras[1].zfar, 10);
+  EXPECT_EQ(asset.nodes[0].camera, -1);
+  EXPECT_EQ(asset.nodes[1].camera, 0);
+  EXPECT_EQ(asset.nodes[2].camera, 1);
+}
+
+// Appearance does not change the deformation: a broken part loads with a warning naming it, and is dropped.
+// (tinygltf itself refuses an unknown camera type: that file is an error.)
+TEST(LoadWarnings, BadAppearanceAndCamerasAreDroppedWithAWarning) {
+  struct Case {
+    const char* expected;
+    std::function<void(json&)> edit;
+    std::function<bool(const Asset&)> dropped;
+  };
+  const std::vector<Case> cases = {
+      {"material 0 baseColorTexture: texture 3 does not exist; it is drawn without the texture",
+       [](json& d) { d["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = 3; },
+       [](const Asset& a) { return a.materials[0].base_color_texture.texture == -1; }},
+      {"material 0: alphaMode 'CLEAR' is not OPAQUE, MASK or BLEND; it is drawn opaque",
+       [](json& d) { d["materials"][0]["alphaMode"] = "CLEAR"; },
+       [](const Asset& a) { return a.materials[0].alpha_mode == AlphaMode::kOpaque; }},
+      {"material 0: alphaCutoff must be at least 0; 0.5 is used", [](json& d) { d["materials"][0]["alphaCutoff"] = -1; },
+       [](const Asset& a) { return a.materials[0].alpha_cutoff == 0.5f; }},
+      {"material 0: baseColorFactor must be 4 numbers in [0, 1]; white is used",
+       [](json& d) { d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {2, 0, 0, 1}; },
+       [](const Asset& a) { return a.materials[0].base_color == glm::vec4(1.0f); }},
+      {"mesh 0 primitive 0: material 4 does not exist; the default material is used",
+       [](json& d) { d["meshes"][0]["primitives"][0]["material"] = 4; },
+       [](const Asset& a) { return a.meshes[0].primitives[0].material == -1; }},
+      {"texture 0: image 5 does not exist; textures using it are not drawn", [](json& d) { d["textures"][0]["source"] = 5; },
+       [](const Asset& a) { return a.textures[0].image == -1; }},
+      {"texture 0: sampler 2 does not exist; the default sampler is used", [](json& d) { d["textures"][0]["sampler"] = 2; },
+       [](const Asset& a) { return a.textures[0].sampler.mag_filter == 0 && a.textures[0].sampler.wrap_s == 10497; }},
+      {"sampler 0: magFilter 9986 is not allowed", [](json& d) { d["samplers"][0]["magFilter"] = 9986; },
+       [](const Asset& a) { return a.textures[0].sampler.mag_filter == 0; }},
+      {"sampler 0: wrap mode 1 is not allowed", [](json& d) { d["samplers"][0]["wrapT"] = 1; },
+       [](const Asset& a) { return a.textures[0].sampler.wrap_s == 10497; }},
+      {"camera 0: yfov must be above 0; it cannot be rendered through",
+       [](json& d) { d["cameras"][0]["perspective"]["yfov"] = 0; },
+       [](const Asset& a) { return !a.cameras[0].problem.empty() && a.nodes[1].camera == 0; }},
+      {"camera 0: znear must be above 0", [](json& d) { d["cameras"][0]["perspective"]["znear"] = 0; },
+       [](const Asset& a) { return !a.cameras[0].problem.empty(); }},
+      {"camera 0: zfar must be above znear", [](json& d) { d["cameras"][0]["perspective"]["zfar"] = 0.05; },
+       [](const Asset& a) { return !a.cameras[0].problem.empty(); }},
+      {"camera 1: xmag and ymag must not be 0", [](json& d) { d["cameras"][1]["orthographic"]["ymag"] = 0; },
+       [](const Asset& a) { return !a.cameras[1].problem.empty() && a.cameras[0].problem.empty(); }},
+      {"camera 1: zfar must be above znear", [](json& d) { d["cameras"][1]["orthographic"]["zfar"] = 0; },
+       [](const Asset& a) { return !a.cameras[1].problem.empty(); }},
+      {"node 2: camera 7 does not exist; it is ignored", [](json& d) { d["nodes"][2]["camera"] = 7; },
+       [](const Asset& a) { return a.nodes[2].camera == -1; }},
+  };
+  for (const Case& c : cases) {
+    GltfBuilder b = textured_triangle("VEC3");
+    c.edit(b.doc);
+    try {
+      const Asset asset = b.load();
+      const bool warned = std::any_of(asset.warnings.begin(), asset.warnings.end(), [&](const std::string& w) {
+        return w.find(c.expected) != std::string::npos;
+      });
+      EXPECT_TRUE(warned) << c.expected;
+      EXPECT_TRUE(c.dropped(asset)) << c.expected;
+      EXPECT_EQ(asset.meshes[0].primitives[0].positions.size(), 3u) << "the geometry still loads";
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << c.expected << ": " << e.what();
+    }
   }
 }
 

@@ -28,6 +28,8 @@ std::vector<V> to_vectors(const std::vector<float>& f) {
 // Attribute shapes of glTF 2.0 §3.7.2.1; KHR_mesh_quantization widens them to every integer type.
 struct Shapes {
   AccessorShape position, normal, tangent, texcoord, joints, weights, target;
+  // COLOR_n is the same with or without quantization.
+  AccessorShape color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, {kFloat, kUByte, kUShort}, true};
 };
 
 Shapes shapes_for(bool quantized) {
@@ -78,9 +80,22 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
     same_count(a, "TANGENT");
     prim.tangents = to_vectors<glm::vec4>(reader.floats(a, shape.tangent, what + " TANGENT"));
   }
-  if (const int a = find_attribute(p.attributes, "TEXCOORD_0"); a >= 0) {
-    same_count(a, "TEXCOORD_0");
-    prim.uv0 = to_vectors<glm::vec2>(reader.floats(a, shape.texcoord, what + " TEXCOORD_0"));
+  for (int set = 0; set < 2; ++set) {
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    if (const int a = find_attribute(p.attributes, name); a >= 0) {
+      same_count(a, name);
+      (set == 0 ? prim.uv0 : prim.uv1) = to_vectors<glm::vec2>(reader.floats(a, shape.texcoord, what + " " + name));
+    }
+  }
+  if (const int a = find_attribute(p.attributes, "COLOR_0"); a >= 0) {
+    same_count(a, "COLOR_0");
+    const std::vector<float> c = reader.floats(a, shape.color, what + " COLOR_0");
+    if (reader.components(a, what + " COLOR_0") == 4) {
+      prim.colors = to_vectors<glm::vec4>(c);
+    } else {
+      prim.colors.resize(n);
+      for (size_t v = 0; v < n; ++v) prim.colors[v] = {c[3 * v], c[3 * v + 1], c[3 * v + 2], 1.0f};
+    }
   }
   if (p.indices >= 0) {
     prim.indices = reader.uints(p.indices, {{TINYGLTF_TYPE_SCALAR}, {kUByte, kUShort, kUInt}}, what + " indices");

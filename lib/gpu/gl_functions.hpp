@@ -81,7 +81,12 @@ namespace dqskin::gpu {
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)          \
   X(PFNGLDISABLEVERTEXATTRIBARRAYPROC, DisableVertexAttribArray)        \
   X(PFNGLVERTEXATTRIB1FPROC, VertexAttrib1f)                            \
+  X(PFNGLVERTEXATTRIB2FPROC, VertexAttrib2f)                            \
   X(PFNGLVERTEXATTRIB3FPROC, VertexAttrib3f)                            \
+  X(PFNGLVERTEXATTRIB4FPROC, VertexAttrib4f)                            \
+  X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                            \
+  X(PFNGLBLENDFUNCPROC, BlendFunc)                                      \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                      \
   X(PFNGLDRAWELEMENTSPROC, DrawElements)                                \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                        \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                      \

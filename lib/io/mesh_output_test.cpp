@@ -108,8 +108,14 @@ TEST(WriteObj, ReadsBackAsTheDeformedFrameWithOneObjectPerPrimitive) {
 
 TEST(WriteObj, MaterialLibraryHasEveryMaterialWithUniqueNames) {
   Asset asset;
-  asset.materials = {{"skin", glm::vec4(0.5f, 0.25f, 1.0f, 0.75f)}, {"skin", glm::vec4(1.0f)}, {"", glm::vec4(1.0f)},
-                     {"two words", glm::vec4(1.0f)}};
+  auto material = [](std::string name, glm::vec4 base_color) {
+    Material m;
+    m.name = std::move(name);
+    m.base_color = base_color;
+    return m;
+  };
+  asset.materials = {material("skin", glm::vec4(0.5f, 0.25f, 1.0f, 0.75f)), material("skin", glm::vec4(1.0f)),
+                     material("", glm::vec4(1.0f)), material("two words", glm::vec4(1.0f))};
   EXPECT_EQ(obj_material_name(asset, 0), "skin");
   EXPECT_EQ(obj_material_name(asset, 1), "material_1");
   EXPECT_EQ(obj_material_name(asset, 2), "material_2");

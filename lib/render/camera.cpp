@@ -3,6 +3,8 @@
 // seen through the same camera.
 #include "dqskin/render.hpp"
 
+#include "dqskin/error.hpp"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -65,6 +67,51 @@ Camera frame_camera(const Bounds& box, const CameraOptions& options, double aspe
     camera.projection = glm::mat4(glm::ortho(-half_x, half_x, -half_y, half_y, near_plane, far_plane));
   } else {
     camera.projection = glm::mat4(glm::perspective(glm::radians(options.fov), aspect, near_plane, far_plane));
+  }
+  return camera;
+}
+
+int find_camera_node(const Asset& asset, const std::string& name) {
+  int found = -1;
+  std::string cameras;  // for the message: the camera nodes there are
+  for (size_t i = 0; i < asset.nodes.size(); ++i) {
+    const Node& node = asset.nodes[i];
+    if (node.camera < 0) continue;
+    cameras += (cameras.empty() ? "'" : ", '") + node.name + "'";
+    if (node.name != name) continue;
+    if (found >= 0) throw InputError("--camera '" + name + "': nodes " + std::to_string(found) + " and " + std::to_string(i) + " have that name");
+    found = int(i);
+  }
+  if (found < 0)
+    throw InputError("--camera '" + name + "': no node of that name has a camera" +
+                     (cameras.empty() ? std::string(" (the file has none)") : " (camera nodes: " + cameras + ")"));
+  return found;
+}
+
+Camera scene_camera(const SceneCamera& sc, const Mat4<double>& world, double aspect) {
+  if (!sc.problem.empty()) throw InputError(sc.problem);
+  // The rotation of the node: its columns orthonormalised (Gram-Schmidt from −Z, the viewing direction,
+  // then +Y, the up direction), which removes scale and shear and keeps where the camera looks.
+  glm::dvec3 forward = -glm::dvec3(world[2]), up = glm::dvec3(world[1]);
+  if (!(glm::length(forward) > 1e-12) || !(glm::length(up) > 1e-12))
+    throw InputError("camera '" + sc.name + "': its node's matrix is degenerate (zero scale)");
+  forward = glm::normalize(forward);
+  up -= forward * glm::dot(up, forward);
+  if (!(glm::length(up) > 1e-12)) throw InputError("camera '" + sc.name + "': its node's matrix is degenerate");
+  up = glm::normalize(up);
+  const glm::dvec3 eye(world[3]);
+
+  Camera camera;
+  camera.eye = glm::vec3(eye);
+  camera.view = glm::mat4(glm::lookAt(eye, eye + forward, up));
+  if (sc.orthographic) {
+    camera.projection = glm::mat4(glm::ortho(-sc.xmag, sc.xmag, -sc.ymag, sc.ymag, sc.znear, sc.zfar));
+  } else {
+    if (!(sc.yfov < glm::pi<double>()))
+      throw InputError("camera '" + sc.name + "': a yfov of pi or more cannot be drawn");
+    const double a = sc.aspect_ratio > 0 ? sc.aspect_ratio : aspect;
+    camera.projection = glm::mat4(sc.zfar > 0 ? glm::perspective(sc.yfov, a, sc.znear, sc.zfar)
+                                              : glm::infinitePerspective(sc.yfov, a, sc.znear));
   }
   return camera;
 }

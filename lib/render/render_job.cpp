@@ -1,5 +1,6 @@
-// `dqskin render` as a library call: inputs planned as bake plans them, each clip deformed on the GPU once
-// for its bounding box and once more, a chunk of frames at a time, to render this shard's frames.
+// `dqskin render` as a library call: inputs planned as bake plans them, each clip deformed (on the GPU, or
+// on the CPU reference for dib) once for its bounding box and once more, a chunk of frames at a time, to
+// render this shard's frames.
 #include "dqskin/render.hpp"
 
 #include "../bake/bake_plan.hpp"
@@ -8,8 +9,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
+#include <thread>
 
 namespace dqskin {
 
@@ -36,20 +39,66 @@ std::vector<std::vector<float>> distances(const FrameView& a, const FrameView& b
   return out;
 }
 
+// Deforms frames of one input in one blend mode: on the GPU, or with the double-precision CPU reference
+// (dib, which has no GPU path, and --backend cpu).
+class FrameSource {
+public:
+  FrameSource(GpuContext& context, const InputPlan& input, BlendMode mode, bool on_cpu)
+      : input_(input), mode_(mode) {
+    if (!on_cpu) {
+      GpuDeformOptions o;
+      o.mode = mode;
+      gpu_ = std::make_unique<GpuDeformer>(context, *input.asset, input.instances, o);
+    }
+  }
+
+  std::vector<DeformedBatch> deform(const Clip* clip, const std::vector<double>& times) {
+    std::vector<DeformedBatch> batches;
+    if (gpu_) {
+      gpu_->run(clip, times, [&](const DeformedBatch& batch) { batches.push_back(batch); });
+      return batches;
+    }
+    const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<DeformedFrame> frames;
+    for (double t : times)
+      frames.push_back(deform_frame(*input_.asset, input_.instances, sample_pose(*input_.asset, clip, t), mode_, threads));
+    batches.push_back(to_batch(frames, 0));
+    return batches;
+  }
+
+private:
+  const InputPlan& input_;
+  BlendMode mode_;
+  std::unique_ptr<GpuDeformer> gpu_;
+};
+
+// The renderer options of one input: with a glTF camera that has an aspect ratio, and no size given by
+// the user, the width follows that ratio.
+RendererOptions renderer_options(const InputPlan& input, const RenderOptions& options, int camera_node) {
+  RendererOptions r = options.renderer;
+  if (camera_node < 0 || !options.size_from_camera) return r;
+  const SceneCamera& camera = input.asset->cameras[size_t(input.asset->nodes[size_t(camera_node)].camera)];
+  const double ratio = camera.orthographic ? camera.xmag / camera.ymag : camera.aspect_ratio;
+  if (ratio > 0) r.width = int(std::clamp(std::lround(double(r.height) * std::abs(ratio)), 1L, 16384L));
+  return r;
+}
+
 class InputRenderer {
 public:
-  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report,
-                const std::function<void(const BakeProgress&)>& progress)
+  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, bool deform_on_cpu,
+                RenderReport& report, const std::function<void(const BakeProgress&)>& progress)
       : input_(input), options_(options), report_(report), progress_(progress),
-        deformer_(context, *input.asset, input.instances, deform_options(options.mode)),
-        renderer_(context, *input.asset, input.instances, options.renderer) {
+        camera_node_(options.camera_node.empty() ? -1 : find_camera_node(*input.asset, options.camera_node)),
+        renderer_options_(renderer_options(input, options, camera_node_)),
+        source_(context, input, options.mode, deform_on_cpu),
+        renderer_(context, *input.asset, input.instances, renderer_options_) {
     if (options.renderer.shade == Shade::kWeights) {
       if (options.joint.empty()) throw InputError("--shade weights needs --joint NAME");
       scalars_ = joint_weights(*input.asset, input.instances, options.joint);
     }
-    if (options.renderer.shade == Shade::kModeDiff)  // the other mode of lbs and dqs
-      other_ = std::make_unique<GpuDeformer>(context, *input.asset, input.instances,
-                                             deform_options(options.mode == BlendMode::kLbs ? BlendMode::kDqs : BlendMode::kLbs));
+    if (options.renderer.shade == Shade::kModeDiff)  // against lbs, or dqs when lbs is drawn
+      other_ = std::make_unique<FrameSource>(context, input, options.mode == BlendMode::kLbs ? BlendMode::kDqs : BlendMode::kLbs,
+                                             deform_on_cpu);
   }
 
   void render_clip(const ClipPlan& clip) {
@@ -61,20 +110,28 @@ public:
     std::filesystem::create_directories(options_.out_dir + "/" + clip.folder);
 
     // The box (and the largest mode difference) over every frame, not only this shard's, so that every
-    // shard frames the same camera and colors with the same scale.
+    // shard frames the same camera and colors with the same scale. A glTF camera needs no box.
+    const double aspect = double(renderer_options_.width) / double(renderer_options_.height);
     Bounds box;
     double max_distance = 0;
-    std::vector<size_t> all(clip.times.size());
-    for (size_t f = 0; f < all.size(); ++f) all[f] = f;
-    for_each_frame(clip, all, [&](size_t, const FrameView& frame, const FrameView* other) {
-      box.add(frame);
-      if (other)
-        for (const std::vector<float>& d : distances(frame, *other))
-          for (float x : d) max_distance = std::max(max_distance, double(x));
-    });
-    if (box.empty()) throw InputError("the scene has no vertices to frame");
-    const Camera camera =
-        frame_camera(box, options_.camera, double(options_.renderer.width) / double(options_.renderer.height));
+    if (camera_node_ < 0 || other_) {
+      std::vector<size_t> all(clip.times.size());
+      for (size_t f = 0; f < all.size(); ++f) all[f] = f;
+      for_each_frame(clip, all, [&](size_t, const FrameView& frame, const FrameView* other) {
+        box.add(frame);
+        if (other)
+          for (const std::vector<float>& d : distances(frame, *other))
+            for (float x : d) max_distance = std::max(max_distance, double(x));
+      });
+      if (box.empty()) throw InputError("the scene has no vertices to frame");
+    }
+    // The automatic camera is fixed for the clip; a glTF camera follows its node's animation.
+    auto camera_at = [&](size_t f) {
+      if (camera_node_ < 0) return frame_camera(box, options_.camera, aspect);
+      const Asset& asset = *input_.asset;
+      const Mat4<double> world = sample_pose(asset, clip.clip, clip.times[f]).world[size_t(camera_node_)];
+      return scene_camera(asset.cameras[size_t(asset.nodes[size_t(camera_node_)].camera)], world, aspect);
+    };
     if (other_) report_.mode_diff.push_back({input_.path, clip.name, max_distance});
 
     // Whole-animation review images of this shard's frames, built as the frames arrive: the sheet keeps
@@ -97,7 +154,7 @@ public:
         for (std::vector<float>& d : scalars_)
           for (float& x : d) x = max_distance > 0 ? float(double(x) / max_distance) : 0.0f;
       }
-      const Image image = renderer_.render(frame, camera, scalars_);
+      const Image image = renderer_.render(frame, camera_at(f), scalars_);
       const std::string relative = clip.frame_file(f, extension(options_.format));
       write_image(options_.out_dir + "/" + relative, image, options_.format, options_.overwrite);
       report_.outputs.push_back(relative);
@@ -119,20 +176,8 @@ public:
   size_t frames_done() const { return frames_done_; }
 
 private:
-  static GpuDeformOptions deform_options(BlendMode mode) {
-    GpuDeformOptions o;
-    o.mode = mode;
-    return o;
-  }
-
   void check_cancel() const {
     if (options_.cancel && options_.cancel->load()) throw BakeCancelled();
-  }
-
-  static std::vector<DeformedBatch> deform(GpuDeformer& deformer, const Clip* clip, const std::vector<double>& times) {
-    std::vector<DeformedBatch> batches;
-    deformer.run(clip, times, [&](const DeformedBatch& batch) { batches.push_back(batch); });
-    return batches;
   }
 
   // Calls visit(frame index, frame, the other mode's frame or null) for `frames` of the clip, in order,
@@ -143,8 +188,8 @@ private:
       const size_t count = std::min(kFramesPerChunk, frames.size() - first);
       std::vector<double> times;
       for (size_t i = first; i < first + count; ++i) times.push_back(clip.times[frames[i]]);
-      const std::vector<DeformedBatch> batches = deform(deformer_, clip.clip, times);
-      const std::vector<DeformedBatch> others = other_ ? deform(*other_, clip.clip, times) : std::vector<DeformedBatch>{};
+      const std::vector<DeformedBatch> batches = source_.deform(clip.clip, times);
+      const std::vector<DeformedBatch> others = other_ ? other_->deform(clip.clip, times) : std::vector<DeformedBatch>{};
       size_t other_batch = 0, other_k = 0;  // the two deformers may batch differently
       for (const DeformedBatch& batch : batches)
         for (size_t k = 0; k < batch.frame_count; ++k) {
@@ -162,8 +207,10 @@ private:
   const RenderOptions& options_;
   RenderReport& report_;
   const std::function<void(const BakeProgress&)>& progress_;
-  GpuDeformer deformer_;
-  std::unique_ptr<GpuDeformer> other_;  // mode-diff: the other blend mode
+  const int camera_node_;  // --camera: the node, or -1 for the automatic camera
+  const RendererOptions renderer_options_;
+  FrameSource source_;
+  std::unique_ptr<FrameSource> other_;  // mode-diff: the other blend mode
   Renderer renderer_;
   std::vector<std::vector<float>> scalars_;
   size_t frames_done_ = 0;
@@ -179,10 +226,12 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
                     const std::function<void(const BakeProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
   if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
+  // The backend draws; --backend cpu deforms on the CPU reference and draws on whichever context there is.
+  // dib has only the CPU reference.
+  const bool deform_on_cpu = options.backend == "cpu" || options.mode == BlendMode::kDib;
   GpuBackend backend = GpuBackend::kAuto;
-  if (!parse_gpu_backend(options.backend, backend))
-    throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa");
-  if (options.mode == BlendMode::kDib) throw InputError("render deforms on the GPU: --mode lbs or dqs");
+  if (options.backend != "cpu" && !parse_gpu_backend(options.backend, backend))
+    throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa, cpu");
   if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
     throw InputError("--sheet-cell must be 1 to 4096 pixels");
 
@@ -214,7 +263,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
         const std::function<void(const BakeProgress&)> counted = [&](const BakeProgress& p) {
           if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
         };
-        InputRenderer renderer(plan, options, *context, report, counted);
+        InputRenderer renderer(plan, options, *context, deform_on_cpu, report, counted);
         for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
         result.frames = renderer.frames_done();
         done += result.frames;

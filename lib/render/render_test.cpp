@@ -3,10 +3,12 @@
 // skip with the reason.
 #include "dqskin/render.hpp"
 
+#include "dqskin/error.hpp"
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/load.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -304,6 +306,98 @@ TEST(RenderOutput, GifHasOneSubimagePerFrame) {
     }
   EXPECT_EQ(delays, 3);
   fs::remove_all(dir);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// glTF cameras (§3.10): where a world point lands in normalized device coordinates.
+
+glm::dvec3 ndc(const Camera& camera, const glm::dvec3& world) {
+  const glm::dvec4 clip = glm::dmat4(camera.projection) * glm::dmat4(camera.view) * glm::dvec4(world, 1.0);
+  return glm::dvec3(clip) / clip.w;
+}
+
+TEST(SceneCamera, PerspectiveLooksDownLocalMinusZWithItsAspectRatio) {
+  SceneCamera perspective;
+  perspective.yfov = 0.8;
+  perspective.aspect_ratio = 2.0;
+  perspective.znear = 0.5;
+  perspective.zfar = 100;
+  Mat4<double> world(1.0);
+  world[3] = {1, 2, 5, 1};  // at (1, 2, 5), looking towards −z
+  const Camera camera = scene_camera(perspective, world, 1.0);  // the camera's 2:1 wins over the image's 1:1
+  const double half_height = 5 * std::tan(0.4);
+  EXPECT_NEAR(ndc(camera, {1, 2, 0}).x, 0, 1e-6);
+  EXPECT_NEAR(ndc(camera, {1, 2, 0}).y, 0, 1e-6);
+  EXPECT_NEAR(ndc(camera, {1, 2 + half_height, 0}).y, 1, 1e-5);
+  EXPECT_NEAR(ndc(camera, {1 + 2 * half_height, 2, 0}).x, 1, 1e-5);
+  EXPECT_NEAR(ndc(camera, {1, 2, 4.5}).z, -1, 1e-5) << "znear maps to −1";
+  EXPECT_EQ(camera.eye, glm::vec3(1, 2, 5));
+
+  // Without an aspect ratio, the image's; without zfar, an infinite projection (−1 and −2 znear).
+  perspective.aspect_ratio = 0;
+  perspective.zfar = 0;
+  const Camera infinite = scene_camera(perspective, world, 0.5);
+  EXPECT_NEAR(ndc(infinite, {1 + 0.5 * half_height, 2, 0}).x, 1, 1e-5);
+  EXPECT_FLOAT_EQ(infinite.projection[2][3], -1.0f);
+  EXPECT_FLOAT_EQ(infinite.projection[3][2], -1.0f);
+  EXPECT_LT(ndc(infinite, {1, 2, -1e6}).z, 1.0) << "nothing is beyond the far plane";
+}
+
+TEST(SceneCamera, ScaleInTheNodeMatrixDoesNotChangeTheView) {
+  SceneCamera perspective;
+  perspective.yfov = 0.6;
+  perspective.znear = 0.1;
+  const Mat4<double> turned = glm::rotate(Mat4<double>(1.0), 0.3, glm::dvec3(0, 1, 0));
+  Mat4<double> placed = turned;
+  placed[3] = {2, 0, 7, 1};
+  Mat4<double> scaled = glm::scale(placed, glm::dvec3(3, 0.5, 2));
+  const Camera a = scene_camera(perspective, placed, 1.5), b = scene_camera(perspective, scaled, 1.5);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(a.view[c][r], b.view[c][r], 1e-6) << c << "," << r;
+  Mat4<double> flat = placed;
+  flat[2] = glm::dvec4(0.0);  // zero scale along z: no viewing direction
+  EXPECT_THROW(scene_camera(perspective, flat, 1.0), InputError);
+}
+
+TEST(SceneCamera, OrthographicShowsXmagByYmag) {
+  SceneCamera ortho;
+  ortho.orthographic = true;
+  ortho.xmag = 2;
+  ortho.ymag = 1;
+  ortho.znear = 0;
+  ortho.zfar = 10;
+  Mat4<double> world(1.0);
+  world[3] = {0, 0, 5, 1};
+  const Camera camera = scene_camera(ortho, world, 1.0);
+  const glm::dvec3 corner = ndc(camera, {2, 1, -3});
+  EXPECT_NEAR(corner.x, 1, 1e-6);
+  EXPECT_NEAR(corner.y, 1, 1e-6);
+  EXPECT_NEAR(ndc(camera, {-2, -1, 2}).x, -1, 1e-6);
+}
+
+TEST(SceneCamera, InvalidCameraAndUnknownNodeAreInputErrors) {
+  SceneCamera wide;
+  wide.yfov = 3.2;  // more than π
+  wide.znear = 0.1;
+  EXPECT_THROW(scene_camera(wide, Mat4<double>(1.0), 1.0), InputError);
+  SceneCamera broken;
+  broken.problem = "camera 0: znear must be above 0; it cannot be rendered through";
+  try {
+    scene_camera(broken, Mat4<double>(1.0), 1.0);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), broken.problem);
+  }
+
+  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/camera_dolly.gltf");
+  EXPECT_EQ(asset.nodes[size_t(find_camera_node(asset, "dolly"))].name, "dolly");
+  EXPECT_EQ(asset.cameras[size_t(asset.nodes[size_t(find_camera_node(asset, "top"))].camera)].orthographic, true);
+  try {
+    find_camera_node(asset, "arm");  // a node, but without a camera
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--camera 'arm': no node of that name has a camera (camera nodes: 'dolly', 'top')");
+  }
 }
 
 }  // namespace

@@ -6,12 +6,14 @@
 #include "gl_functions.hpp"
 #include "mesh.hpp"
 #include "shader_program.hpp"
+#include "texture_image.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cassert>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 
 namespace dqskin {
@@ -22,6 +24,9 @@ using gpu::Gl;
 GLuint link_program(const Gl& gl, const std::string& defines) {
   return gpu::build_program(gl, {{GL_VERTEX_SHADER, gpu::kRenderVert}, {GL_FRAGMENT_SHADER, gpu::kRenderFrag}}, defines);
 }
+
+// Vertex attribute locations of glsl/render.vert.
+constexpr GLuint kPositionLocation = 0, kNormalLocation = 1, kScalarLocation = 2, kUvLocation = 3, kColorLocation = 4;
 
 const char* shade_define(Shade shade) {
   switch (shade) {
@@ -40,13 +45,17 @@ struct Renderer::Impl {
     size_t vertices = 0;
     GLsizei index_count = 0;  // 0: not drawn (points, lines, or no triangles)
     glm::vec4 base_color{1.0f};
-    GLuint vao = 0, indices = 0, positions = 0, normals = 0, scalars = 0;
+    GLuint texture = 0;       // the base color texture (owned by `textures`), or 0
+    AlphaMode alpha_mode = AlphaMode::kOpaque;
+    float alpha_cutoff = 0.5f;
+    GLuint vao = 0, indices = 0, positions = 0, normals = 0, scalars = 0, uvs = 0, colors = 0;
   };
 
   GpuContext& context;
   Gl gl;
   RendererOptions options;
   std::vector<Prim> prims;
+  std::map<int, GLuint> textures;  // per glTF texture used by a drawn primitive
   GLuint program = 0;
   GLuint msaa_fbo = 0, resolve_fbo = 0;
   GLuint msaa_color = 0, msaa_depth = 0, resolve_color = 0;
@@ -71,11 +80,13 @@ struct Renderer::Impl {
   void release() {
     context.make_current();
     for (Prim& p : prims) {
-      const GLuint b[] = {p.indices, p.positions, p.normals, p.scalars};
+      const GLuint b[] = {p.indices, p.positions, p.normals, p.scalars, p.uvs, p.colors};
       gl.DeleteBuffers(GLsizei(std::size(b)), b);
       gl.DeleteVertexArrays(1, &p.vao);
     }
     prims.clear();
+    for (const auto& [index, texture] : textures) gl.DeleteTextures(1, &texture);
+    textures.clear();
     if (program) gl.DeleteProgram(program);
     const GLuint fbos[] = {msaa_fbo, resolve_fbo};
     gl.DeleteFramebuffers(2, fbos);
@@ -126,12 +137,11 @@ struct Renderer::Impl {
   }
 
   void upload(const Asset& asset, const std::vector<MeshInstance>& instances) {
+    std::map<int, Image8> decoded;  // per glTF image, decoded once however many textures use it
     for (const MeshInstance& inst : instances) {
       for (const Primitive& src : asset.meshes[size_t(inst.mesh)].primitives) {
         Prim p;
         p.vertices = src.vertex_count();
-        if (src.material >= 0 && size_t(src.material) < asset.materials.size())
-          p.base_color = asset.materials[size_t(src.material)].base_color;
         const bool triangles = src.mode == PrimitiveMode::kTriangles || src.mode == PrimitiveMode::kTriangleStrip ||
                                src.mode == PrimitiveMode::kTriangleFan;
         gl.GenVertexArrays(1, &p.vao);
@@ -144,21 +154,71 @@ struct Renderer::Impl {
           gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(std::max<size_t>(4, list.size() * 4)),
                         list.empty() ? nullptr : list.data(), GL_STATIC_DRAW);
         }
-        GLuint* buffers[] = {&p.positions, &p.normals, &p.scalars};
+        GLuint* buffers[] = {&p.positions, &p.normals, &p.scalars, &p.uvs, &p.colors};
         for (GLuint* b : buffers) gl.GenBuffers(1, b);
+        if (triangles && src.material >= 0) use_material(asset, src, p, decoded);
+        // Attributes that do not change from frame to frame are set once, in the VAO.
+        std::span<const float> colors;
+        if (!src.colors.empty()) colors = {&src.colors[0].x, src.colors.size() * 4};
+        attribute(p.colors, kColorLocation, 4, colors);
         gl.BindVertexArray(0);
         prims.push_back(p);
       }
     }
   }
 
-  // Points `location` of the bound VAO at `data` (components floats per vertex), or sets the constant
-  // `fallback` when data is empty.
-  void attribute(GLuint buffer, GLuint location, GLint components, std::span<const float> data, float fallback) {
+  // The primitive's material: base color factor, alpha mode, and the base color texture with the UV set
+  // it reads (drawn without the texture when the primitive lacks that set, which glTF-Validator reports).
+  void use_material(const Asset& asset, const Primitive& src, Prim& p, std::map<int, Image8>& decoded) {
+    const Material& material = asset.materials[size_t(src.material)];
+    p.base_color = material.base_color;
+    p.alpha_mode = material.alpha_mode;
+    p.alpha_cutoff = material.alpha_cutoff;
+    const TextureRef& ref = material.base_color_texture;
+    const std::vector<glm::vec2>* uv = ref.texcoord == 0 ? &src.uv0 : ref.texcoord == 1 ? &src.uv1 : nullptr;
+    if (ref.texture < 0 || !uv || uv->empty()) return;
+    const Texture& texture = asset.textures[size_t(ref.texture)];
+    if (texture.image < 0) return;  // only an extension's image (KTX2): the factor alone, as without a texture
+    attribute(p.uvs, kUvLocation, 2, {&(*uv)[0].x, uv->size() * 2});
+    if (const auto found = textures.find(ref.texture); found != textures.end()) {
+      p.texture = found->second;
+      return;
+    }
+    auto image = decoded.find(texture.image);
+    if (image == decoded.end()) {
+      GLint max_side = 0;
+      gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+      image = decoded.emplace(texture.image, decode_texture_image(asset.images[size_t(texture.image)],
+                                                                  size_t(texture.image), max_side)).first;
+    }
+    p.texture = textures[ref.texture] = make_texture(image->second, texture.sampler);
+  }
+
+  // An sRGB texture with a full mipmap chain (filtered in linear light by the GL), sampled as `sampler`
+  // says; filters the file leaves open are trilinear.
+  GLuint make_texture(const Image8& image, const Sampler& sampler) {
+    GLuint texture = 0;
+    gl.GenTextures(1, &texture);
+    gl.BindTexture(GL_TEXTURE_2D, texture);
+    int levels = 1;
+    while ((std::max(image.width, image.height) >> levels) > 0) ++levels;
+    gl.TexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, image.width, image.height);
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    gl.GenerateMipmap(GL_TEXTURE_2D);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, sampler.min_filter ? sampler.min_filter : GL_LINEAR_MIPMAP_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, sampler.mag_filter ? sampler.mag_filter : GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, sampler.wrap_s);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, sampler.wrap_t);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    return texture;
+  }
+
+  // Points `location` of the bound VAO at `data` (components floats per vertex), or, when data is
+  // empty, disables the array so that the attribute reads its constant (set in draw()).
+  void attribute(GLuint buffer, GLuint location, GLint components, std::span<const float> data) {
     if (data.empty()) {
       gl.DisableVertexAttribArray(location);
-      if (components == 1) gl.VertexAttrib1f(location, fallback);
-      else gl.VertexAttrib3f(location, 0.0f, 0.0f, 1.0f);
       return;
     }
     gl.BindBuffer(GL_ARRAY_BUFFER, buffer);
@@ -190,21 +250,48 @@ struct Renderer::Impl {
     gl.Uniform3f(gl.GetUniformLocation(program, "key_direction"), key.x, key.y, key.z);
     const GLint base_color = gl.GetUniformLocation(program, "base_color");
     const GLint has_normals = gl.GetUniformLocation(program, "has_normals");
+    const GLint has_texture = gl.GetUniformLocation(program, "has_texture");
+    const GLint alpha_mode = gl.GetUniformLocation(program, "alpha_mode");
+    const GLint alpha_cutoff = gl.GetUniformLocation(program, "alpha_cutoff");
+    gl.Uniform1i(gl.GetUniformLocation(program, "base_color_texture"), 0);
+    gl.ActiveTexture(GL_TEXTURE0);
 
-    for (size_t i = 0; i < prims.size(); ++i) {
-      const Prim& p = prims[i];
-      const PrimitiveView& view = frame.primitives[i];
-      if (p.index_count == 0) continue;
-      assert(view.vertices == p.vertices && view.positions.size() == p.vertices * 3);
-      gl.BindVertexArray(p.vao);
-      attribute(p.positions, 0, 3, view.positions, 0.0f);
-      attribute(p.normals, 1, 3, view.normals, 0.0f);
-      const std::span<const float> s = i < scalars.size() ? std::span<const float>(scalars[i]) : std::span<const float>();
-      attribute(p.scalars, 2, 1, s.size() == p.vertices ? s : std::span<const float>(), 0.0f);
-      gl.Uniform4f(base_color, p.base_color.r, p.base_color.g, p.base_color.b, p.base_color.a);
-      gl.Uniform1i(has_normals, view.normals.empty() ? 0 : 1);
-      gl.DrawElements(GL_TRIANGLES, p.index_count, GL_UNSIGNED_INT, nullptr);
+    // Opaque and masked primitives first, then blended ones over them in file order (glTF leaves the
+    // order of blended surfaces to the viewer; file order keeps images reproducible), testing depth
+    // without writing it.
+    for (const bool blended : {false, true}) {
+      if (blended) {
+        gl.Enable(GL_BLEND);
+        gl.BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the shader writes premultiplied color
+        gl.DepthMask(GL_FALSE);
+      }
+      for (size_t i = 0; i < prims.size(); ++i) {
+        const Prim& p = prims[i];
+        const PrimitiveView& view = frame.primitives[i];
+        if (p.index_count == 0 || (p.alpha_mode == AlphaMode::kBlend) != blended) continue;
+        assert(view.vertices == p.vertices && view.positions.size() == p.vertices * 3);
+        gl.BindVertexArray(p.vao);
+        attribute(p.positions, kPositionLocation, 3, view.positions);
+        attribute(p.normals, kNormalLocation, 3, view.normals);
+        const std::span<const float> s = i < scalars.size() ? std::span<const float>(scalars[i]) : std::span<const float>();
+        attribute(p.scalars, kScalarLocation, 1, s.size() == p.vertices ? s : std::span<const float>());
+        // What an attribute without an array reads (context state, not the VAO's).
+        gl.VertexAttrib3f(kNormalLocation, 0.0f, 0.0f, 1.0f);
+        gl.VertexAttrib1f(kScalarLocation, 0.0f);
+        gl.VertexAttrib2f(kUvLocation, 0.0f, 0.0f);
+        gl.VertexAttrib4f(kColorLocation, 1.0f, 1.0f, 1.0f, 1.0f);
+        gl.Uniform4f(base_color, p.base_color.r, p.base_color.g, p.base_color.b, p.base_color.a);
+        gl.Uniform1i(has_normals, view.normals.empty() ? 0 : 1);
+        gl.Uniform1i(has_texture, p.texture ? 1 : 0);
+        gl.BindTexture(GL_TEXTURE_2D, p.texture);
+        gl.Uniform1i(alpha_mode, int(p.alpha_mode));
+        gl.Uniform1f(alpha_cutoff, p.alpha_cutoff);
+        gl.DrawElements(GL_TRIANGLES, p.index_count, GL_UNSIGNED_INT, nullptr);
+      }
     }
+    gl.Disable(GL_BLEND);
+    gl.DepthMask(GL_TRUE);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
     gl.BindVertexArray(0);
 
     // Resolve the samples (a box filter over each pixel's samples) and read the result back.

@@ -1,5 +1,7 @@
 // The Asset: what dqskin keeps of a glTF 2.0 file (shared/DESIGN.md "load"). Plain data, no tinygltf
 // types; every index in it has been checked against the array it indexes, every float is finite.
+// Appearance (materials, textures, cameras) with a broken reference or value loads with a warning and
+// that part dropped: it does not change the deformation.
 #pragma once
 
 #include "dqskin/dual_quat.hpp"
@@ -29,6 +31,8 @@ struct Primitive {
   std::vector<glm::vec3> normals;    // NORMAL, or generated (see normals_generated); empty for non-triangles without
   std::vector<glm::vec4> tangents;   // TANGENT (xyz, w = handedness ±1), or empty
   std::vector<glm::vec2> uv0;        // TEXCOORD_0, or empty
+  std::vector<glm::vec2> uv1;        // TEXCOORD_1, or empty (a material's texture may read either set)
+  std::vector<glm::vec4> colors;     // COLOR_0 as linear RGBA (alpha 1 when stored as RGB), or empty
   std::vector<uint32_t> indices;     // empty when not indexed
   bool normals_generated = false;    // NORMAL was absent: smooth normals were computed (see load.hpp)
 
@@ -67,6 +71,7 @@ struct Node {
   LocalTransform local;
   int mesh = -1;
   int skin = -1;
+  int camera = -1;             // index into Asset::cameras, or -1
   std::vector<float> weights;  // the node's morph weights, overriding the mesh's, or empty
 };
 
@@ -99,10 +104,55 @@ struct Clip {
   double last_key = 0;   // largest key time: the clip's duration, as glTF time 0 is the clip's start
 };
 
-// What the mesh writers need of a material (OBJ's .mtl); the glb writer copies the file's own.
+// glTF textureInfo (§5.30): a texture and the TEXCOORD_n set it is read with.
+struct TextureRef {
+  int texture = -1;  // index into Asset::textures, or -1 for none
+  int texcoord = 0;  // n of TEXCOORD_n
+};
+
+enum class AlphaMode { kOpaque, kMask, kBlend };
+
+// What the mesh writers (OBJ's .mtl) and the renderer need of a material; the glb writer copies the
+// file's own.
 struct Material {
   std::string name;
   glm::vec4 base_color{1.0f};  // pbrMetallicRoughness.baseColorFactor, linear RGBA (default 1, 1, 1, 1)
+  TextureRef base_color_texture;  // pbrMetallicRoughness.baseColorTexture: sRGB color, linear alpha
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;   // kMask: fragments with a lower alpha are not drawn
+};
+
+// A sampler's filters and wrap modes as glTF stores them (OpenGL enum values, §5.26). A filter of 0 is
+// one the file leaves to the viewer.
+struct Sampler {
+  int mag_filter = 0, min_filter = 0;
+  int wrap_s = 10497, wrap_t = 10497;  // REPEAT
+};
+
+struct Texture {
+  int image = -1;  // index into Asset::images; -1 when the only source is an extension's (KTX2, WebP)
+  Sampler sampler;
+};
+
+// An image as the file stores it (PNG or JPEG bytes, §3.8.3), not decoded: only the renderer needs its
+// pixels, and decoding belongs to the image library there.
+struct EncodedImage {
+  std::string name;
+  std::string mime_type;  // as the file says, or empty (an external file or data URI may not say)
+  std::string uri;        // the external file's URI, for messages; empty when embedded
+  std::vector<uint8_t> bytes;  // empty when the external file could not be read
+};
+
+// A glTF camera (§3.10). Angles in radians, distances in the scene's units.
+struct SceneCamera {
+  std::string name;
+  bool orthographic = false;
+  double yfov = 0;          // perspective: vertical field of view
+  double aspect_ratio = 0;  // perspective: width / height, or 0 for the viewport's
+  double xmag = 0, ymag = 0;  // orthographic: half the view's width and height
+  double znear = 0;
+  double zfar = 0;          // 0: infinite (perspective only)
+  std::string problem;      // why the file's values cannot be used (also in Asset::warnings), or empty
 };
 
 struct Scene {
@@ -118,6 +168,9 @@ struct Asset {
   std::vector<Clip> clips;
   std::vector<Scene> scenes;
   std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<EncodedImage> images;
+  std::vector<SceneCamera> cameras;
   int default_scene = -1;
   std::vector<std::string> warnings;  // things that are allowed but worth telling the user
 };

@@ -53,6 +53,18 @@ struct Camera {
 // (width / height) with a small margin. `box` must not be empty.
 Camera frame_camera(const Bounds& box, const CameraOptions& options, double aspect);
 
+// --camera NODE: the index of the node named `name` that carries a glTF camera. Throws InputError when
+// no such node exists (naming the camera nodes there are) or when the name is ambiguous.
+int find_camera_node(const Asset& asset, const std::string& name);
+
+// The view through a glTF camera whose node has the world matrix `world` (§3.10: the camera looks down its
+// local −Z with +Y up; scale and shear in the matrix are removed, as the specification does not let them
+// change the projection). Projections are §3.10.3's: finite or infinite perspective with the camera's
+// aspect ratio, or `aspect` (the image's width / height) when it gives none; orthographic from xmag and
+// ymag. Throws InputError for a camera the loader found invalid (SceneCamera::problem), a yfov of π or
+// more, or a matrix that has no orientation (zero scale).
+Camera scene_camera(const SceneCamera& camera, const Mat4<double>& world, double aspect);
+
 struct RendererOptions {
   int width = 512, height = 512;
   int samples = 4;  // MSAA samples per pixel; fixed, so images do not depend on the driver's default
@@ -173,6 +185,11 @@ struct RenderOptions {
   size_t shard_index = 0, shard_count = 1;
   RendererOptions renderer;
   CameraOptions camera;
+  // --camera: the node (by name) whose glTF camera the frames are seen through, following its animation;
+  // empty for the automatic camera. With size_from_camera (the user gave no size), a camera with an
+  // aspect ratio sets the image width to height × aspectRatio.
+  std::string camera_node;
+  bool size_from_camera = false;
   std::string joint;  // Shade::kWeights: the joint node whose influence is shown
   ImageFormat format = ImageFormat::kPng;
   Overwrite overwrite = Overwrite::kRefuseDifferent;

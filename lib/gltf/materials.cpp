@@ -1,0 +1,196 @@
+#include "materials.hpp"
+
+#include <cmath>
+
+namespace dqskin::gltf {
+namespace {
+
+// Appearance does not change the deformation, so a broken reference or value here is not worth refusing a
+// file that bakes: it is dropped (or its default used) with a warning, and the renderer draws without it.
+// Geometry and animation errors stay fatal (load.cpp, mesh.cpp).
+struct Problem {
+  std::string message;
+};
+[[noreturn]] void fail(const std::string& message) { throw Problem{message}; }
+
+std::string at(const char* kind, size_t index) { return std::string(kind) + " " + std::to_string(index); }
+
+TextureRef read_texture_ref(const tinygltf::TextureInfo& info, size_t textures, const std::string& what) {
+  TextureRef ref;
+  if (info.index < 0) return ref;
+  if (size_t(info.index) >= textures) fail(what + ": texture " + std::to_string(info.index) + " does not exist");
+  if (info.texCoord < 0) fail(what + ": texCoord must be at least 0");
+  ref.texture = info.index;
+  ref.texcoord = info.texCoord;
+  return ref;
+}
+
+// Runs `read`; a Problem becomes a warning ending in `consequence`, and is returned (empty when none).
+template <typename Read>
+std::string or_warn(Asset& asset, const char* consequence, Read read) {
+  try {
+    read();
+    return {};
+  } catch (const Problem& p) {
+    asset.warnings.push_back(p.message + "; " + consequence);
+    return asset.warnings.back();
+  }
+}
+
+void read_materials(const tinygltf::Model& m, Asset& asset) {
+  for (size_t i = 0; i < m.materials.size(); ++i) {
+    const tinygltf::Material& mat = m.materials[i];
+    const std::string what = at("material", i);
+    Material out;
+    out.name = mat.name;
+    or_warn(asset, "white is used", [&] {
+      const std::vector<double>& factor = mat.pbrMetallicRoughness.baseColorFactor;
+      // §5.22.2: four components, each in [0, 1]
+      if (factor.size() != 4) fail(what + ": baseColorFactor must have 4 numbers");
+      for (double x : factor)
+        if (!(x >= 0 && x <= 1)) fail(what + ": baseColorFactor must be 4 numbers in [0, 1]");
+      for (int c = 0; c < 4; ++c) out.base_color[c] = float(factor[size_t(c)]);
+    });
+    or_warn(asset, "it is drawn without the texture", [&] {
+      out.base_color_texture =
+          read_texture_ref(mat.pbrMetallicRoughness.baseColorTexture, m.textures.size(), what + " baseColorTexture");
+    });
+    if (out.base_color_texture.texcoord > 1)
+      asset.warnings.push_back(what + ": its base color texture reads TEXCOORD_" +
+                               std::to_string(out.base_color_texture.texcoord) +
+                               ", but dqskin reads TEXCOORD_0 and _1 only; it is drawn without the texture");
+    // §5.19: alphaMode is OPAQUE, MASK or BLEND; alphaCutoff is at least 0.
+    or_warn(asset, "it is drawn opaque", [&] {
+      if (mat.alphaMode == "MASK") out.alpha_mode = AlphaMode::kMask;
+      else if (mat.alphaMode == "BLEND") out.alpha_mode = AlphaMode::kBlend;
+      else if (mat.alphaMode != "OPAQUE") fail(what + ": alphaMode '" + mat.alphaMode + "' is not OPAQUE, MASK or BLEND");
+    });
+    or_warn(asset, "0.5 is used", [&] {
+      if (!(mat.alphaCutoff >= 0) || !std::isfinite(mat.alphaCutoff)) fail(what + ": alphaCutoff must be at least 0");
+      out.alpha_cutoff = float(mat.alphaCutoff);
+    });
+    asset.materials.push_back(std::move(out));
+  }
+  for (size_t i = 0; i < asset.meshes.size(); ++i)
+    for (size_t j = 0; j < asset.meshes[i].primitives.size(); ++j) {
+      int& material = asset.meshes[i].primitives[j].material;
+      if (material >= int(asset.materials.size())) {
+        asset.warnings.push_back(at("mesh", i) + " primitive " + std::to_string(j) + ": material " + std::to_string(material) +
+                                 " does not exist; the default material is used");
+        material = -1;
+      }
+    }
+}
+
+bool one_of(int value, std::initializer_list<int> allowed) {
+  for (int a : allowed)
+    if (value == a) return true;
+  return false;
+}
+
+Sampler read_sampler(const tinygltf::Sampler& s, const std::string& what) {
+  // §5.26: the allowed OpenGL enum values; filters may be left undefined (tinygltf: -1).
+  constexpr int kNearest = 9728, kLinear = 9729;
+  if (s.magFilter != -1 && !one_of(s.magFilter, {kNearest, kLinear})) fail(what + ": magFilter " + std::to_string(s.magFilter) + " is not allowed");
+  if (s.minFilter != -1 && !one_of(s.minFilter, {kNearest, kLinear, 9984, 9985, 9986, 9987}))
+    fail(what + ": minFilter " + std::to_string(s.minFilter) + " is not allowed");
+  for (int wrap : {s.wrapS, s.wrapT})
+    if (!one_of(wrap, {33071, 33648, 10497})) fail(what + ": wrap mode " + std::to_string(wrap) + " is not allowed");
+  Sampler out;
+  out.mag_filter = s.magFilter == -1 ? 0 : s.magFilter;
+  out.min_filter = s.minFilter == -1 ? 0 : s.minFilter;
+  out.wrap_s = s.wrapS;
+  out.wrap_t = s.wrapT;
+  return out;
+}
+
+void read_textures(const tinygltf::Model& m, Asset& asset) {
+  for (size_t i = 0; i < m.textures.size(); ++i) {
+    const tinygltf::Texture& t = m.textures[i];
+    const std::string what = at("texture", i);
+    Texture out;
+    or_warn(asset, "textures using it are not drawn", [&] {
+      if (t.source >= 0 && size_t(t.source) >= m.images.size()) fail(what + ": image " + std::to_string(t.source) + " does not exist");
+      out.image = t.source;
+    });
+    or_warn(asset, "the default sampler is used", [&] {
+      if (t.sampler >= 0 && size_t(t.sampler) >= m.samplers.size())
+        fail(what + ": sampler " + std::to_string(t.sampler) + " does not exist");
+      if (t.sampler >= 0) out.sampler = read_sampler(m.samplers[size_t(t.sampler)], at("sampler", size_t(t.sampler)));
+    });
+    asset.textures.push_back(out);
+  }
+  for (const tinygltf::Image& image : m.images) {
+    EncodedImage out;
+    out.name = image.name;
+    out.mime_type = image.mimeType;
+    // A data URI is embedded; keep only a file's URI for messages.
+    if (image.bufferView < 0 && image.uri.rfind("data:", 0) != 0) out.uri = image.uri;
+    if (image.as_is) out.bytes.assign(image.image.begin(), image.image.end());  // set by the loader's image callback
+    asset.images.push_back(std::move(out));
+  }
+}
+
+// §5.12-5.14: perspective yfov and znear above 0, zfar above znear when given, aspectRatio above 0 when
+// given; orthographic xmag and ymag not 0, znear at least 0, zfar above znear.
+void read_camera(const tinygltf::Camera& c, const std::string& what, SceneCamera& out) {
+  auto finite = [&](std::initializer_list<double> values) {
+    for (double v : values)
+      if (!std::isfinite(v)) fail(what + ": has a number that is not finite");
+  };
+  if (c.type == "perspective") {
+    const tinygltf::PerspectiveCamera& p = c.perspective;
+    finite({p.yfov, p.znear, p.zfar, p.aspectRatio});
+    if (!(p.yfov > 0)) fail(what + ": yfov must be above 0");
+    if (!(p.znear > 0)) fail(what + ": znear must be above 0");
+    if (p.zfar != 0 && !(p.zfar > p.znear)) fail(what + ": zfar must be above znear");
+    if (p.aspectRatio < 0) fail(what + ": aspectRatio must be above 0");
+    out.yfov = p.yfov;
+    out.aspect_ratio = p.aspectRatio;
+    out.znear = p.znear;
+    out.zfar = p.zfar;
+  } else if (c.type == "orthographic") {
+    const tinygltf::OrthographicCamera& o = c.orthographic;
+    finite({o.xmag, o.ymag, o.znear, o.zfar});
+    out.orthographic = true;
+    if (o.xmag == 0 || o.ymag == 0) fail(what + ": xmag and ymag must not be 0");
+    if (!(o.znear >= 0)) fail(what + ": znear must be at least 0");
+    if (!(o.zfar > o.znear)) fail(what + ": zfar must be above znear");
+    out.xmag = o.xmag;
+    out.ymag = o.ymag;
+    out.znear = o.znear;
+    out.zfar = o.zfar;
+  } else {
+    fail(what + ": type '" + c.type + "' is not perspective or orthographic");
+  }
+}
+
+void read_cameras(const tinygltf::Model& m, Asset& asset) {
+  for (size_t i = 0; i < m.cameras.size(); ++i) {
+    const tinygltf::Camera& c = m.cameras[i];
+    const std::string what = at("camera", i);
+    SceneCamera out;
+    out.name = c.name;
+    out.problem = or_warn(asset, "it cannot be rendered through", [&] { read_camera(c, what, out); });
+    asset.cameras.push_back(std::move(out));
+  }
+  for (size_t i = 0; i < m.nodes.size(); ++i) {
+    const int camera = m.nodes[i].camera;
+    if (camera >= 0 && size_t(camera) >= asset.cameras.size()) {
+      asset.warnings.push_back(at("node", i) + ": camera " + std::to_string(camera) + " does not exist; it is ignored");
+      continue;
+    }
+    asset.nodes[i].camera = camera < 0 ? -1 : camera;
+  }
+}
+
+
+}  // namespace
+
+void read_appearance(const tinygltf::Model& model, Asset& asset) {
+  read_materials(model, asset);
+  read_textures(model, asset);
+  read_cameras(model, asset);
+}
+
+}  // namespace dqskin::gltf

@@ -1,0 +1,16 @@
+// glTF images decoded for the renderer (internal to lib/render).
+#pragma once
+
+#include "dqskin/asset.hpp"
+#include "dqskin/render.hpp"
+
+namespace dqskin {
+
+// Decodes image `index` of an asset (PNG or JPEG as §3.8.3 allows; WebP too where OpenImageIO reads it)
+// from its bytes into 8-bit RGBA, top row first: glTF's UV (0, 0) is the first pixel of the first row.
+// Grey becomes RGB, a missing alpha becomes 255, 16-bit samples are rounded to 8, alpha stays unassociated
+// (as glTF stores it). Throws InputError naming the image for missing bytes, a format that is neither,
+// a decoding error, or a side longer than `max_side` pixels.
+Image8 decode_texture_image(const EncodedImage& image, size_t index, int max_side);
+
+}  // namespace dqskin

@@ -1,0 +1,250 @@
+// Materials in the renderer: glTF images decoded from memory (PNG and JPEG, every PNG color type, errors
+// named), and drawn as glTF says: UV (0, 0) at the image's top-left, sRGB texels decoded to linear,
+// base color = factor × texture × COLOR_0, alpha MASK cuts out and BLEND blends. Tests that need an
+// OpenGL context skip with the reason when the machine has none.
+#include "texture_image.hpp"
+
+#include "dqskin/error.hpp"
+#include "dqskin/render.hpp"
+#include "dqskin/skinning.hpp"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace dqskin {
+namespace {
+
+// `pixels` (top row first, `channels` per pixel, of `type`) encoded in memory as `format` (png or jpg).
+EncodedImage encode(const char* format, int width, int height, int channels, OIIO::TypeDesc type, const void* pixels) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput out(bytes);
+  std::unique_ptr<OIIO::ImageOutput> writer = OIIO::ImageOutput::create(format);
+  EXPECT_TRUE(writer);
+  OIIO::ImageSpec spec(width, height, channels, type);
+  if (channels == 2 || channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
+  writer->set_ioproxy(&out);
+  EXPECT_TRUE(writer->open(std::string("memory.") + format, spec)) << writer->geterror();
+  EXPECT_TRUE(writer->write_image(type, pixels)) << writer->geterror();
+  writer->close();
+  EncodedImage image;
+  image.name = "test";
+  image.bytes.assign(bytes.begin(), bytes.end());
+  return image;
+}
+
+TEST(TextureImage, EveryPngColorTypeBecomesStraightRgba) {
+  const uint8_t grey[] = {10, 200};
+  Image8 d = decode_texture_image(encode("png", 2, 1, 1, OIIO::TypeDesc::UINT8, grey), 0, 64);
+  EXPECT_EQ(d.rgba, (std::vector<uint8_t>{10, 10, 10, 255, 200, 200, 200, 255}));
+
+  const uint8_t grey_alpha[] = {10, 0, 200, 128};  // alpha 0 with a colour: must stay unpremultiplied
+  d = decode_texture_image(encode("png", 2, 1, 2, OIIO::TypeDesc::UINT8, grey_alpha), 0, 64);
+  EXPECT_EQ(d.rgba, (std::vector<uint8_t>{10, 10, 10, 0, 200, 200, 200, 128}));
+
+  const uint8_t rgb[] = {1, 2, 3, 4, 5, 6};
+  d = decode_texture_image(encode("png", 1, 2, 3, OIIO::TypeDesc::UINT8, rgb), 0, 64);
+  EXPECT_EQ(d.width, 1);
+  EXPECT_EQ(d.height, 2);
+  EXPECT_EQ(d.rgba, (std::vector<uint8_t>{1, 2, 3, 255, 4, 5, 6, 255})) << "top row first";
+
+  const uint16_t rgba16[] = {65535, 0, 32896, 0};  // 32896 = 128.5 × 257 → 128 or 129 after rounding
+  d = decode_texture_image(encode("png", 1, 1, 4, OIIO::TypeDesc::UINT16, rgba16), 0, 64);
+  EXPECT_EQ(d.rgba[0], 255);
+  EXPECT_EQ(d.rgba[1], 0);
+  EXPECT_NEAR(d.rgba[2], 128, 1);
+  EXPECT_EQ(d.rgba[3], 0);
+}
+
+TEST(TextureImage, JpegDecodesNearItsColors) {
+  std::vector<uint8_t> rgb(16 * 16 * 3);
+  for (size_t i = 0; i < rgb.size(); i += 3) rgb[i] = 200, rgb[i + 1] = 100, rgb[i + 2] = 50;
+  const Image8 d = decode_texture_image(encode("jpg", 16, 16, 3, OIIO::TypeDesc::UINT8, rgb.data()), 0, 64);
+  ASSERT_EQ(d.rgba.size(), 16u * 16u * 4u);
+  EXPECT_NEAR(d.rgba[0], 200, 4);  // lossy
+  EXPECT_NEAR(d.rgba[1], 100, 4);
+  EXPECT_NEAR(d.rgba[2], 50, 4);
+  EXPECT_EQ(d.rgba[3], 255);
+}
+
+void expect_error(const EncodedImage& image, int max_side, const std::string& expected) {
+  try {
+    decode_texture_image(image, 3, max_side);
+    ADD_FAILURE() << "expected InputError: " << expected;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+  }
+}
+
+TEST(TextureImage, BadImagesAreNamedErrors) {
+  EncodedImage missing;
+  missing.uri = "textures/skin.png";
+  expect_error(missing, 64, "image 3 (textures/skin.png): has no data");
+
+  EncodedImage text;
+  text.name = "notes";
+  text.bytes = {'h', 'e', 'l', 'l', 'o'};
+  expect_error(text, 64, "image 3 'notes': is neither PNG nor JPEG");
+
+  const uint8_t rgb[] = {1, 2, 3, 4, 5, 6};
+  EncodedImage truncated = encode("png", 1, 2, 3, OIIO::TypeDesc::UINT8, rgb);
+  truncated.bytes.resize(truncated.bytes.size() / 2);
+  expect_error(truncated, 64, "image 3 'test': cannot be decoded");
+
+  const std::vector<uint8_t> wide(65 * 3);
+  expect_error(encode("png", 65, 1, 3, OIIO::TypeDesc::UINT8, wide.data()), 64,
+               "image 3 'test': is 65x1 pixels; this GPU takes textures of 1 to 64 a side");
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Drawing: a square facing the camera, filling an orthographic view exactly.
+
+std::unique_ptr<GpuContext> context_or_skip() {
+  try {
+    return create_gpu_context(GpuBackend::kAuto);
+  } catch (const NoGpuContext& e) {
+    return nullptr;
+  }
+}
+
+// A square [−1, 1]² at z = 0 facing +z, two triangles, UV (0, 0) at its top-left corner (−1, 1), with
+// `material` and the given COLOR_0 (or none). Drawn by node 0.
+Asset square(const Material& material, std::vector<glm::vec4> colors = {}) {
+  Asset asset;
+  Primitive p;
+  p.positions = {{-1, 1, 0}, {1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+  p.normals.assign(4, glm::vec3(0, 0, 1));
+  p.uv0 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  p.colors = std::move(colors);
+  p.indices = {0, 3, 2, 0, 2, 1};
+  p.material = 0;
+  asset.meshes.push_back({"square", {p}, {}});
+  Node node;
+  node.mesh = 0;
+  asset.nodes.push_back(node);
+  asset.materials.push_back(material);
+  return asset;
+}
+
+// An RGBA8 PNG of 2x2 texels as a texture of the asset, sampled NEAREST and clamped.
+void add_texture(Asset& asset, const std::array<uint8_t, 16>& texels) {
+  asset.images.push_back(encode("png", 2, 2, 4, OIIO::TypeDesc::UINT8, texels.data()));
+  Texture texture;
+  texture.image = 0;
+  texture.sampler = {9728, 9728, 33071, 33071};
+  asset.textures.push_back(texture);
+  asset.materials[0].base_color_texture.texture = 0;
+}
+
+// The square rendered 64x64 on `background` through an orthographic camera at z = 5 that sees exactly it.
+Image draw(GpuContext& context, const Asset& asset, glm::vec4 background = {0, 0, 0, 1}) {
+  RendererOptions options;
+  options.width = options.height = 64;
+  options.samples = 1;
+  options.background = background;
+  const std::vector<MeshInstance> instances = {{0, 0, -1}};
+  Renderer renderer(context, asset, instances, options);
+  const Primitive& p = asset.meshes[0].primitives[0];
+  FrameView frame;
+  frame.primitives.push_back({4, {&p.positions[0].x, 12}, {&p.normals[0].x, 12}, {}});
+  SceneCamera ortho;
+  ortho.orthographic = true;
+  ortho.xmag = ortho.ymag = 1;
+  ortho.znear = 1;
+  ortho.zfar = 10;
+  Mat4<double> world(1.0);
+  world[3] = {0, 0, 5, 1};
+  return renderer.render(frame, scene_camera(ortho, world, 1.0));
+}
+
+glm::vec4 pixel(const Image& image, int x, int y) {
+  const size_t i = (size_t(y) * size_t(image.width) + size_t(x)) * 4;
+  return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2], image.rgba[i + 3]};
+}
+
+TEST(RenderMaterials, TextureTopLeftTexelIsTheSquaresTopLeftAndSrgbIsDecoded) {
+  const std::unique_ptr<GpuContext> context = context_or_skip();
+  if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
+  Asset asset = square(Material{});
+  // Top-left red, top-right green, bottom-left blue, bottom-right grey at sRGB 128.
+  add_texture(asset, {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 128, 128, 128, 255});
+  const Image image = draw(*context, asset);
+  const glm::vec4 tl = pixel(image, 16, 16), tr = pixel(image, 48, 16), bl = pixel(image, 16, 48), br = pixel(image, 48, 48);
+  EXPECT_GT(tl.r, 0.3f);
+  EXPECT_LT(tl.g + tl.b, 0.01f);
+  EXPECT_GT(tr.g, 0.3f);
+  EXPECT_LT(tr.r + tr.b, 0.01f);
+  EXPECT_GT(bl.b, 0.3f);
+  EXPECT_LT(bl.r + bl.g, 0.01f);
+  // sRGB 128 is linear 0.2158 of white; the lighting is the same at the two points within the fill
+  // light's small change across the view.
+  const glm::vec4 white_ref = pixel(image, 47, 16);  // green texel, same row: compare against its light
+  EXPECT_NEAR(br.r / white_ref.g, 0.2158f, 0.01f) << "texels are sRGB-decoded before lighting";
+}
+
+TEST(RenderMaterials, FactorTextureAndVertexColorMultiply) {
+  const std::unique_ptr<GpuContext> context = context_or_skip();
+  if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
+  Material plain;
+  const Image reference = draw(*context, square(plain));  // white: the light alone
+  Material tinted;
+  tinted.base_color = {0.5f, 1.0f, 0.25f, 1.0f};
+  Asset asset = square(tinted, std::vector<glm::vec4>(4, glm::vec4(1.0f, 0.5f, 1.0f, 1.0f)));
+  add_texture(asset, {255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255, 255});
+  const Image image = draw(*context, asset);
+  for (const auto& [x, y] : {std::pair{10, 10}, std::pair{40, 50}}) {
+    const glm::vec4 light = pixel(reference, x, y), c = pixel(image, x, y);
+    EXPECT_NEAR(c.r / light.r, 0.5f, 2e-3f);
+    EXPECT_NEAR(c.g / light.g, 0.5f, 2e-3f);
+    EXPECT_NEAR(c.b / light.b, 0.25f, 2e-3f);
+  }
+}
+
+TEST(RenderMaterials, MaskCutsOutAndBlendMixesWithTheBackground) {
+  const std::unique_ptr<GpuContext> context = context_or_skip();
+  if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
+  const glm::vec4 background(0.0f, 0.0f, 1.0f, 1.0f);
+  // Left column alpha 0.2 (51), right column alpha 0.8 (204); white texels.
+  const std::array<uint8_t, 16> texels = {255, 255, 255, 51, 255, 255, 255, 204, 255, 255, 255, 51, 255, 255, 255, 204};
+  Material mask;
+  mask.alpha_mode = AlphaMode::kMask;
+  mask.alpha_cutoff = 0.5f;
+  Asset masked = square(mask);
+  add_texture(masked, texels);
+  const Image cut = draw(*context, masked, background);
+  EXPECT_EQ(pixel(cut, 16, 32), background) << "alpha 0.2 < cutoff 0.5: not drawn";
+  EXPECT_GT(pixel(cut, 48, 32).r, 0.3f) << "alpha 0.8: drawn, opaque";
+
+  Material blend;
+  blend.alpha_mode = AlphaMode::kBlend;
+  Asset blended = square(blend);
+  add_texture(blended, texels);
+  const Image mixed = draw(*context, blended, background);
+  const Image opaque = draw(*context, square(Material{}), background);
+  for (const auto& [x, alpha] : {std::pair{16, 0.2f}, std::pair{48, 0.8f}}) {
+    const glm::vec4 c = pixel(mixed, x, 32), lit = pixel(opaque, x, 32);
+    EXPECT_NEAR(c.r, alpha * lit.r, 2e-3f);
+    EXPECT_NEAR(c.b, alpha * lit.b + (1 - alpha) * background.b, 2e-3f);
+  }
+
+  Material opaque_material;  // OPAQUE ignores the texture's alpha
+  Asset ignored = square(opaque_material);
+  add_texture(ignored, texels);
+  EXPECT_NEAR(pixel(draw(*context, ignored, background), 16, 32).b, pixel(opaque, 16, 32).b, 1e-3f);
+}
+
+TEST(RenderMaterials, UndecodableTextureIsAnInputErrorNamingTheImage) {
+  const std::unique_ptr<GpuContext> context = context_or_skip();
+  if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
+  Asset asset = square(Material{});
+  add_texture(asset, {});
+  asset.images[0].bytes.resize(10);
+  asset.images[0].name = "broken";
+  EXPECT_THROW(draw(*context, asset), InputError);
+}
+
+}  // namespace
+}  // namespace dqskin
