@@ -6,6 +6,7 @@
 #include "../bake/bake_plan.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/gpu_deform.hpp"
+#include "ordered_worker.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -146,22 +147,30 @@ public:
     const std::string gif_file = clip.folder + "/animation" + suffix + ".gif";
     if (options_.gif) gif = std::make_unique<GifWriter>(options_.out_dir + "/" + gif_file, clip.fps > 0 ? clip.fps : options_.frames.fps);
 
-    for_each_frame(clip, mine, [&](size_t f, const FrameView& frame, const FrameView* other) {
-      check_cancel();
-      if (other) {
-        scalars_ = distances(frame, *other);
-        // Scaled by the animation's largest difference; an animation where both modes agree stays cold.
-        for (std::vector<float>& d : scalars_)
-          for (float& x : d) x = max_distance > 0 ? float(double(x) / max_distance) : 0.0f;
-      }
-      const Image image = renderer_.render(frame, camera_at(f), scalars_);
-      const std::string relative = clip.frame_file(f, extension(options_.format));
-      write_image(options_.out_dir + "/" + relative, image, options_.format, options_.overwrite);
-      report_.outputs.push_back(relative);
-      if (sheet) sheet->add(image, clip.numbers[f]);
-      if (gif) gif->add(image);
-      if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
-    });
+    // Encoding and writing a frame (PNG compression, the sheet's resize, the GIF's palette) runs on a
+    // thread of its own, in frame order, while this one renders the next frame: GL stays on this thread.
+    {
+      gpu::OrderedWorker<std::pair<size_t, Image>> writer([&](const std::pair<size_t, Image>& item) {
+        const auto& [f, image] = item;
+        const std::string relative = clip.frame_file(f, extension(options_.format));
+        write_image(options_.out_dir + "/" + relative, image, options_.format, options_.overwrite);
+        report_.outputs.push_back(relative);
+        if (sheet) sheet->add(image, clip.numbers[f]);
+        if (gif) gif->add(image);
+      });
+      for_each_frame(clip, mine, [&](size_t f, const FrameView& frame, const FrameView* other) {
+        check_cancel();
+        if (other) {
+          scalars_ = distances(frame, *other);
+          // Scaled by the animation's largest difference; an animation where both modes agree stays cold.
+          for (std::vector<float>& d : scalars_)
+            for (float& x : d) x = max_distance > 0 ? float(double(x) / max_distance) : 0.0f;
+        }
+        writer.push({f, renderer_.render(frame, camera_at(f), scalars_)});
+        if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
+      });
+      writer.finish();
+    }
     if (sheet) {
       const std::string relative = clip.folder + "/sheet" + suffix + ".png";
       sheet->write(options_.out_dir + "/" + relative, options_.overwrite);
