@@ -28,12 +28,17 @@ vec3 heat(float t) {
 }
 
 void main() {
-  vec3 n = has_normals ? normalize(world_normal) : normalize(cross(dFdx(world_position), dFdy(world_position)));
+  // The triangle's own normal, on the side that faces the camera (x right, y up in window coordinates,
+  // so the cross product points towards the viewer whatever the winding).
+  const vec3 face = cross(dFdx(world_position), dFdy(world_position));
+  vec3 n = has_normals ? normalize(world_normal) : normalize(face);
 #if defined(SHADE_NORMALS)
   color = vec4(0.5 * n + 0.5, 1.0);
 #else
-  // Two-sided: a surface seen from behind (open meshes, mirrored winding) is lit as its front.
-  if (dot(n, eye - world_position) < 0.0) n = -n;
+  // Two-sided: a surface seen from behind (open meshes, mirrored winding) is lit as its front. The side is
+  // the triangle's, not the interpolated normal's: along a silhouette a smooth normal can point slightly
+  // away from the eye on a triangle that faces it, and flipping it there lit the edge as if from above.
+  if (dot(n, face) < 0.0) n = -n;
   const float diffuse = max(dot(n, key_direction), 0.0);
   // Ambient plus key; a fill from the camera keeps faces turned away from the key readable.
   const float fill = 0.2 * max(dot(n, normalize(eye - world_position)), 0.0);

@@ -6,7 +6,12 @@ set(rig ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
 function(dqskin_bake_test name expected)
   dqskin_cli_test(cli.bake_${name} ${expected} ${ARGN} ENVIRONMENT "TMPDIR=${bake_scratch}/tmp" ${bake_test_environment})
+  set_property(TEST cli.bake_${name} APPEND PROPERTY FIXTURES_REQUIRED bake_scratch)
 endfunction()
+# Every run starts from an empty scratch folder (with the TMPDIR the default-input bake writes into), so
+# that outputs of an earlier build are not "existing files with different contents".
+add_test(NAME cli.bake_clean_scratch COMMAND sh -c "rm -rf '${bake_scratch}' && mkdir -p '${bake_scratch}/tmp'")
+set_tests_properties(cli.bake_clean_scratch PROPERTIES FIXTURES_SETUP bake_scratch)
 
 dqskin_bake_test(help 0 ARGS bake --help
   STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--format.*--backend.*--shard.*--jobs.*--dry-run.*--quiet.*--json-progress.*--force.*Exit status")

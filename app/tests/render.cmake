@@ -6,7 +6,12 @@ set(render_rig ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
 function(dqskin_render_test name expected)
   dqskin_cli_test(cli.render_${name} ${expected} ${ARGN} ENVIRONMENT ${bake_test_environment} LABELS gpu)
+  set_property(TEST cli.render_${name} APPEND PROPERTY FIXTURES_REQUIRED render_scratch)
 endfunction()
+# Every run starts from an empty scratch folder: images from an earlier build's shaders would otherwise be
+# "existing files with different contents" to the tests that render without --force.
+add_test(NAME cli.render_clean_scratch COMMAND ${CMAKE_COMMAND} -E rm -rf ${render_scratch})
+set_tests_properties(cli.render_clean_scratch PROPERTIES FIXTURES_SETUP render_scratch)
 
 dqskin_render_test(help 0 ARGS render --help
   STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--camera.*--format.*--sheet.*--sheet-cell.*--gif.*--quiet.*--json-progress.*Exit status")
