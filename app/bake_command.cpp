@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "default_input.hpp"
 #include "exit_codes.hpp"
+#include "input_messages.hpp"
 #include "interrupt.hpp"
 
 #include "dqskin/bake.hpp"
@@ -116,8 +117,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                      .dump()
               << std::endl;
   }
-  for (const BakeInputResult& in : r.inputs)
-    if (!in.error.empty()) std::cerr << "dqskin: " << in.path << ": " << in.error << '\n';
+  print_input_messages(r.inputs, s.quiet);
   const bool all_failed = std::all_of(r.inputs.begin(), r.inputs.end(), [](const BakeInputResult& in) { return !in.error.empty(); });
   if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
   const BakeStageTimes& t = r.times;
@@ -162,8 +162,7 @@ int run_bake(const BakeSettings& given) {
     progress.done();
     if (options.dry_run) {
       for (const BakeOutput& o : report.outputs) std::cout << options.out_dir << '/' << o.path << '\n';
-      for (const BakeInputResult& in : report.inputs)
-        if (!in.error.empty()) std::cerr << "dqskin: " << in.path << ": " << in.error << '\n';
+      print_input_messages(report.inputs, settings.quiet);
     } else {
       print_summary(settings, report);
     }

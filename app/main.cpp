@@ -121,8 +121,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   render_cmd->add_option("--shade", render.shade,
                          "lit (material base color factor, texture and COLOR_0; key light and ambient), normals (world normal as color), "
-                         "weights (influence of --joint as a heat map), mode-diff (distance between the lbs and dqs "
-                         "positions as a heat map, its scale printed)")
+                         "weights (influence of --joint as a heat map), mode-diff (distance between the lbs positions and "
+                         "those of --mode, dqs by default, as a heat map, its scale printed)")
       ->type_name("lit|normals|weights|mode-diff")
       ->capture_default_str();
   render_cmd->add_option("--joint", render.joint, "Joint node shown by --shade weights")->type_name("NAME");
@@ -159,8 +159,10 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("-f,--force", render.force,
                        "Overwrite existing images that differ (without it they are an error; equal ones are kept)");
   render_cmd->footer(
-      "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{png,exr}, frame numbers as bake names them. The camera\n"
-      "is framed once on the bounding box of the whole animation, so the frames of an animation are comparable.\n"
+      "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{png,exr}, frame numbers as bake names them. The\n"
+      "automatic camera is framed once on the bounding box of the whole animation, so the frames of an animation\n"
+      "are comparable; --camera follows its node's animation, and the image keeps the camera's yfov (ymag) in the\n"
+      "image's aspect ratio, never stretched.\n"
       "Surfaces are drawn from both sides (open meshes and mirrored instances stay visible); alphaMode MASK cuts\n"
       "out, BLEND is blended after the opaque surfaces in file order.\n"
       "--sheet and --gif show the frames this run renders; with --shard I/N only the shard's own frames, in\n"

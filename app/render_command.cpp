@@ -2,6 +2,7 @@
 // images, with bake's frame, animation, mode, backend and shard flags and its exit statuses.
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "input_messages.hpp"
 #include "interrupt.hpp"
 
 #include "dqskin/error.hpp"
@@ -75,10 +76,7 @@ RenderOptions to_options(const RenderSettings& s) {
   o.clips = s.selection.anim;
   o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
-  GpuBackend backend = GpuBackend::kAuto;
-  if (s.backend != "cpu" && !parse_gpu_backend(s.backend, backend))
-    throw InputError("--backend '" + s.backend + "' is not one of auto, egl, osmesa, cpu");
-  o.backend = s.backend;
+  o.backend = s.backend;  // checked by render()
   o.scene = s.scene;
   if (!s.shard.empty()) {
     BakeOptions shard;
@@ -140,8 +138,7 @@ int run_render(const RenderSettings& settings) {
     const RenderReport report =
         render(settings.inputs, options, [&](const BakeProgress& p) { report_progress(settings, p, start); });
     clear_bar();
-    for (const BakeInputResult& in : report.inputs)
-      if (!in.error.empty()) std::cerr << "dqskin: " << in.path << ": " << in.error << '\n';
+    print_input_messages(report.inputs, settings.quiet);
     const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
                                                [](const BakeInputResult& r) { return !r.error.empty(); }));
     // mode-diff: what the heat map's top color stands for, per animation.

@@ -59,6 +59,17 @@ dqskin_render_test(camera_with_yaw_exits_2 2 ARGS render ${camera_rig} -o ${rend
 dqskin_render_test(camera_sets_the_size 0 ARGS render ${camera_rig} -o ${render_scratch}/camera --camera dolly --times 0 --quiet)
 add_test(NAME cli.render_camera_size COMMAND ${CMAKE_COMMAND} -DPNG=${render_scratch}/camera/camera_dolly/bend/frame_0000.png
   -DWIDTH=768 -DHEIGHT=512 -P ${PROJECT_SOURCE_DIR}/app/tests/png_size.cmake)
+set_tests_properties(cli.render_camera_size PROPERTIES LABELS gpu)
+# A camera the loader finds invalid (znear 0) is a warning for a render that does not use it, and the
+# input's error for one that does. The file is camera_dolly.gltf with that one value changed.
+file(READ ${camera_rig} bad_camera_json)
+string(JSON bad_camera_json SET "${bad_camera_json}" cameras 0 perspective znear 0)
+set(bad_camera_rig ${CMAKE_CURRENT_BINARY_DIR}/bad_camera.gltf)
+file(WRITE ${bad_camera_rig} "${bad_camera_json}")
+dqskin_render_test(loader_warnings_are_printed 0 ARGS render ${bad_camera_rig} -o ${render_scratch}/bad_camera --times 0 --size 32x32
+  STDERR "^dqskin: [^\n]*bad_camera.gltf: warning: camera 0: znear must be above 0. it cannot be rendered through\nrendered 1 frames")
+dqskin_render_test(invalid_camera_fails_the_input 2 ARGS render ${bad_camera_rig} -o ${render_scratch}/bad_camera --camera dolly --times 0
+  STDERR "^dqskin: [^\n]*bad_camera.gltf: camera 0: znear must be above 0. it cannot be rendered through\n$")
 set_tests_properties(cli.render_camera_sets_the_size PROPERTIES FIXTURES_SETUP render_camera)
 set_tests_properties(cli.render_camera_size PROPERTIES FIXTURES_REQUIRED render_camera)
 dqskin_render_test(bad_shard_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --shard 2/2

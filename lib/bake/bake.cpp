@@ -284,7 +284,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
 
   if (options.dry_run) {
     for (const InputPlan& plan : plans) {
-      report.inputs.push_back({plan.path, plan.error, 0});
+      report.inputs.push_back({plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}});
       for (const ClipPlan& clip : plan.clips)
         for (std::string& file : planned_files(plan, clip, options.formats)) report.outputs.push_back({std::move(file), 0, {}, false});
     }
@@ -299,7 +299,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   }
   Ledger ledger{options, progress, report, {}, 0};
   for (const InputPlan& plan : plans) {
-    BakeInputResult result{plan.path, plan.error, 0};
+    BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
       try {
         if (!cpu && !context) {

@@ -226,7 +226,8 @@ GltfBuilder textured_triangle(const std::string& color_type) {
   attributes["TEXCOORD_0"] = b.accessor({{"bufferView", b.view(std::vector<float>{0, 0, 1, 0, 0, 1})},
                                          {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}});
   // Normalized unsigned bytes, as §3.7.2.1 allows for texture coordinates: 255 = 1.
-  attributes["TEXCOORD_1"] = b.accessor({{"bufferView", b.view(std::vector<uint8_t>{0, 0, 255, 0, 0, 255, 0, 0})},
+  // Vertex attributes are 4-byte aligned (§3.6.2.4): two bytes of padding per element, stride 4.
+  attributes["TEXCOORD_1"] = b.accessor({{"bufferView", b.view(std::vector<uint8_t>{0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0, 0}, 4)},
                                          {"componentType", 5121}, {"normalized", true}, {"count", 3}, {"type", "VEC2"}});
   if (color_type == "VEC3")
     attributes["COLOR_0"] = b.accessor({{"bufferView", b.view(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1})},
@@ -350,6 +351,13 @@ TEST(LoadWarnings, BadAppearanceAndCamerasAreDroppedWithAWarning) {
        [](const Asset& a) { return !a.cameras[1].problem.empty(); }},
       {"node 2: camera 7 does not exist; it is ignored", [](json& d) { d["nodes"][2]["camera"] = 7; },
        [](const Asset& a) { return a.nodes[2].camera == -1; }},
+      {"COLOR_0 has 2 elements, POSITION has 3; COLOR_0 is ignored",
+       [](json& d) { d["accessors"][d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"].get<size_t>()]["count"] = 2; },
+       [](const Asset& a) { return a.meshes[0].primitives[0].colors.empty(); }},
+      {"TEXCOORD_1 (accessor 2): has unsigned byte components that are not normalized; TEXCOORD_1 is ignored", [](json& d) {
+         d["accessors"][d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"].get<size_t>()].erase("normalized");
+       },
+       [](const Asset& a) { return a.meshes[0].primitives[0].uv1.empty() && !a.meshes[0].primitives[0].uv0.empty(); }},
   };
   for (const Case& c : cases) {
     GltfBuilder b = textured_triangle("VEC3");
@@ -359,7 +367,9 @@ TEST(LoadWarnings, BadAppearanceAndCamerasAreDroppedWithAWarning) {
       const bool warned = std::any_of(asset.warnings.begin(), asset.warnings.end(), [&](const std::string& w) {
         return w.find(c.expected) != std::string::npos;
       });
-      EXPECT_TRUE(warned) << c.expected;
+      std::string all;
+      for (const std::string& w : asset.warnings) all += "\n  " + w;
+      EXPECT_TRUE(warned) << c.expected << "\nwarnings:" << all;
       EXPECT_TRUE(c.dropped(asset)) << c.expected;
       EXPECT_EQ(asset.meshes[0].primitives[0].positions.size(), 3u) << "the geometry still loads";
     } catch (const std::exception& e) {

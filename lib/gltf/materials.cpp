@@ -11,15 +11,15 @@ namespace {
 struct Problem {
   std::string message;
 };
-[[noreturn]] void fail(const std::string& message) { throw Problem{message}; }
+[[noreturn]] void drop(const std::string& message) { throw Problem{message}; }
 
 std::string at(const char* kind, size_t index) { return std::string(kind) + " " + std::to_string(index); }
 
 TextureRef read_texture_ref(const tinygltf::TextureInfo& info, size_t textures, const std::string& what) {
   TextureRef ref;
   if (info.index < 0) return ref;
-  if (size_t(info.index) >= textures) fail(what + ": texture " + std::to_string(info.index) + " does not exist");
-  if (info.texCoord < 0) fail(what + ": texCoord must be at least 0");
+  if (size_t(info.index) >= textures) drop(what + ": texture " + std::to_string(info.index) + " does not exist");
+  if (info.texCoord < 0) drop(what + ": texCoord must be at least 0");
   ref.texture = info.index;
   ref.texcoord = info.texCoord;
   return ref;
@@ -46,15 +46,19 @@ void read_materials(const tinygltf::Model& m, Asset& asset) {
     or_warn(asset, "white is used", [&] {
       const std::vector<double>& factor = mat.pbrMetallicRoughness.baseColorFactor;
       // §5.22.2: four components, each in [0, 1]
-      if (factor.size() != 4) fail(what + ": baseColorFactor must have 4 numbers");
+      if (factor.size() != 4) drop(what + ": baseColorFactor must have 4 numbers");
       for (double x : factor)
-        if (!(x >= 0 && x <= 1)) fail(what + ": baseColorFactor must be 4 numbers in [0, 1]");
+        if (!(x >= 0 && x <= 1)) drop(what + ": baseColorFactor must be 4 numbers in [0, 1]");
       for (int c = 0; c < 4; ++c) out.base_color[c] = float(factor[size_t(c)]);
     });
     or_warn(asset, "it is drawn without the texture", [&] {
       out.base_color_texture =
           read_texture_ref(mat.pbrMetallicRoughness.baseColorTexture, m.textures.size(), what + " baseColorTexture");
     });
+    if (out.base_color_texture.texture >= 0 &&
+        mat.pbrMetallicRoughness.baseColorTexture.extensions.count("KHR_texture_transform"))
+      asset.warnings.push_back(what + ": its base color texture has KHR_texture_transform, which dqskin does not " +
+                               "apply; it is drawn untransformed");
     if (out.base_color_texture.texcoord > 1)
       asset.warnings.push_back(what + ": its base color texture reads TEXCOORD_" +
                                std::to_string(out.base_color_texture.texcoord) +
@@ -63,10 +67,10 @@ void read_materials(const tinygltf::Model& m, Asset& asset) {
     or_warn(asset, "it is drawn opaque", [&] {
       if (mat.alphaMode == "MASK") out.alpha_mode = AlphaMode::kMask;
       else if (mat.alphaMode == "BLEND") out.alpha_mode = AlphaMode::kBlend;
-      else if (mat.alphaMode != "OPAQUE") fail(what + ": alphaMode '" + mat.alphaMode + "' is not OPAQUE, MASK or BLEND");
+      else if (mat.alphaMode != "OPAQUE") drop(what + ": alphaMode '" + mat.alphaMode + "' is not OPAQUE, MASK or BLEND");
     });
     or_warn(asset, "0.5 is used", [&] {
-      if (!(mat.alphaCutoff >= 0) || !std::isfinite(mat.alphaCutoff)) fail(what + ": alphaCutoff must be at least 0");
+      if (!(mat.alphaCutoff >= 0) || !std::isfinite(mat.alphaCutoff)) drop(what + ": alphaCutoff must be at least 0");
       out.alpha_cutoff = float(mat.alphaCutoff);
     });
     asset.materials.push_back(std::move(out));
@@ -91,11 +95,11 @@ bool one_of(int value, std::initializer_list<int> allowed) {
 Sampler read_sampler(const tinygltf::Sampler& s, const std::string& what) {
   // §5.26: the allowed OpenGL enum values; filters may be left undefined (tinygltf: -1).
   constexpr int kNearest = 9728, kLinear = 9729;
-  if (s.magFilter != -1 && !one_of(s.magFilter, {kNearest, kLinear})) fail(what + ": magFilter " + std::to_string(s.magFilter) + " is not allowed");
+  if (s.magFilter != -1 && !one_of(s.magFilter, {kNearest, kLinear})) drop(what + ": magFilter " + std::to_string(s.magFilter) + " is not allowed");
   if (s.minFilter != -1 && !one_of(s.minFilter, {kNearest, kLinear, 9984, 9985, 9986, 9987}))
-    fail(what + ": minFilter " + std::to_string(s.minFilter) + " is not allowed");
+    drop(what + ": minFilter " + std::to_string(s.minFilter) + " is not allowed");
   for (int wrap : {s.wrapS, s.wrapT})
-    if (!one_of(wrap, {33071, 33648, 10497})) fail(what + ": wrap mode " + std::to_string(wrap) + " is not allowed");
+    if (!one_of(wrap, {33071, 33648, 10497})) drop(what + ": wrap mode " + std::to_string(wrap) + " is not allowed");
   Sampler out;
   out.mag_filter = s.magFilter == -1 ? 0 : s.magFilter;
   out.min_filter = s.minFilter == -1 ? 0 : s.minFilter;
@@ -110,12 +114,14 @@ void read_textures(const tinygltf::Model& m, Asset& asset) {
     const std::string what = at("texture", i);
     Texture out;
     or_warn(asset, "textures using it are not drawn", [&] {
-      if (t.source >= 0 && size_t(t.source) >= m.images.size()) fail(what + ": image " + std::to_string(t.source) + " does not exist");
+      if (t.source >= 0 && size_t(t.source) >= m.images.size()) drop(what + ": image " + std::to_string(t.source) + " does not exist");
+      // KHR_texture_basisu and EXT_texture_webp may leave out the core source (a PNG or JPEG fallback).
+      if (t.source < 0) drop(what + ": has no PNG or JPEG source (only an extension's image, which dqskin does not read)");
       out.image = t.source;
     });
     or_warn(asset, "the default sampler is used", [&] {
       if (t.sampler >= 0 && size_t(t.sampler) >= m.samplers.size())
-        fail(what + ": sampler " + std::to_string(t.sampler) + " does not exist");
+        drop(what + ": sampler " + std::to_string(t.sampler) + " does not exist");
       if (t.sampler >= 0) out.sampler = read_sampler(m.samplers[size_t(t.sampler)], at("sampler", size_t(t.sampler)));
     });
     asset.textures.push_back(out);
@@ -136,15 +142,15 @@ void read_textures(const tinygltf::Model& m, Asset& asset) {
 void read_camera(const tinygltf::Camera& c, const std::string& what, SceneCamera& out) {
   auto finite = [&](std::initializer_list<double> values) {
     for (double v : values)
-      if (!std::isfinite(v)) fail(what + ": has a number that is not finite");
+      if (!std::isfinite(v)) drop(what + ": has a number that is not finite");
   };
   if (c.type == "perspective") {
     const tinygltf::PerspectiveCamera& p = c.perspective;
     finite({p.yfov, p.znear, p.zfar, p.aspectRatio});
-    if (!(p.yfov > 0)) fail(what + ": yfov must be above 0");
-    if (!(p.znear > 0)) fail(what + ": znear must be above 0");
-    if (p.zfar != 0 && !(p.zfar > p.znear)) fail(what + ": zfar must be above znear");
-    if (p.aspectRatio < 0) fail(what + ": aspectRatio must be above 0");
+    if (!(p.yfov > 0)) drop(what + ": yfov must be above 0");
+    if (!(p.znear > 0)) drop(what + ": znear must be above 0");
+    if (p.zfar != 0 && !(p.zfar > p.znear)) drop(what + ": zfar must be above znear");
+    if (p.aspectRatio < 0) drop(what + ": aspectRatio must be above 0");
     out.yfov = p.yfov;
     out.aspect_ratio = p.aspectRatio;
     out.znear = p.znear;
@@ -153,15 +159,15 @@ void read_camera(const tinygltf::Camera& c, const std::string& what, SceneCamera
     const tinygltf::OrthographicCamera& o = c.orthographic;
     finite({o.xmag, o.ymag, o.znear, o.zfar});
     out.orthographic = true;
-    if (o.xmag == 0 || o.ymag == 0) fail(what + ": xmag and ymag must not be 0");
-    if (!(o.znear >= 0)) fail(what + ": znear must be at least 0");
-    if (!(o.zfar > o.znear)) fail(what + ": zfar must be above znear");
+    if (o.xmag == 0 || o.ymag == 0) drop(what + ": xmag and ymag must not be 0");
+    if (!(o.znear >= 0)) drop(what + ": znear must be at least 0");
+    if (!(o.zfar > o.znear)) drop(what + ": zfar must be above znear");
     out.xmag = o.xmag;
     out.ymag = o.ymag;
     out.znear = o.znear;
     out.zfar = o.zfar;
   } else {
-    fail(what + ": type '" + c.type + "' is not perspective or orthographic");
+    drop(what + ": type '" + c.type + "' is not perspective or orthographic");
   }
 }
 

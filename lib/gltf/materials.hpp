@@ -9,7 +9,8 @@
 namespace dqskin::gltf {
 
 // Fills asset.materials, textures, images and cameras (meshes must be read already: their material
-// indices are checked here). Throws InputError naming the object and the problem.
+// indices are checked here). Never throws for a bad value or reference here: that part is dropped (or
+// its default used) and asset.warnings names the object and the problem.
 void read_appearance(const tinygltf::Model& model, Asset& asset);
 
 }  // namespace dqskin::gltf

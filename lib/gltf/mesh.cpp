@@ -56,7 +56,7 @@ int find_attribute(const std::map<std::string, int>& attributes, const std::stri
 }
 
 Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& reader, const Shapes& shape,
-                         const std::string& what) {
+                         const std::string& what, std::vector<std::string>& warnings) {
   Primitive prim;
   if (p.mode < 0 || p.mode > 6) fail(what + ": mode " + std::to_string(p.mode) + " is not a glTF primitive mode");
   prim.mode = PrimitiveMode(p.mode);
@@ -80,22 +80,33 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
     same_count(a, "TANGENT");
     prim.tangents = to_vectors<glm::vec4>(reader.floats(a, shape.tangent, what + " TANGENT"));
   }
-  for (int set = 0; set < 2; ++set) {
-    const std::string name = "TEXCOORD_" + std::to_string(set);
-    if (const int a = find_attribute(p.attributes, name); a >= 0) {
-      same_count(a, name);
-      (set == 0 ? prim.uv0 : prim.uv1) = to_vectors<glm::vec2>(reader.floats(a, shape.texcoord, what + " " + name));
-    }
+  if (const int a = find_attribute(p.attributes, "TEXCOORD_0"); a >= 0) {
+    same_count(a, "TEXCOORD_0");
+    prim.uv0 = to_vectors<glm::vec2>(reader.floats(a, shape.texcoord, what + " TEXCOORD_0"));
   }
-  if (const int a = find_attribute(p.attributes, "COLOR_0"); a >= 0) {
-    same_count(a, "COLOR_0");
-    const std::vector<float> c = reader.floats(a, shape.color, what + " COLOR_0");
-    if (reader.components(a, what + " COLOR_0") == 4) {
-      prim.colors = to_vectors<glm::vec4>(c);
-    } else {
-      prim.colors.resize(n);
-      for (size_t v = 0; v < n; ++v) prim.colors[v] = {c[3 * v], c[3 * v + 1], c[3 * v + 2], 1.0f};
+  // Only the renderer reads these, and they do not move the surface: a bad one is dropped with a warning
+  // (as materials.cpp does), so that the file still bakes.
+  try {
+    if (const int a = find_attribute(p.attributes, "TEXCOORD_1"); a >= 0) {
+      same_count(a, "TEXCOORD_1");
+      prim.uv1 = to_vectors<glm::vec2>(reader.floats(a, shape.texcoord, what + " TEXCOORD_1"));
     }
+  } catch (const InputError& e) {
+    warnings.push_back(std::string(e.what()) + "; TEXCOORD_1 is ignored");
+  }
+  try {
+    if (const int a = find_attribute(p.attributes, "COLOR_0"); a >= 0) {
+      same_count(a, "COLOR_0");
+      const std::vector<float> c = reader.floats(a, shape.color, what + " COLOR_0");
+      if (reader.components(a, what + " COLOR_0") == 4) {
+        prim.colors = to_vectors<glm::vec4>(c);
+      } else {
+        prim.colors.resize(n);
+        for (size_t v = 0; v < n; ++v) prim.colors[v] = {c[3 * v], c[3 * v + 1], c[3 * v + 2], 1.0f};
+      }
+    }
+  } catch (const InputError& e) {
+    warnings.push_back(std::string(e.what()) + "; COLOR_0 is ignored");
   }
   if (p.indices >= 0) {
     prim.indices = reader.uints(p.indices, {{TINYGLTF_TYPE_SCALAR}, {kUByte, kUShort, kUInt}}, what + " indices");
@@ -212,7 +223,8 @@ void read_meshes(const tinygltf::Model& model, const AccessorReader& reader, Ass
     out.name = mesh.name;
     if (mesh.primitives.empty()) fail(what + ": has no primitives");
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-      out.primitives.push_back(read_primitive(mesh.primitives[p], reader, shape, what + " primitive " + std::to_string(p)));
+      out.primitives.push_back(
+          read_primitive(mesh.primitives[p], reader, shape, what + " primitive " + std::to_string(p), asset.warnings));
       if (out.primitives.back().targets.size() != out.primitives.front().targets.size())
         fail(what + ": its primitives have different numbers of morph targets");
     }

@@ -1,6 +1,7 @@
 // One worker thread that consumes items in the order they are pushed, with at most one item waiting:
 // the producer makes item n + 1 while the worker handles item n (internal; the GPU deformer hands read-back
-// batches to the caller's sink this way, so writing outputs overlaps the next dispatch).
+// batches to the caller's sink this way, so writing outputs overlaps the next dispatch, and render writes
+// each image while the next one is drawn).
 #pragma once
 
 #include <condition_variable>

@@ -104,16 +104,30 @@ Camera scene_camera(const SceneCamera& sc, const Mat4<double>& world, double asp
   Camera camera;
   camera.eye = glm::vec3(eye);
   camera.view = glm::mat4(glm::lookAt(eye, eye + forward, up));
+  // §3.10.3's matrices, with the image's aspect ratio in place of the camera's, so that an image is never
+  // stretched: a perspective camera keeps its yfov, an orthographic one its ymag.
   if (sc.orthographic) {
-    camera.projection = glm::mat4(glm::ortho(-sc.xmag, sc.xmag, -sc.ymag, sc.ymag, sc.znear, sc.zfar));
+    const double xmag = std::abs(sc.ymag) * aspect;
+    camera.projection = glm::mat4(glm::ortho(-xmag, xmag, -std::abs(sc.ymag), std::abs(sc.ymag), sc.znear, sc.zfar));
   } else {
     if (!(sc.yfov < glm::pi<double>()))
       throw InputError("camera '" + sc.name + "': a yfov of pi or more cannot be drawn");
-    const double a = sc.aspect_ratio > 0 ? sc.aspect_ratio : aspect;
-    camera.projection = glm::mat4(sc.zfar > 0 ? glm::perspective(sc.yfov, a, sc.znear, sc.zfar)
-                                              : glm::infinitePerspective(sc.yfov, a, sc.znear));
+    camera.projection = glm::mat4(sc.zfar > 0 ? glm::perspective(sc.yfov, aspect, sc.znear, sc.zfar)
+                                              : glm::infinitePerspective(sc.yfov, aspect, sc.znear));
   }
+  // Values that are finite in double can overflow float (znear 1e200, yfov 1e-40): every frame would
+  // come out empty.
+  for (const glm::mat4* m : {&camera.view, &camera.projection})
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite((*m)[c][r]))
+          throw InputError("camera '" + sc.name + "': its values overflow single precision (znear, zfar, yfov, xmag, "
+                           "ymag or the node's position)");
   return camera;
+}
+
+const SceneCamera& camera_of_node(const Asset& asset, int node) {
+  return asset.cameras[size_t(asset.nodes[size_t(node)].camera)];
 }
 
 bool parse_shade(const std::string& text, Shade& shade) {

@@ -1,6 +1,6 @@
 // `dqskin render` as a library call: inputs planned as bake plans them, each clip deformed (on the GPU, or
-// on the CPU reference for dib) once for its bounding box and once more, a chunk of frames at a time, to
-// render this shard's frames.
+// on the CPU reference for dib and --backend cpu) once for its bounding box (unless a glTF camera needs
+// none) and once more, a chunk of frames at a time, to render this shard's frames.
 #include "dqskin/render.hpp"
 
 #include "../bake/bake_plan.hpp"
@@ -77,10 +77,12 @@ private:
 // the user, the width follows that ratio.
 RendererOptions renderer_options(const InputPlan& input, const RenderOptions& options, int camera_node) {
   RendererOptions r = options.renderer;
-  if (camera_node < 0 || !options.size_from_camera) return r;
-  const SceneCamera& camera = input.asset->cameras[size_t(input.asset->nodes[size_t(camera_node)].camera)];
-  const double ratio = camera.orthographic ? camera.xmag / camera.ymag : camera.aspect_ratio;
-  if (ratio > 0) r.width = int(std::clamp(std::lround(double(r.height) * std::abs(ratio)), 1L, 16384L));
+  if (camera_node < 0) return r;
+  const SceneCamera& camera = camera_of_node(*input.asset, camera_node);
+  if (!camera.problem.empty()) throw InputError(camera.problem);  // before any frame is deformed
+  if (!options.size_from_camera) return r;
+  const double ratio = camera.orthographic ? std::abs(camera.xmag / camera.ymag) : camera.aspect_ratio;
+  if (ratio > 0 && std::isfinite(ratio)) r.width = int(std::lround(std::clamp(double(r.height) * ratio, 1.0, 16384.0)));
   return r;
 }
 
@@ -131,7 +133,7 @@ public:
       if (camera_node_ < 0) return frame_camera(box, options_.camera, aspect);
       const Asset& asset = *input_.asset;
       const Mat4<double> world = sample_pose(asset, clip.clip, clip.times[f]).world[size_t(camera_node_)];
-      return scene_camera(asset.cameras[size_t(asset.nodes[size_t(camera_node_)].camera)], world, aspect);
+      return scene_camera(camera_of_node(asset, camera_node_), world, aspect);
     };
     if (other_) report_.mode_diff.push_back({input_.path, clip.name, max_distance});
 
@@ -157,6 +159,7 @@ public:
         report_.outputs.push_back(relative);
         if (sheet) sheet->add(image, clip.numbers[f]);
         if (gif) gif->add(image);
+        if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
       });
       for_each_frame(clip, mine, [&](size_t f, const FrameView& frame, const FrameView* other) {
         check_cancel();
@@ -167,7 +170,6 @@ public:
             for (float& x : d) x = max_distance > 0 ? float(double(x) / max_distance) : 0.0f;
         }
         writer.push({f, renderer_.render(frame, camera_at(f), scalars_)});
-        if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
       });
       writer.finish();
     }
@@ -261,7 +263,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
   std::unique_ptr<GpuContext> context;
   size_t done = 0;
   for (const InputPlan& plan : plans) {
-    BakeInputResult result{plan.path, plan.error, 0};
+    BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
       try {
         if (!context) {

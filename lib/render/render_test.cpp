@@ -316,25 +316,24 @@ glm::dvec3 ndc(const Camera& camera, const glm::dvec3& world) {
   return glm::dvec3(clip) / clip.w;
 }
 
-TEST(SceneCamera, PerspectiveLooksDownLocalMinusZWithItsAspectRatio) {
+TEST(SceneCamera, PerspectiveLooksDownLocalMinusZInTheImagesAspectRatio) {
   SceneCamera perspective;
   perspective.yfov = 0.8;
-  perspective.aspect_ratio = 2.0;
+  perspective.aspect_ratio = 3.0;  // sets the default image size; the projection uses the image's ratio
   perspective.znear = 0.5;
   perspective.zfar = 100;
   Mat4<double> world(1.0);
   world[3] = {1, 2, 5, 1};  // at (1, 2, 5), looking towards −z
-  const Camera camera = scene_camera(perspective, world, 1.0);  // the camera's 2:1 wins over the image's 1:1
+  const Camera camera = scene_camera(perspective, world, 2.0);
   const double half_height = 5 * std::tan(0.4);
   EXPECT_NEAR(ndc(camera, {1, 2, 0}).x, 0, 1e-6);
   EXPECT_NEAR(ndc(camera, {1, 2, 0}).y, 0, 1e-6);
   EXPECT_NEAR(ndc(camera, {1, 2 + half_height, 0}).y, 1, 1e-5);
-  EXPECT_NEAR(ndc(camera, {1 + 2 * half_height, 2, 0}).x, 1, 1e-5);
+  EXPECT_NEAR(ndc(camera, {1 + 2 * half_height, 2, 0}).x, 1, 1e-5) << "not stretched to the camera's 3:1";
   EXPECT_NEAR(ndc(camera, {1, 2, 4.5}).z, -1, 1e-5) << "znear maps to −1";
   EXPECT_EQ(camera.eye, glm::vec3(1, 2, 5));
 
-  // Without an aspect ratio, the image's; without zfar, an infinite projection (−1 and −2 znear).
-  perspective.aspect_ratio = 0;
+  // Without zfar, an infinite projection (§3.10.3: −1 and −2 znear in the third row and column).
   perspective.zfar = 0;
   const Camera infinite = scene_camera(perspective, world, 0.5);
   EXPECT_NEAR(ndc(infinite, {1 + 0.5 * half_height, 2, 0}).x, 1, 1e-5);
@@ -359,7 +358,7 @@ TEST(SceneCamera, ScaleInTheNodeMatrixDoesNotChangeTheView) {
   EXPECT_THROW(scene_camera(perspective, flat, 1.0), InputError);
 }
 
-TEST(SceneCamera, OrthographicShowsXmagByYmag) {
+TEST(SceneCamera, OrthographicShowsYmagAndTheImagesWidth) {
   SceneCamera ortho;
   ortho.orthographic = true;
   ortho.xmag = 2;
@@ -368,11 +367,13 @@ TEST(SceneCamera, OrthographicShowsXmagByYmag) {
   ortho.zfar = 10;
   Mat4<double> world(1.0);
   world[3] = {0, 0, 5, 1};
-  const Camera camera = scene_camera(ortho, world, 1.0);
+  const Camera camera = scene_camera(ortho, world, 2.0);  // the camera's own 2:1
   const glm::dvec3 corner = ndc(camera, {2, 1, -3});
   EXPECT_NEAR(corner.x, 1, 1e-6);
   EXPECT_NEAR(corner.y, 1, 1e-6);
   EXPECT_NEAR(ndc(camera, {-2, -1, 2}).x, -1, 1e-6);
+  // A square image keeps ymag and shows as much width: x = 1 at the edge.
+  EXPECT_NEAR(ndc(scene_camera(ortho, world, 1.0), {1, 1, 0}).x, 1, 1e-6);
 }
 
 TEST(SceneCamera, InvalidCameraAndUnknownNodeAreInputErrors) {
@@ -380,6 +381,10 @@ TEST(SceneCamera, InvalidCameraAndUnknownNodeAreInputErrors) {
   wide.yfov = 3.2;  // more than π
   wide.znear = 0.1;
   EXPECT_THROW(scene_camera(wide, Mat4<double>(1.0), 1.0), InputError);
+  SceneCamera far_away;  // finite in double, not in float: −2 znear overflows
+  far_away.yfov = 0.5;
+  far_away.znear = 1e200;
+  EXPECT_THROW(scene_camera(far_away, Mat4<double>(1.0), 1.0), InputError);
   SceneCamera broken;
   broken.problem = "camera 0: znear must be above 0; it cannot be rendered through";
   try {

@@ -156,13 +156,13 @@ struct Renderer::Impl {
         }
         GLuint* buffers[] = {&p.positions, &p.normals, &p.scalars, &p.uvs, &p.colors};
         for (GLuint* b : buffers) gl.GenBuffers(1, b);
-        if (triangles && src.material >= 0) use_material(asset, src, p, decoded);
+        prims.push_back(p);  // owned by release() from here on, even if the material below throws
+        if (triangles && src.material >= 0) use_material(asset, src, prims.back(), decoded);
         // Attributes that do not change from frame to frame are set once, in the VAO.
         std::span<const float> colors;
         if (!src.colors.empty()) colors = {&src.colors[0].x, src.colors.size() * 4};
         attribute(p.colors, kColorLocation, 4, colors);
         gl.BindVertexArray(0);
-        prims.push_back(p);
       }
     }
   }
@@ -172,9 +172,10 @@ struct Renderer::Impl {
   void use_material(const Asset& asset, const Primitive& src, Prim& p, std::map<int, Image8>& decoded) {
     const Material& material = asset.materials[size_t(src.material)];
     p.base_color = material.base_color;
-    p.alpha_mode = material.alpha_mode;
     p.alpha_cutoff = material.alpha_cutoff;
+    p.alpha_mode = options.shade == Shade::kLit ? material.alpha_mode : AlphaMode::kOpaque;
     const TextureRef& ref = material.base_color_texture;
+    if (options.shade != Shade::kLit) return;  // only lit shows the material; the others show geometry
     const std::vector<glm::vec2>* uv = ref.texcoord == 0 ? &src.uv0 : ref.texcoord == 1 ? &src.uv1 : nullptr;
     if (ref.texture < 0 || !uv || uv->empty()) return;
     const Texture& texture = asset.textures[size_t(ref.texture)];
@@ -205,6 +206,7 @@ struct Renderer::Impl {
     gl.TexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, image.width, image.height);
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);  // the GL default, for whoever uploads next
     gl.GenerateMipmap(GL_TEXTURE_2D);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, sampler.min_filter ? sampler.min_filter : GL_LINEAR_MIPMAP_LINEAR);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, sampler.mag_filter ? sampler.mag_filter : GL_LINEAR);

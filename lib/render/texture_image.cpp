@@ -11,6 +11,9 @@
 namespace dqskin {
 namespace {
 
+// The most texels one image may have: 8192² (256 MiB as RGBA, before mipmaps).
+constexpr size_t kMaxTexturePixels = size_t(8192) * 8192;
+
 // The decoder is chosen by the bytes, not by the mime type or the URI's extension, which files get wrong.
 // Returns the file name extension that selects OpenImageIO's reader, or null.
 const char* sniff(std::span<const uint8_t> b) {
@@ -46,26 +49,32 @@ Image8 decode_texture_image(const EncodedImage& image, size_t index, int max_sid
   if (spec.width < 1 || spec.height < 1 || spec.width > max_side || spec.height > max_side)
     throw InputError(what + ": is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                      " pixels; this GPU takes textures of 1 to " + std::to_string(max_side) + " a side");
+  // The header's size is checked before anything is allocated: a few bytes can claim gigapixels.
+  const size_t pixels = size_t(spec.width) * size_t(spec.height);
+  if (pixels > kMaxTexturePixels)
+    throw InputError(what + ": is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                     " pixels, more than dqskin draws (" + std::to_string(kMaxTexturePixels) + ")");
   if (spec.nchannels < 1 || spec.nchannels > 4)
     throw InputError(what + ": has " + std::to_string(spec.nchannels) + " channels, not 1 to 4");
-  const size_t pixels = size_t(spec.width) * size_t(spec.height);
-  const size_t channels = size_t(spec.nchannels);
-  std::vector<uint8_t> stored(pixels * channels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, stored.data()))
-    throw InputError(what + ": cannot be decoded (" + oiio_message(in->geterror()) + ")");
 
   Image8 out;
   out.width = spec.width;
   out.height = spec.height;
-  out.rgba.resize(pixels * 4);
-  for (size_t p = 0; p < pixels; ++p) {
-    const uint8_t* s = &stored[p * channels];
+  try {
+    out.rgba.resize(pixels * 4);
+  } catch (const std::bad_alloc&) {
+    throw InputError(what + ": not enough memory for " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels");
+  }
+  // Read straight into RGBA (4-byte pixel stride), then fill what the stored channels lack.
+  const size_t channels = size_t(spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out.rgba.data(), 4))
+    throw InputError(what + ": cannot be decoded (" + oiio_message(in->geterror()) + ")");
+  for (size_t p = 0; p < pixels && channels < 4; ++p) {
     uint8_t* d = &out.rgba[p * 4];
-    // 1: grey; 2: grey and alpha; 3: RGB; 4: RGBA (PNG's colour types after expansion).
-    d[0] = s[0];
-    d[1] = channels >= 3 ? s[1] : s[0];
-    d[2] = channels >= 3 ? s[2] : s[0];
-    d[3] = channels == 2 ? s[1] : channels == 4 ? s[3] : 255;
+    // 1: grey; 2: grey and alpha; 3: RGB (PNG's colour types after expansion).
+    if (channels == 2) d[3] = d[1];
+    if (channels <= 2) d[1] = d[2] = d[0];
+    if (channels != 2) d[3] = 255;
   }
   return out;
 }

@@ -97,6 +97,21 @@ TEST(TextureImage, BadImagesAreNamedErrors) {
   const std::vector<uint8_t> wide(65 * 3);
   expect_error(encode("png", 65, 1, 3, OIIO::TypeDesc::UINT8, wide.data()), 64,
                "image 3 'test': is 65x1 pixels; this GPU takes textures of 1 to 64 a side");
+
+  // A PNG whose header claims 10000x9000 pixels (90 M) but has no pixel data: refused from the header,
+  // before 360 MB are allocated.
+  const uint8_t tiny[] = {1, 2, 3};
+  EncodedImage claims = encode("png", 1, 1, 3, OIIO::TypeDesc::UINT8, tiny);
+  const uint8_t ihdr_size[] = {0, 0, 0x27, 0x10, 0, 0, 0x23, 0x28};  // 10000, 9000 big-endian
+  std::copy(std::begin(ihdr_size), std::end(ihdr_size), claims.bytes.begin() + 16);
+  uint32_t crc = 0xffffffffu;  // PNG's CRC-32 over the chunk type and data (bytes 12 to 28), so it still parses
+  for (size_t i = 12; i < 29; ++i) {
+    crc ^= claims.bytes[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  crc = ~crc;
+  for (size_t i = 0; i < 4; ++i) claims.bytes[29 + i] = uint8_t(crc >> (24 - 8 * i));
+  expect_error(claims, 16384, "is 10000x9000 pixels, more than dqskin draws");
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -243,7 +258,16 @@ TEST(RenderMaterials, UndecodableTextureIsAnInputErrorNamingTheImage) {
   add_texture(asset, {});
   asset.images[0].bytes.resize(10);
   asset.images[0].name = "broken";
-  EXPECT_THROW(draw(*context, asset), InputError);
+  try {
+    draw(*context, asset);
+    ADD_FAILURE() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("image 0 'broken': cannot be decoded"), std::string::npos) << e.what();
+  }
+  // Shades that do not show materials do not decode textures, so the same asset draws.
+  RendererOptions normals;
+  normals.shade = Shade::kNormals;
+  EXPECT_NO_THROW(Renderer(*context, asset, {{0, 0, -1}}, normals));
 }
 
 }  // namespace

@@ -54,6 +54,7 @@ struct BakeInputResult {
   std::string path;
   std::string error;  // empty when the input baked
   size_t frames = 0;  // frames this process deformed
+  std::vector<std::string> warnings;  // the loader's (Asset::warnings): what it dropped or corrected
 };
 
 struct BakeReport {

@@ -59,11 +59,15 @@ int find_camera_node(const Asset& asset, const std::string& name);
 
 // The view through a glTF camera whose node has the world matrix `world` (§3.10: the camera looks down its
 // local −Z with +Y up; scale and shear in the matrix are removed, as the specification does not let them
-// change the projection). Projections are §3.10.3's: finite or infinite perspective with the camera's
-// aspect ratio, or `aspect` (the image's width / height) when it gives none; orthographic from xmag and
-// ymag. Throws InputError for a camera the loader found invalid (SceneCamera::problem), a yfov of π or
-// more, or a matrix that has no orientation (zero scale).
+// change the projection). Projections are §3.10.3's (finite or infinite perspective, orthographic) with
+// `aspect`, the image's width / height, in place of the camera's aspectRatio (and xmag = ymag × aspect),
+// so that images are never stretched; render sizes the image in the camera's ratio unless told a size.
+// Throws InputError for a camera the loader found invalid (SceneCamera::problem), a yfov of π or more,
+// a matrix with no orientation (zero scale), or values that overflow single precision.
 Camera scene_camera(const SceneCamera& camera, const Mat4<double>& world, double aspect);
+
+// The glTF camera of `node` (which must have one).
+const SceneCamera& camera_of_node(const Asset& asset, int node);
 
 struct RendererOptions {
   int width = 512, height = 512;
@@ -220,7 +224,8 @@ struct RenderReport {
 
 // Renders every input (a failing input is reported and the rest go on). Throws NoGpuContext when no
 // context can be made, BakeCancelled when options.cancel was set, InputError for options that cannot
-// work. `progress` is called after every rendered frame, on the calling thread.
+// work. `progress` is called after each frame's image is written, from the thread that writes images
+// (one call at a time).
 RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
                     const std::function<void(const BakeProgress&)>& progress = {});
 
