@@ -132,27 +132,13 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
   std::fprintf(stderr, "manifest: %s\n", r.manifest.c_str());
 }
 
-// Writes the bundled rig into a fresh temporary folder and returns its path (README's first command).
-std::string unpack_default_input(BakeSettings& s) {
-  std::string folder = (std::filesystem::temp_directory_path() / "dqskin-bake-XXXXXX").string();
-  if (!::mkdtemp(folder.data())) throw OutputError(folder + ": cannot create a temporary folder");
-  const std::string input = folder + "/" + kDefaultInputName;
-  std::FILE* f = std::fopen(input.c_str(), "wb");
-  const bool ok = f && std::fwrite(kDefaultInput.data(), 1, kDefaultInput.size(), f) == kDefaultInput.size();
-  if (f) std::fclose(f);
-  if (!ok) throw OutputError(input + ": cannot write");
-  if (s.out_dir.empty()) s.out_dir = folder + "/out";
-  if (!s.quiet) std::cerr << "dqskin: no input given: baking the bundled " << kDefaultInputName << " into " << s.out_dir << '\n';
-  return input;
-}
-
 }  // namespace
 
 int run_bake(const BakeSettings& given) {
   BakeSettings settings = given;
   Progress progress(settings);
   try {
-    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input(settings));
+    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     BakeOptions options = to_options(settings);
     options.cancel = catch_interrupts();

@@ -1,5 +1,5 @@
 # Writes a C++ source that holds one self-contained .gltf file as a string (app/default_input.hpp).
-# Usage: cmake -DINPUT=rig.gltf -DOUTPUT=default_input.cpp -P embed_input.cmake
+# Usage: cmake -DINPUT=rig.gltf -DOUTPUT=default_input_data.cpp -P embed_input.cmake
 file(READ "${INPUT}" text)
 get_filename_component(name "${INPUT}" NAME)
 file(WRITE "${OUTPUT}.tmp"

@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       "bake", "Deform whole animations and write per-frame meshes (glb, ply, obj), vertex-animation textures "
               "(vat) and bone textures (bones), with a manifest of every file's SHA-256");
   bake_cmd->add_option("INPUT", bake.inputs,
-                       ".gltf or .glb files. Without any, the bundled twisted_cylinder rig is baked into a new "
+                       ".gltf or .glb files. Without any, the bundled textured_cylinder rig is baked into a new "
                        "temporary folder, which is printed");
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*bake_cmd, bake.selection, "bake");
@@ -94,7 +94,9 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd = app.add_subcommand(
       "render", "Draw the deformed meshes of every frame offscreen into PNG (8-bit sRGB) or EXR (linear) images, "
                 "through the same headless OpenGL context as bake");
-  render_cmd->add_option("INPUT", render.inputs, ".gltf or .glb files")->required();
+  render_cmd->add_option("INPUT", render.inputs,
+                         ".gltf or .glb files. Without any, the bundled textured_cylinder rig is rendered into a new "
+                         "temporary folder (printed)");
   render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*render_cmd, render.selection, "render");
   render_cmd->add_option("--mode", render.mode,

@@ -1,6 +1,7 @@
 // `dqskin render INPUT… -o OUTDIR`: every frame of the inputs' animations drawn offscreen into PNG or EXR
 // images, with bake's frame, animation, mode, backend and shard flags and its exit statuses.
 #include "commands.hpp"
+#include "default_input.hpp"
 #include "exit_codes.hpp"
 #include "input_messages.hpp"
 #include "interrupt.hpp"
@@ -124,14 +125,16 @@ void report_progress(const RenderSettings& s, const BakeProgress& p, std::chrono
 
 }  // namespace
 
-int run_render(const RenderSettings& settings) {
+int run_render(const RenderSettings& given) {
+  RenderSettings settings = given;
   const auto start = std::chrono::steady_clock::now();
   const bool bar = !settings.quiet && !settings.json_progress && ::isatty(2);
   auto clear_bar = [&]() {
     if (bar) std::fputs("\r\033[K", stderr);
   };
   try {
-    if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required");
+    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
+    if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     RenderOptions options = to_options(settings);
     options.cancel = catch_interrupts();
     std::filesystem::create_directories(options.out_dir);

@@ -16,7 +16,7 @@ set_tests_properties(cli.bake_clean_scratch PROPERTIES FIXTURES_SETUP bake_scrat
 dqskin_bake_test(help 0 ARGS bake --help
   STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--format.*--backend.*--shard.*--jobs.*--dry-run.*--quiet.*--json-progress.*--force.*Exit status")
 dqskin_bake_test(default_input_says_where 0 ARGS bake
-  STDERR "^dqskin: no input given: baking the bundled twisted_cylinder.gltf into [^\n]*/dqskin-bake-[^\n]*/out\n.*manifest: ")
+  STDERR "^dqskin: no input given: baking the bundled textured_cylinder.gltf into [^\n]*/dqskin-bake-[^\n]*/out\n.*manifest: ")
 dqskin_bake_test(dry_run_lists_frames 0 ARGS bake ${rig} -o ${bake_scratch}/dry --dry-run --format glb,vat
   STDOUT "bending_arm/[^/]+/frame_0000.glb\n.*vat_positions.exr")
 dqskin_bake_test(json_progress 0 ARGS bake ${rig} -o ${bake_scratch}/json --json-progress --format ply

@@ -10,7 +10,7 @@ function(dqskin_render_test name expected)
 endfunction()
 # Every run starts from an empty scratch folder: images from an earlier build's shaders would otherwise be
 # "existing files with different contents" to the tests that render without --force.
-add_test(NAME cli.render_clean_scratch COMMAND ${CMAKE_COMMAND} -E rm -rf ${render_scratch})
+add_test(NAME cli.render_clean_scratch COMMAND sh -c "rm -rf '${render_scratch}' && mkdir -p '${render_scratch}/tmp'")
 set_tests_properties(cli.render_clean_scratch PROPERTIES FIXTURES_SETUP render_scratch)
 
 dqskin_render_test(help 0 ARGS render --help
@@ -26,7 +26,12 @@ dqskin_render_test(missing_input_exits_2 2 ARGS render ${render_scratch}/missing
   STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
 dqskin_render_test(some_inputs_failed_exits_1 1 ARGS render ${render_scratch}/missing.gltf ${render_rig} -o ${render_scratch}/some --times 0 --size 32x32 --quiet
   STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
-dqskin_render_test(out_dir_required 2 ARGS render ${render_rig} STDERR "^dqskin: -o OUTDIR is required\n$")
+# Without an input, the bundled rig into a temporary folder (under the scratch folder's TMPDIR here).
+dqskin_cli_test(cli.render_default_input 0 ARGS render --times 0.5 --size 32x32
+  ENVIRONMENT TMPDIR=${render_scratch}/tmp ${bake_test_environment} LABELS gpu
+  STDERR "^dqskin: no input given: rendering the bundled textured_cylinder.gltf into [^\n]*/tmp/dqskin-render-[^\n]*/out\nrendered 1 frames of 1 input")
+set_property(TEST cli.render_default_input APPEND PROPERTY FIXTURES_REQUIRED render_scratch)
+dqskin_render_test(out_dir_required 2 ARGS render ${render_rig} STDERR "^dqskin: -o OUTDIR is required when inputs are given\n$")
 dqskin_render_test(bad_size_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --size 64 STDERR "^dqskin: --size '64' is not WxH")
 dqskin_render_test(bad_background_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --background red
   STDERR "^dqskin: --background 'red' is not")
