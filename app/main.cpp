@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 170.0));
   render_cmd->add_flag("--ortho", render.ortho, "Orthographic projection fitted to the bounding box");
   render_cmd->add_option("--camera", render.camera,
-                         "See the frames through the glTF camera of the node NAME, following its animation, instead "
+                         "See the frames through the glTF camera of the node named NODE, following its animation, instead "
                          "of the automatic camera (not with --yaw/--pitch/--distance/--fov/--ortho)")
       ->type_name("NODE");
   render_cmd->add_option("--format", render.format, "Image format: png (8-bit sRGB) or exr (32-bit linear float)")
