@@ -386,13 +386,28 @@ def flatten(keys):
 # -- rigs -----------------------------------------------------------------------------------------------
 
 
-def twisted_cylinder():
-    """Candy wrapper: the child joint twists the upper half of a cylinder 180° about its own axis."""
+def twisted_cylinder(textured=False):
+    """Candy wrapper: the child joint twists the upper half of a cylinder 180° about its own axis.
+    textured gives textured_cylinder()'s surface."""
     g = Gltf()
     stations = [4.0 * i / 32 for i in range(33)]  # y = 0 .. 4 in steps of 1/8
-    geo = tube("y", 0.5, stations, 24)
+    geo = textured_tube(0.5, stations, 24) if textured else tube("y", 0.5, stations, 24)
     joints, weights = two_joint_weights(stations, geo["station"], 1.0, 3.0)  # 50/50 at y = 2
-    mesh = g.skinned_mesh("cylinder", geo, [(joints, weights)])
+    extra, material = None, None
+    if textured:
+        orange, cream = (230, 120, 40), (245, 235, 215)
+        # 8 squares around and 8 up the 64x64 image; the first column of squares is blue, to mark u = 0.
+        png = png_rgb(64, 64, lambda x, y: (40, 90, 200) if x < 8 and (y // 8) % 2 == 0 else
+                      orange if (x // 8 + y // 8) % 2 == 0 else cream)
+        texture = g.png_texture("checker", png, {"magFilter": 9728, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071})
+        material = g.material("checker", base_color_factor=(1.0, 1.0, 1.0, 1.0), base_color_texture=texture)
+        # COLOR_0: white at the bottom to a light green at the top, in 1/255 steps.
+        colors = [(255, 255, round(255 - 60 * p[1] / 4.0), 255) for p in geo["positions"]]
+        extra = {
+            "TEXCOORD_0": g.accessor(geo["uv"], "VEC2", target=ARRAY_BUFFER),
+            "COLOR_0": g.accessor(colors, "VEC4", UNSIGNED_BYTE, target=ARRAY_BUFFER, normalized=True),
+        }
+    mesh = g.skinned_mesh("cylinder", geo, [(joints, weights)], extra=extra, material=material)
     g.node("cylinder", mesh=mesh, skin=0)
     root = g.node("root", children=[2])
     child = g.node("child", translation=(0.0, 2.0, 0.0))
@@ -444,35 +459,10 @@ def camera_dolly():
 
 
 def textured_cylinder():
-    """The twisting cylinder of twisted_cylinder() with a surface the renderer can show the twist on: a
-    checker base color texture (an embedded PNG through TEXCOORD_0, with a UV seam), a baseColorFactor
-    and a COLOR_0 gradient (normalized unsigned bytes), which glTF multiplies."""
-    g = Gltf()
-    stations = [4.0 * i / 32 for i in range(33)]
-    geo = textured_tube(0.5, stations, 24)
-    joints, weights = two_joint_weights(stations, geo["station"], 1.0, 3.0)
-    orange, cream = (230, 120, 40), (245, 235, 215)
-    # 8 squares around and 8 up the 64x64 image; the first column of squares is blue, to mark u = 0.
-    png = png_rgb(64, 64, lambda x, y: (40, 90, 200) if x < 8 and (y // 8) % 2 == 0 else
-                  orange if (x // 8 + y // 8) % 2 == 0 else cream)
-    texture = g.png_texture("checker", png, {"magFilter": 9728, "minFilter": 9987, "wrapS": 10497, "wrapT": 33071})
-    material = g.material("checker", base_color_factor=(1.0, 1.0, 1.0, 1.0), base_color_texture=texture)
-    # COLOR_0: white at the bottom to a light green at the top, in 1/255 steps.
-    colors = [(255, 255, round(255 - 60 * p[1] / 4.0), 255) for p in geo["positions"]]
-    extra = {
-        "TEXCOORD_0": g.accessor(geo["uv"], "VEC2", target=ARRAY_BUFFER),
-        "COLOR_0": g.accessor(colors, "VEC4", UNSIGNED_BYTE, target=ARRAY_BUFFER, normalized=True),
-    }
-    mesh = g.skinned_mesh("cylinder", geo, [(joints, weights)], extra=extra, material=material)
-    g.node("cylinder", mesh=mesh, skin=0)
-    root = g.node("root", children=[2])
-    child = g.node("child", translation=(0.0, 2.0, 0.0))
-    g.skin("cylinder_skin", [root, child], [(0.0, 0.0, 0.0), (0.0, 2.0, 0.0)])
-    times = [0.0, 0.25, 0.5, 0.75, 1.0]
-    g.animation("twist", [(child, "rotation", "LINEAR", times,
-                           [tuple(quat_axis_angle((0, 1, 0), 45.0 * i)) for i in range(5)])])
-    g.scene("scene", [0, root])
-    return g
+    """The twisting cylinder with a surface the renderer can show the twist on: a checker base color
+    texture (an embedded PNG through TEXCOORD_0, with a UV seam), a baseColorFactor and a COLOR_0 gradient
+    (normalized unsigned bytes), which glTF multiplies."""
+    return twisted_cylinder(textured=True)
 
 
 def scaled_joint_rig(clip, scale_keys, rotation_keys):
