@@ -129,8 +129,9 @@ public:
       if (box.empty()) throw InputError("the scene has no vertices to frame");
     }
     // The automatic camera is fixed for the clip; a glTF camera follows its node's animation.
+    const Camera automatic = camera_node_ < 0 ? frame_camera(box, options_.camera, aspect) : Camera{};
     auto camera_at = [&](size_t f) {
-      if (camera_node_ < 0) return frame_camera(box, options_.camera, aspect);
+      if (camera_node_ < 0) return automatic;
       const Asset& asset = *input_.asset;
       const Mat4<double> world = sample_pose(asset, clip.clip, clip.times[f]).world[size_t(camera_node_)];
       return scene_camera(camera_of_node(asset, camera_node_), world, aspect);
