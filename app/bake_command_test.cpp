@@ -1,6 +1,8 @@
 // `dqskin bake` as a process: what a killed or interrupted bake leaves behind, and that a rerun
 // completes it. Runs the real binary (DQSKIN_CLI) on the twisted cylinder at a high frame rate, so that
 // the bake is still writing when the signal arrives.
+#include "../lib/test_support/scratch_dir.hpp"
+
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -83,14 +85,8 @@ int bake_and_signal(const fs::path& out, int signal) {
 
 class BakeProcessTest : public testing::Test {
 protected:
-  void SetUp() override {
-    root_ = fs::temp_directory_path() / ("dqskin_bake_process_" + std::to_string(::getpid()) + "_" +
-                                         testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
-  void TearDown() override { fs::remove_all(root_); }
-  fs::path root_;
+  const dqskin::testing_support::ScratchDir scratch_{"bake_process"};
+  const fs::path root_ = scratch_.path();
 };
 
 TEST_F(BakeProcessTest, KilledBakeLeavesOnlyCompleteFilesAndARerunCompletesIt) {

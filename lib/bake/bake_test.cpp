@@ -7,6 +7,7 @@
 #include "dqskin/load.hpp"
 #include "dqskin/sha256.hpp"
 #include "ply_test_reader.hpp"
+#include "../test_support/scratch_dir.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -42,13 +43,6 @@ std::vector<std::string> shared_models() {
 
 class BakeTest : public testing::Test {
 protected:
-  void SetUp() override {
-    root_ = fs::temp_directory_path() /
-            ("dqskin_bake_" + std::to_string(::getpid()) + "_" + testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
-  void TearDown() override { fs::remove_all(root_); }
 
   BakeOptions options(const std::string& folder, unsigned formats = kAllFormats) {
     BakeOptions o;
@@ -58,7 +52,8 @@ protected:
     return o;
   }
 
-  fs::path root_;
+  const testing_support::ScratchDir scratch_{"bake"};
+  const fs::path root_ = scratch_.path();
 };
 
 std::string read_file(const fs::path& p) {

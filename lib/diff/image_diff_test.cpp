@@ -1,5 +1,6 @@
 #include "dqskin/error.hpp"
 #include "dqskin/image_diff.hpp"
+#include "../test_support/scratch_dir.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
@@ -24,13 +25,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // A scratch folder per test, removed afterwards.
 class ImageDiffTest : public ::testing::Test {
 protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("dqskin_diff_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Writes a width × height image of `channels` channels whose every value is `value`, except `changes`
   // (pixel index, channel, value). The format follows the extension.
@@ -57,7 +51,8 @@ protected:
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-  fs::path dir_;
+  const testing_support::ScratchDir scratch_{"diff"};
+  const fs::path dir_ = scratch_.path();
 };
 
 std::string read_bytes(const std::string& path) {

@@ -1,5 +1,6 @@
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
+#include "../test_support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -15,13 +16,6 @@ namespace fs = std::filesystem;
 
 class AtomicFileTest : public testing::Test {
 protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("dqskin_atomic_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string read(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -31,7 +25,8 @@ protected:
   }
   size_t entries() { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
 
-  fs::path dir_;
+  const testing_support::ScratchDir scratch_{"atomic"};
+  const fs::path dir_ = scratch_.path();
 };
 
 TEST_F(AtomicFileTest, CommittedFileAppearsWhole) {

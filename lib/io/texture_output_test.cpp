@@ -2,6 +2,7 @@
 #include "dqskin/animation.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/texture_output.hpp"
+#include "../test_support/scratch_dir.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -132,13 +133,6 @@ void expect_vat_texels(const ExrFile& positions, const ExrFile& normals, const D
 
 class TextureOutputTest : public testing::Test {
 protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("dqskin_texture_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   size_t entries() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
 
@@ -152,7 +146,8 @@ protected:
     return writer.commit(overwrite);
   }
 
-  fs::path dir_;
+  const testing_support::ScratchDir scratch_{"texture"};
+  const fs::path dir_ = scratch_.path();
 };
 
 std::vector<double> grid(size_t frames, double fps) {
