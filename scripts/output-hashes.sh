@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The output fingerprint of a dqskin build: runs a fixed set of commands (info, bake into every format,
+# render, diff) on every bundled rig and every shared sample model, and prints one line per file written,
+# "SHA-256  path", followed by each command's exit status. Two builds that print the same lines wrote the
+# same bytes: a refactor must not change them (compare with diff).
+#
+# Usage: scripts/output-hashes.sh [DQSKIN] > hashes.txt
+#   DQSKIN    the binary to run (default build/release/app/dqskin)
+# Environment:
+#   HASH_TMP  folder for the outputs (default: a new temporary folder, deleted at the end)
+#
+# The shared sample models are read from ../shared/testdata beside the repository and skipped with a note
+# on stderr when it is absent. Renders deform on the CPU reference; their pixels come from the machine's
+# OpenGL rasterizer, so compare hashes made on one machine.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+DQSKIN="$(realpath "${1:-$ROOT/build/release/app/dqskin}")"
+TMP="${HASH_TMP:-$(mktemp -d)}"
+[[ -n "${HASH_TMP:-}" ]] || trap 'rm -rf "$TMP"' EXIT
+
+models=("$ROOT"/testdata/*.gltf)
+if [[ -d "$ROOT/../shared/testdata" ]]; then
+  while IFS= read -r m; do models+=("$m"); done < <(find "$ROOT/../shared/testdata" -name '*.gl[tb]*' -not -name '*.bin' | sort)
+else
+  echo "output-hashes: ../shared/testdata not found; only the bundled rigs are hashed" >&2
+fi
+
+# Runs one command with its outputs in $TMP/NAME, then prints the hashes of every file there and its status.
+run() {
+  local name="$1"
+  shift
+  mkdir -p "$TMP/$name"
+  local status=0
+  (cd "$TMP/$name" && "$@" >stdout.txt 2>/dev/null) || status=$?
+  (cd "$TMP" && find "$name" -type f -print0 | sort -z | xargs -0 sha256sum)
+  echo "exit $status  $name"
+}
+
+for m in "${models[@]}"; do
+  stem="$(basename "$m")"  # with its extension: RiggedSimple comes as .glb and .gltf
+  run "info-$stem" "$DQSKIN" info --json "$m"
+  run "bake-$stem" "$DQSKIN" bake "$m" -o out --format glb,ply,obj,vat,bones --fps 10 --quiet
+  run "bake-lbs-cpu-$stem" "$DQSKIN" bake "$m" -o out --format ply,vat --fps 10 --mode lbs --backend cpu --quiet
+  run "bake-dib-$stem" "$DQSKIN" bake "$m" -o out --format ply --frames 0:2 --mode dib --quiet
+  run "render-$stem" "$DQSKIN" render "$m" -o out --size 96x96 --frames 0:1 --backend cpu --quiet
+done
+stem=twisted_cylinder.gltf
+run "render-sheet-$stem" "$DQSKIN" render "$ROOT/testdata/$stem" -o out --size 64x64 --fps 5 --sheet --gif \
+  --shade mode-diff --backend cpu --quiet
+# Relative paths: the report names them.
+run "diff-$stem" "$DQSKIN" diff "../render-$stem/out" "../render-sheet-$stem/out" --json
