@@ -1,9 +1,9 @@
 // `dqskin bake INPUT… -o OUTDIR`: the command asset builds run. Reports progress as a bar on a terminal
 // or as JSON lines, and a summary at the end; SIGINT and SIGTERM stop it cleanly.
 #include "commands.hpp"
+#include "console.hpp"
 #include "default_input.hpp"
 #include "exit_codes.hpp"
-#include "input_messages.hpp"
 #include "interrupt.hpp"
 
 #include "dqskin/bake.hpp"
@@ -45,11 +45,10 @@ public:
     const double rate = elapsed > 0 ? double(p.frames_done) / elapsed : 0;
     const double left = rate > 0 ? double(p.frames_total - p.frames_done) / rate : 0;
     if (json_) {
-      std::cout << nlohmann::json{{"event", "progress"},   {"frames_done", p.frames_done},
-                                  {"frames_total", p.frames_total}, {"input", p.input},
-                                  {"animation", p.clip},    {"elapsed_s", elapsed},
-                                  {"frames_per_s", rate},   {"eta_s", left}}
-                       .dump()
+      std::cout << json_text(nlohmann::json{{"event", "progress"},   {"frames_done", p.frames_done},
+                                            {"frames_total", p.frames_total}, {"input", p.input},
+                                            {"animation", p.clip},    {"elapsed_s", elapsed},
+                                            {"frames_per_s", rate},   {"eta_s", left}})
                 << std::endl;
     } else if (bar_ && (elapsed - last_draw_ > 0.1 || p.frames_done == p.frames_total)) {
       last_draw_ = elapsed;
@@ -57,7 +56,7 @@ public:
       const int filled = p.frames_total ? int(double(width) * double(p.frames_done) / double(p.frames_total)) : width;
       std::fprintf(stderr, "\r\033[K[%s%s] %zu/%zu frames  %.1f frames/s  %s left  %s", std::string(size_t(filled), '#').c_str(),
                    std::string(size_t(width - filled), '.').c_str(), p.frames_done, p.frames_total, rate,
-                   clock_text(left).c_str(), p.clip.c_str());
+                   clock_text(left).c_str(), printable(p.clip).c_str());
       drawn_ = true;
     }
   }
@@ -102,7 +101,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
     for (const BakeInputResult& in : r.inputs)
       if (!in.error.empty()) failures.push_back({{"input", in.path}, {"error", in.error}});
     const BakeStageTimes& t = r.times;
-    std::cout << nlohmann::json{{"event", "summary"},
+    std::cout << json_text(nlohmann::json{{"event", "summary"},
                                 {"frames", r.frames_total},
                                 {"files_written", written},
                                 {"files_unchanged", unchanged},
@@ -113,8 +112,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                                 {"wall_s", r.wall_seconds},
                                 {"stage_s", {{"load", t.load}, {"sample", t.sample}, {"deform", t.deform},
                                              {"readback", t.readback}, {"encode", t.encode}, {"write", t.write}}},
-                                {"failures", failures}}
-                     .dump()
+                                {"failures", failures}})
               << std::endl;
   }
   print_input_messages(r.inputs, s.quiet);
@@ -129,7 +127,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                "stages (thread-seconds): load %.2f, sample %.2f, deform %.2f, readback %.2f, encode %.2f, write %.2f\n",
                t.load, t.sample, t.deform, t.readback, t.encode, t.write);
   if (s.verbose) std::fprintf(stderr, "backend: %s, %s\n", r.gpu.backend.c_str(), r.gpu.renderer.c_str());
-  std::fprintf(stderr, "manifest: %s\n", r.manifest.c_str());
+  std::fprintf(stderr, "manifest: %s\n", printable(r.manifest).c_str());
 }
 
 }  // namespace
@@ -147,7 +145,7 @@ int run_bake(const BakeSettings& given) {
     const BakeReport report = bake(settings.inputs, options, [&](const BakeProgress& p) { progress(p); });
     progress.done();
     if (options.dry_run) {
-      for (const BakeOutput& o : report.outputs) std::cout << options.out_dir << '/' << o.path << '\n';
+      for (const BakeOutput& o : report.outputs) std::cout << printable(options.out_dir + '/' + o.path) << '\n';
       print_input_messages(report.inputs, settings.quiet);
     } else {
       print_summary(settings, report);
@@ -156,22 +154,22 @@ int run_bake(const BakeSettings& given) {
                                                [](const BakeInputResult& r) { return !r.error.empty(); }));
     if (failed == 0) return kSuccess;
     if (!settings.quiet && failed < report.inputs.size())
-      std::cerr << "dqskin: " << failed << " of " << report.inputs.size() << " inputs failed; the others baked\n";
+      print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others baked");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
   } catch (const BakeCancelled&) {
     progress.done();
     return die_of_interrupt("bake");
   } catch (const NoGpuContext& e) {
     progress.done();
-    std::cerr << "dqskin: " << e.what() << '\n';
+    print_error(e.what());
     return kNoGlContext;
   } catch (const std::filesystem::filesystem_error& e) {
     progress.done();
-    std::cerr << "dqskin: " << e.path1().string() << ": " << e.code().message() << '\n';
+    print_error(e.path1().string(), e.code().message());
     return kUsageOrInputError;
   } catch (const std::exception& e) {
     progress.done();
-    std::cerr << "dqskin: " << e.what() << '\n';
+    print_error(e.what());
     return kUsageOrInputError;
   }
 }

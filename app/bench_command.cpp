@@ -2,6 +2,7 @@
 // characters of 10k, 100k and 1M vertices: lbs, dqs and dqs with scale (T = 5), on the GPU path (1, 64
 // and 256 frames per batch, readback excluded and included) and on the CPU reference (1 and 2 threads).
 #include "commands.hpp"
+#include "console.hpp"
 #include "exit_codes.hpp"
 #include "synthetic_asset.hpp"
 
@@ -113,14 +114,14 @@ void print_row(const Measurement& m) {
 int run_bench(const BenchSettings& settings) {
   GpuBackend backend = GpuBackend::kAuto;
   if (!parse_gpu_backend(settings.backend, backend)) {
-    std::cerr << "dqskin: --backend must be auto, egl or osmesa, not '" << settings.backend << "'\n";
+    print_error("--backend must be auto, egl or osmesa, not '" + settings.backend + "'");
     return kUsageOrInputError;
   }
   std::unique_ptr<GpuContext> ctx;
   try {
     ctx = create_gpu_context(backend);
   } catch (const NoGpuContext& e) {
-    std::cerr << "dqskin: " << e.what() << '\n';
+    print_error(e.what());
     return kNoGlContext;
   }
 
@@ -175,7 +176,7 @@ int run_bench(const BenchSettings& settings) {
                                      {"frames_per_batch", m.frames_per_batch}, {"readback", m.readback},
                                      {"vertex_frames_per_second", m.vertex_frames_per_second},
                                      {"gb_per_second", m.vertex_frames_per_second * kBytesPerVertexFrame / 1e9}});
-    std::cout << out.dump(2) << '\n';
+    std::cout << json_text(out, 2) << '\n';
   }
   return kSuccess;
 }

@@ -1,4 +1,5 @@
 #include "default_input.hpp"
+#include "console.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -20,8 +21,8 @@ std::string unpack_default_input(const std::string& command, std::string& out_di
   if (!written || !closed) throw OutputError(input + ": cannot write");
   if (out_dir.empty()) out_dir = folder + "/out";
   if (!quiet)
-    std::cerr << "dqskin: no input given: " << (command == "bake" ? "baking" : "rendering") << " the bundled "
-              << kDefaultInputName << " into " << out_dir << '\n';
+    print_error(std::string("no input given: ") + (command == "bake" ? "baking" : "rendering") + " the bundled " +
+                kDefaultInputName + " into " + out_dir);
   return input;
 }
 

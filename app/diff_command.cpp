@@ -1,6 +1,7 @@
 // `dqskin diff A B`: two images or two folders of images compared as OpenImageIO's idiff compares them, for
 // CI checks of rendered frames. Prints a text or JSON report, writes heat maps and a JUnit XML report.
 #include "commands.hpp"
+#include "console.hpp"
 #include "exit_codes.hpp"
 
 #include "dqskin/atomic_file.hpp"
@@ -36,7 +37,7 @@ int run_diff(const DiffSettings& settings) {
     if (!bad.empty()) throw InputError(bad);
     const DiffReport report = diff_images(settings.a, settings.b, {settings.thresholds, settings.out_dir});
     for (const ImageDiff& d : report.pairs)
-      if (!d.unreadable.empty()) std::cerr << "dqskin: " << d.unreadable << ": " << d.read_error << '\n';
+      if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);
     std::cout << (settings.json ? diff_json(report) : diff_text(report)) << std::flush;
     if (!settings.junit.empty()) {
       AtomicFile junit(settings.junit);
@@ -45,10 +46,10 @@ int run_diff(const DiffSettings& settings) {
     }
     return exit_status(report.status());
   } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "dqskin: " << e.path1().string() << ": " << e.code().message() << '\n';
+    print_error(e.path1().string(), e.code().message());
     return kUsageOrInputError;
   } catch (const std::exception& e) {
-    std::cerr << "dqskin: " << e.what() << '\n';
+    print_error(e.what());
     return kUsageOrInputError;
   }
 }

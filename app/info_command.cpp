@@ -1,6 +1,7 @@
 // `dqskin info FILE…`: scenes, skinned meshes, skins, animations, morph targets and warnings per file,
 // as text or one JSON document.
 #include "commands.hpp"
+#include "console.hpp"
 #include "exit_codes.hpp"
 
 #include "dqskin/error.hpp"
@@ -28,19 +29,19 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
 }
 
 void print_text(const std::string& path, const AssetFacts& f) {
-  std::cout << path << '\n';
+  std::cout << printable(path) << '\n';
   std::cout << "  scenes: " << f.scenes;
   if (f.default_scene >= 0) std::cout << " (default " << f.default_scene << ")";
   std::cout << "\n  vertices: " << f.vertices << "\n  skinned meshes: " << f.skinned_meshes.size() << '\n';
   for (const SkinnedMeshFacts& m : f.skinned_meshes)
-    std::cout << "    " << (m.name.empty() ? "(unnamed)" : m.name) << " (node " << m.node << ", mesh " << m.mesh
+    std::cout << "    " << (m.name.empty() ? "(unnamed)" : printable(m.name)) << " (node " << m.node << ", mesh " << m.mesh
               << ", skin " << m.skin << "): " << m.vertices << " vertices, " << m.triangles << " triangles, up to "
               << m.max_influences << (m.max_influences == 1 ? " influence" : " influences") << " per vertex (" << (m.influence_sets > 1 ? "JOINTS_0, JOINTS_1" : "JOINTS_0")
               << ")\n";
   std::cout << "  skins: " << f.skins.size() << " (" << f.joint_nodes << " distinct joints)\n";
   for (size_t i = 0; i < f.skins.size(); ++i) {
     const SkinFacts& s = f.skins[i];
-    std::cout << "    " << i << (s.name.empty() ? "" : " " + s.name) << ": " << s.joints << " joints, "
+    std::cout << "    " << i << (s.name.empty() ? "" : " " + printable(s.name)) << ": " << s.joints << " joints, "
               << (s.non_rigid_in_bind_pose || s.non_rigid_in_animation
                       ? std::string("non-rigid (scale or shear) ") +
                             (s.non_rigid_in_bind_pose && s.non_rigid_in_animation ? "in the bind pose and animated"
@@ -52,15 +53,15 @@ void print_text(const std::string& path, const AssetFacts& f) {
   std::cout << "  animations: " << f.clips.size() << '\n';
   for (size_t i = 0; i < f.clips.size(); ++i) {
     const ClipFacts& c = f.clips[i];
-    std::cout << "    " << i << " " << c.name << ": " << seconds(c.duration);
+    std::cout << "    " << i << " " << printable(c.name) << ": " << seconds(c.duration);
     if (c.first_key > 0) std::cout << " (keys from " << seconds(c.first_key) << ")";
     std::cout << ", " << c.channels << " channels, " << join(c.interpolations, ", ") << '\n';
   }
   std::cout << "  morph targets:" << (f.morph_targets.empty() ? " none" : "") << '\n';
   for (const MorphFacts& m : f.morph_targets)
-    std::cout << "    mesh " << m.mesh << (m.name.empty() ? "" : " " + m.name) << ": " << m.targets << " targets\n";
+    std::cout << "    mesh " << m.mesh << (m.name.empty() ? "" : " " + printable(m.name)) << ": " << m.targets << " targets\n";
   std::cout << "  warnings:" << (f.warnings.empty() ? " none" : "") << '\n';
-  for (const std::string& w : f.warnings) std::cout << "    " << w << '\n';
+  for (const std::string& w : f.warnings) std::cout << "    " << printable(w) << '\n';
 }
 
 nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
@@ -107,11 +108,11 @@ int run_info(const InfoSettings& settings) {
       }
     } catch (const InputError& e) {
       ++failed;
-      std::cerr << "dqskin: " << path << ": " << e.what() << '\n';
+      print_error(path, e.what());
       if (settings.json) files.push_back({{"path", path}, {"error", e.what()}});
     }
   }
-  if (settings.json) std::cout << nlohmann::ordered_json{{"files", files}}.dump(2) << '\n';
+  if (settings.json) std::cout << json_text(nlohmann::ordered_json{{"files", files}}, 2) << '\n';
   if (failed == 0) return kSuccess;
   return failed == settings.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
 }

@@ -1,4 +1,5 @@
 #include "interrupt.hpp"
+#include "console.hpp"
 
 #include <csignal>
 #include <iostream>
@@ -24,7 +25,7 @@ const std::atomic<bool>* catch_interrupts() {
 
 int die_of_interrupt(const char* what) {
   const int signal = int(g_signal);
-  std::cerr << "dqskin: " << what << " stopped by signal " << signal << "; no partial files were left under final names\n";
+  print_error(std::string(what) + " stopped by signal " + std::to_string(signal) + "; no partial files were left under final names");
   std::signal(signal, SIG_DFL);
   std::raise(signal);
   return 128 + signal;

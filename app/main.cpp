@@ -1,5 +1,6 @@
 // dqskin command line: CLI11 fills one settings struct per command, one function runs it.
 #include "commands.hpp"
+#include "console.hpp"
 #include "exit_codes.hpp"
 
 #include "dqskin/version.hpp"
@@ -235,7 +236,7 @@ int main(int argc, char** argv) {
     std::cout << e.what() << '\n';
     return kSuccess;
   } catch (const CLI::ParseError& e) {
-    std::cerr << "dqskin: " << e.what() << " (see dqskin --help)\n";
+    print_error(std::string(e.what()) + " (see dqskin --help)");
     return kUsageOrInputError;
   }
 

@@ -1,9 +1,9 @@
 // `dqskin render INPUT… -o OUTDIR`: every frame of the inputs' animations drawn offscreen into PNG or EXR
 // images, with bake's frame, animation, mode, backend and shard flags and its exit statuses.
 #include "commands.hpp"
+#include "console.hpp"
 #include "default_input.hpp"
 #include "exit_codes.hpp"
-#include "input_messages.hpp"
 #include "interrupt.hpp"
 
 #include "dqskin/error.hpp"
@@ -113,13 +113,12 @@ RenderOptions to_options(const RenderSettings& s) {
 void report_progress(const RenderSettings& s, const BakeProgress& p, std::chrono::steady_clock::time_point start) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (s.json_progress) {
-    std::cout << nlohmann::json{{"event", "progress"},         {"frames_done", p.frames_done},
-                                {"frames_total", p.frames_total}, {"input", p.input},
-                                {"animation", p.clip},          {"elapsed_s", elapsed}}
-                     .dump()
+    std::cout << json_text(nlohmann::json{{"event", "progress"},         {"frames_done", p.frames_done},
+                                          {"frames_total", p.frames_total}, {"input", p.input},
+                                          {"animation", p.clip},          {"elapsed_s", elapsed}})
               << std::endl;
   } else if (!s.quiet && ::isatty(2)) {
-    std::fprintf(stderr, "\r\033[K%zu/%zu frames  %s", p.frames_done, p.frames_total, p.clip.c_str());
+    std::fprintf(stderr, "\r\033[K%zu/%zu frames  %s", p.frames_done, p.frames_total, printable(p.clip).c_str());
   }
 }
 
@@ -150,40 +149,39 @@ int run_render(const RenderSettings& given) {
       scales.push_back({{"input", m.input}, {"animation", m.clip}, {"max_distance", m.max_distance}});
       if (!settings.quiet && !settings.json_progress)
         std::fprintf(stderr, "mode-diff %s %s: red = %.6g (largest |lbs - %s| position distance), dark blue = 0\n",
-                     m.input.c_str(), m.clip.c_str(), m.max_distance, settings.mode == "lbs" ? "dqs" : settings.mode.c_str());
+                     printable(m.input).c_str(), printable(m.clip).c_str(), m.max_distance, settings.mode == "lbs" ? "dqs" : settings.mode.c_str());
     }
     if (settings.json_progress) {
-      std::cout << nlohmann::json{{"event", "summary"},           {"mode_diff", scales},          {"frames", report.frames_total},
+      std::cout << json_text(nlohmann::json{{"event", "summary"},           {"mode_diff", scales},          {"frames", report.frames_total},
                                   {"files", report.outputs.size()}, {"backend", report.gpu.backend},
                                   {"renderer", report.gpu.renderer}, {"failed_inputs", failed},
-                                  {"wall_s", report.wall_seconds}}
-                       .dump()
+                                  {"wall_s", report.wall_seconds}})
                 << std::endl;
     } else if (!settings.quiet && failed < report.inputs.size()) {
       size_t frames = 0;  // not report.outputs: --sheet and --gif add files that are not frames
       for (const BakeInputResult& in : report.inputs) frames += in.frames;
       std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\n", frames,
                    report.inputs.size() - failed, report.inputs.size() - failed == 1 ? "" : "s", report.wall_seconds,
-                   options.out_dir.c_str());
+                   printable(options.out_dir).c_str());
     }
     if (failed == 0) return kSuccess;
     if (!settings.quiet && failed < report.inputs.size())
-      std::cerr << "dqskin: " << failed << " of " << report.inputs.size() << " inputs failed; the others rendered\n";
+      print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others rendered");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
   } catch (const BakeCancelled&) {
     clear_bar();
     return die_of_interrupt("render");
   } catch (const NoGpuContext& e) {
     clear_bar();
-    std::cerr << "dqskin: " << e.what() << '\n';
+    print_error(e.what());
     return kNoGlContext;
   } catch (const std::filesystem::filesystem_error& e) {
     clear_bar();
-    std::cerr << "dqskin: " << e.path1().string() << ": " << e.code().message() << '\n';
+    print_error(e.path1().string(), e.code().message());
     return kUsageOrInputError;
   } catch (const std::exception& e) {
     clear_bar();
-    std::cerr << "dqskin: " << e.what() << '\n';
+    print_error(e.what());
     return kUsageOrInputError;
   }
 }

@@ -58,7 +58,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
                                                    : "manifest.json";
   const std::string path = options.out_dir + "/" + name;
   AtomicFile file(path);
-  file.write(manifest.dump(2) + "\n");
+  file.write(manifest.dump(2, ' ', false, json::error_handler_t::replace) + "\n");  // input paths may be any bytes
   file.commit(Overwrite::kReplace);  // the record of the latest bake, whatever an earlier one wrote
   return path;
 }

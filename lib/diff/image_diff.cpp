@@ -2,6 +2,7 @@
 // of failing pairs, and text, JSON and JUnit XML reports (include/dqskin/image_diff.hpp).
 #include "dqskin/image_diff.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/utf8.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
@@ -217,19 +218,9 @@ std::string xml(const std::string& text, bool attribute) {
       ++i;
       continue;
     }
-    // A well-formed UTF-8 sequence of 2 to 4 bytes (no overlong forms, surrogates or values past U+10FFFF).
-    size_t length = 0;
     uint32_t code = 0;
-    if (c >= 0xC2 && c <= 0xDF) length = 2, code = c & 0x1Fu;
-    else if (c >= 0xE0 && c <= 0xEF) length = 3, code = c & 0x0Fu;
-    else if (c >= 0xF0 && c <= 0xF4) length = 4, code = c & 0x07u;
-    bool valid = length > 0 && i + length <= n;
-    for (size_t k = 1; valid && k < length; ++k) {
-      valid = (s[i + k] & 0xC0u) == 0x80u;
-      code = (code << 6) | (s[i + k] & 0x3Fu);
-    }
-    valid = valid && !(length == 3 && code < 0x800) && !(length == 4 && (code < 0x10000 || code > 0x10FFFF)) &&
-            !(code >= 0xD800 && code <= 0xDFFF) && code != 0xFFFE && code != 0xFFFF;
+    const size_t length = utf8_sequence(text, i, code);
+    const bool valid = length > 0 && code != 0xFFFE && code != 0xFFFF;  // XML 1.0 Char excludes both
     if (valid) {
       out.append(text, i, length);
       i += length;
@@ -440,15 +431,15 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
 std::string diff_text(const DiffReport& report) {
   std::string text;
   for (const ImageDiff& d : report.pairs) {
-    text += std::string(status_name(d.status)) + "  " + d.name + "  ";
+    text += std::string(status_name(d.status)) + "  " + printable(d.name) + "  ";
     if (!d.compared) {
-      text += d.problem + "\n";
+      text += printable(d.problem) + "\n";
       continue;
     }
     text += "max " + max_text(d) + "  mean " + number(d.mean_error) + "  RMS " + number(d.rms_error) + "  PSNR " +
             number(d.psnr) + " dB  over warn " + std::to_string(d.over_warn) + " (" + percent(d.over_warn, d.pixels) +
             ")  over fail " + std::to_string(d.over_fail) + " (" + percent(d.over_fail, d.pixels) + ")";
-    if (!d.heat_map.empty()) text += "  heat map " + d.heat_map;
+    if (!d.heat_map.empty()) text += "  heat map " + printable(d.heat_map);
     text += "\n";
   }
   text += "summary: " + std::string(status_name(report.status())) + " (" + summary_counts(report) + ")\n";

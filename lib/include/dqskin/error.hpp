@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace dqskin {
 
@@ -17,5 +18,12 @@ class OutputError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
+
+// `text` made safe to print as (part of) one line on a terminal: control characters become escapes
+// (`\n`, `\r`, `\t`, `\x1b`, …), as do bytes that are not UTF-8 (`\xff`) and the code points that move
+// or reorder text (C1 controls, bidirectional overrides and isolates, line and paragraph separators:
+// `\u202e`). Everything else, UTF-8 letters included, is kept. File names and messages built from a
+// file's content go through it before they reach stderr or a text report.
+std::string printable(std::string_view text);
 
 }  // namespace dqskin

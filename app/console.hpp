@@ -1,0 +1,33 @@
+// What dqskin prints on stderr, one line per message and each line printable (dqskin::printable): file
+// names and messages may carry any bytes a file or a library put there (internal to the CLI).
+#pragma once
+
+#include "dqskin/bake.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dqskin::cli {
+
+// "dqskin: MESSAGE"
+void print_error(std::string_view message);
+// "dqskin: FILE: MESSAGE"
+void print_error(std::string_view file, std::string_view message);
+// "dqskin: FILE: warning: MESSAGE"
+void print_warning(std::string_view file, std::string_view message);
+
+// One line per failed input ("dqskin: FILE: problem"), and unless `quiet`, one per loader warning of the
+// others ("dqskin: FILE: warning: ..."): parts of the file that were dropped or corrected.
+void print_input_messages(const std::vector<BakeInputResult>& inputs, bool quiet);
+
+// A JSON document as text; bytes that are not UTF-8 (in file names, or quoted by a library's message)
+// become U+FFFD instead of making the dump throw.
+template <typename Json>
+std::string json_text(const Json& json, int indent = -1) {
+  return json.dump(indent, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace dqskin::cli
