@@ -163,17 +163,28 @@ class Catalogue:
         self.outdir = outdir
         self.cases = []  # (file name, regex)
         self.valid = []
+        self.warnings = []  # (file name, regex): loads (exit 0), and `info` lists a warning matching regex
 
     def write(self, name, data):
         with open(os.path.join(self.outdir, name), "wb") as f:
             f.write(data)
 
     def case(self, name, data, regex):
+        """A file that must fail with one line matching regex; data None: the caller made the file."""
         assert "\t" not in regex and ";" not in regex and "\n" not in regex, name
+        assert regex.count("[") == regex.count("]"), name  # CMake lists keep ';' inside brackets
         stem = os.path.splitext(name)[0]
-        assert stem not in [os.path.splitext(c[0])[0] for c in self.cases], name
-        self.write(name, data)
+        assert stem not in [os.path.splitext(c[0])[0] for c in self.cases + self.warnings], name
+        if data is not None:
+            self.write(name, data)
         self.cases.append((name, regex))
+
+    def warning(self, name, a, regex):
+        """A .gltf that must load, with a warning matching regex (appearance that is dropped)."""
+        assert "\t" not in regex and ";" not in regex and "\n" not in regex, name
+        assert name not in [os.path.splitext(c[0])[0] for c in self.cases + self.warnings], name
+        self.write(name + ".gltf", gltf_bytes(a))
+        self.warnings.append((name + ".gltf", regex))
 
     def gltf(self, name, a, regex):
         self.case(name + ".gltf", gltf_bytes(a), regex)
@@ -194,6 +205,260 @@ class Catalogue:
         with open(os.path.join(self.outdir, "valid.txt"), "w") as f:
             for name in self.valid:
                 f.write(name + "\n")
+        with open(os.path.join(self.outdir, "warnings.txt"), "w") as f:
+            for name, regex in self.warnings:
+                f.write("%s\t%s\n" % (name, regex))
+
+
+def regex_escape(text):
+    """text as a CMake regex that matches it. ';' (CMake's list separator) and square brackets (CMake keeps
+    the ';' inside them, so an unbalanced one joins list elements) are matched by '.'; the rest literally."""
+    return "".join("\\" + c if c in "(){}.*+?^$|\\" else "." if c in ";[]" else c for c in text)
+
+
+def set_path(gltf, path, value):
+    """gltf[path[0]][path[1]]... = value, creating objects (and one-element arrays) on the way."""
+    node = gltf
+    for key, following in zip(path, path[1:]):
+        if isinstance(node, dict) and key not in node:
+            node[key] = [] if isinstance(following, int) else {}
+        if isinstance(node, list):
+            while len(node) <= key:
+                node.append([] if isinstance(following, int) else {})
+        node = node[key]
+    if isinstance(node, list):
+        while len(node) <= path[-1]:
+            node.append(None)
+    node[path[-1]] = value
+
+
+def json_text(value):
+    """A value as dqskin's messages print it (nlohmann::json::dump): 2.0 keeps its fraction."""
+    return json.dumps(value, separators=(",", ":"))
+
+
+class Bad:
+    """What a case writes (`set`, an object holding the bad value) and the bad value its message shows."""
+
+    def __init__(self, set_, shown):
+        self.set = set_
+        self.shown = shown
+
+
+INDEX = "an index (an integer from 0 to 2147483647)"
+OFFSET = "an integer of at least 0"
+COUNT = "an integer of at least 1"
+
+
+def schema_value_cases(cat, base):
+    """One case per rule of lib/gltf/schema_values.cpp: a value that glTF 2.0's schema forbids and that
+    tinygltf would read past (a fraction, a negative number, an index beyond 32 bits that it truncates, a
+    string, a value not in the enum). Structure, geometry, skins and animation fail the input with a line
+    naming the value; appearance loads with a warning saying what happens instead."""
+    def sparse(field, value):
+        """A sparse object whose `field` is `value`, and that value (what the message shows)."""
+        s = {"count": 1, "indices": {"bufferView": 4, "componentType": USHORT}, "values": {"bufferView": 0}}
+        set_path(s, field, value)
+        return Bad(s, value)
+    # (case name, where, value, message owner and property, what it must be)
+    errors = [
+        ("scene", ["scene"], 4.5, "scene", INDEX),
+        ("scene_node", ["scenes", 0, "nodes", 1], -1, "scene 0: nodes[1]", INDEX),
+        ("node_child", ["nodes", 1, "children", 0], 2.0, "node 1: children[0]", INDEX),
+        # 2^32 + 0: tinygltf's int truncation would read mesh 0.
+        ("node_mesh", ["nodes", 0, "mesh"], 4294967296, "node 0: mesh", INDEX),
+        ("node_skin", ["nodes", 0, "skin"], "0", "node 0: skin", INDEX),
+        ("attribute", ["meshes", 0, "primitives", 0, "attributes", "NORMAL"], -1,
+         "mesh 0 primitive 0: attributes.NORMAL", INDEX),
+        ("indices", ["meshes", 0, "primitives", 0, "indices"], 4.5, "mesh 0 primitive 0: indices", INDEX),
+        ("mode", ["meshes", 0, "primitives", 0, "mode"], 7, "mesh 0 primitive 0: mode", "an integer from 0 to 6"),
+        ("morph_target", ["meshes", 0, "primitives", 0, "targets", 0, "POSITION"], -3,
+         "mesh 0 primitive 0: targets[0].POSITION", INDEX),
+        # 2^32 + 5: truncated, it would name the real inverseBindMatrices accessor.
+        ("inverse_bind_matrices", ["skins", 0, "inverseBindMatrices"], 4294967301, "skin 0: inverseBindMatrices", INDEX),
+        ("skeleton", ["skins", 0, "skeleton"], -1, "skin 0: skeleton", INDEX),
+        ("joint", ["skins", 0, "joints", 1], 2.5, "skin 0: joints[1]", INDEX),
+        ("channel_sampler", ["animations", 0, "channels", 0, "sampler"], -1, "animation 0 channel 0: sampler", INDEX),
+        ("channel_node", ["animations", 0, "channels", 1, "target", "node"], 2.0,
+         "animation 0 channel 1: target.node", INDEX),
+        ("sampler_input", ["animations", 0, "samplers", 0, "input"], -6, "animation 0 sampler 0: input", INDEX),
+        ("sampler_output", ["animations", 0, "samplers", 1, "output"], 4294967303, "animation 0 sampler 1: output", INDEX),
+        ("accessor_buffer_view", ["accessors", 0, "bufferView"], -1, "accessor 0: bufferView", INDEX),
+        ("accessor_byte_offset_minus_12", ["accessors", 0, "byteOffset"], -12, "accessor 0: byteOffset", OFFSET),
+        ("accessor_byte_offset_4_5", ["accessors", 0, "byteOffset"], 4.5, "accessor 0: byteOffset", OFFSET),
+        ("accessor_component_type", ["accessors", 0, "componentType"], 5126.5, "accessor 0: componentType",
+         "one of 5120, 5121, 5122, 5123, 5125, 5126"),
+        ("accessor_count", ["accessors", 0, "count"], -4, "accessor 0: count", COUNT),
+        ("accessor_normalized", ["accessors", 3, "normalized"], "yes", "accessor 3: normalized", "true or false"),
+        ("sparse_count", ["accessors", 0, "sparse"], sparse(["count"], 0), "accessor 0: sparse.count", COUNT),
+        ("sparse_indices_view", ["accessors", 0, "sparse"], sparse(["indices", "bufferView"], -1),
+         "accessor 0: sparse.indices.bufferView", INDEX),
+        ("sparse_indices_offset", ["accessors", 0, "sparse"], sparse(["indices", "byteOffset"], -4),
+         "accessor 0: sparse.indices.byteOffset", OFFSET),
+        ("sparse_indices_type", ["accessors", 0, "sparse"], sparse(["indices", "componentType"], FLOAT),
+         "accessor 0: sparse.indices.componentType", "one of 5121, 5123, 5125"),
+        ("sparse_values_view", ["accessors", 0, "sparse"], sparse(["values", "bufferView"], 1.5),
+         "accessor 0: sparse.values.bufferView", INDEX),
+        ("sparse_values_offset", ["accessors", 0, "sparse"], sparse(["values", "byteOffset"], -8),
+         "accessor 0: sparse.values.byteOffset", OFFSET),
+        ("view_buffer", ["bufferViews", 0, "buffer"], -1, "bufferView 0: buffer", INDEX),
+        ("view_byte_offset", ["bufferViews", 0, "byteOffset"], -4, "bufferView 0: byteOffset", OFFSET),
+        ("view_byte_length", ["bufferViews", 0, "byteLength"], 0, "bufferView 0: byteLength", COUNT),
+        ("view_byte_stride_minus_12", ["bufferViews", 0, "byteStride"], -12, "bufferView 0: byteStride",
+         "a multiple of 4 from 4 to 252"),
+        ("view_byte_stride_14", ["bufferViews", 0, "byteStride"], 14, "bufferView 0: byteStride",
+         "a multiple of 4 from 4 to 252"),
+        ("view_target", ["bufferViews", 0, "target"], 34964, "bufferView 0: target", "one of 34962, 34963"),
+        ("image_buffer_view", ["images", 0], Bad({"bufferView": -2, "mimeType": "image/png"}, -2), "image 0: bufferView",
+         INDEX),
+    ]
+    for name, where, value, what, want in errors:
+        a = base.copy()
+        bad = value if isinstance(value, Bad) else Bad(value, value)
+        set_path(a.gltf, where, bad.set)
+        cat.gltf("value_" + name, a, regex_escape("%s %s must be %s" % (what, json_text(bad.shown), want)) + "$")
+    # gltf_bytes() writes the buffer's true byteLength; this case replaces it in the text.
+    text = gltf_bytes(base).replace(b'"buffers":[{"byteLength":%d' % len(base.bin), b'"buffers":[{"byteLength":-1', 1)
+    assert b'"byteLength":-1' in text
+    cat.case("value_buffer_byte_length.gltf", text, regex_escape("buffer 0: byteLength -1 must be " + COUNT) + "$")
+
+    appearance = {
+        "materials": [{"pbrMetallicRoughness": {}}],
+        "textures": [{"source": 0, "sampler": 0}],
+        "samplers": [{}],
+        "images": [{"uri": "data:image/png;base64,iVBORw0KGgo=", "mimeType": "image/png"}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}}],
+    }
+    # (case name, where, value, message, consequence)
+    warnings = [
+        ("node_camera", ["nodes", 0, "camera"], 0.5, "node 0: camera", "the node has no camera"),
+        ("node_light", ["nodes", 0, "extensions", "KHR_lights_punctual", "light"], -1,
+         "node 0: extensions.KHR_lights_punctual.light", "the node has no light"),
+        ("primitive_material", ["meshes", 0, "primitives", 0, "material"], -1, "mesh 0 primitive 0: material",
+         "the default material is used"),
+        ("variant_material", ["meshes", 0, "primitives", 0, "extensions", "KHR_materials_variants", "mappings", 0],
+         Bad({"material": 1.5, "variants": [0]}, 1.5),
+         "mesh 0 primitive 0: extensions.KHR_materials_variants.mappings[0].material", "the mapping is ignored"),
+        ("variant_variant", ["meshes", 0, "primitives", 0, "extensions", "KHR_materials_variants", "mappings", 0],
+         Bad({"material": 0, "variants": [-1]}, -1),
+         "mesh 0 primitive 0: extensions.KHR_materials_variants.mappings[0].variants[0]", "the mapping is ignored"),
+        ("texture_index", ["materials", 0, "pbrMetallicRoughness", "baseColorTexture"], Bad({"index": -1}, -1),
+         "material 0: pbrMetallicRoughness.baseColorTexture.index", "it is drawn without that texture"),
+        ("texture_tex_coord", ["materials", 0, "normalTexture"], Bad({"index": 0, "texCoord": 4.5}, 4.5),
+         "material 0: normalTexture.texCoord", "it is drawn without that texture"),
+        ("texture_transform_tex_coord", ["materials", 0, "emissiveTexture"],
+         Bad({"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": -1}}}, -1),
+         "material 0: emissiveTexture.extensions.KHR_texture_transform.texCoord", "the transform is ignored"),
+        ("extension_texture_index", ["materials", 0, "extensions", "KHR_materials_clearcoat", "clearcoatTexture"],
+         Bad({"index": 2.5}, 2.5), "material 0: extensions.KHR_materials_clearcoat.clearcoatTexture.index",
+         "it is drawn without that texture"),
+        ("texture_source", ["textures", 0, "source"], -1, "texture 0: source", "textures using it are not drawn"),
+        ("texture_sampler", ["textures", 0, "sampler"], 2.5, "texture 0: sampler", "the default sampler is used"),
+        ("texture_extension_source", ["textures", 0, "extensions", "EXT_texture_webp", "source"], -1,
+         "texture 0: extensions.EXT_texture_webp.source", "the extension's image is ignored"),
+        ("sampler_mag_filter", ["samplers", 0, "magFilter"], 9728.5, "sampler 0: magFilter",
+         "one of 9728, 9729", "the default is used"),
+        ("sampler_min_filter", ["samplers", 0, "minFilter"], 1, "sampler 0: minFilter",
+         "one of 9728, 9729, 9984, 9985, 9986, 9987", "the default is used"),
+        ("sampler_wrap_s", ["samplers", 0, "wrapS"], 0, "sampler 0: wrapS", "one of 33071, 33648, 10497", "REPEAT is used"),
+        ("sampler_wrap_t", ["samplers", 0, "wrapT"], "REPEAT", "sampler 0: wrapT", "one of 33071, 33648, 10497",
+         "REPEAT is used"),
+    ]
+    for entry in warnings:
+        name, where, value, what = entry[:4]
+        want, consequence = (entry[4], entry[5]) if len(entry) == 6 else (INDEX, entry[4])
+        a = base.copy()
+        a.gltf.update(copy.deepcopy(appearance))
+        bad = value if isinstance(value, Bad) else Bad(value, value)
+        set_path(a.gltf, where, bad.set)
+        cat.warning("value_" + name, a, regex_escape("%s %s must be %s; %s" % (what, json_text(bad.shown), want, consequence)))
+
+
+def hostile_cases(cat, base, glb, outdir):
+    """Files made to attack a loader: reading outside the model's folder, nesting that overflows a
+    recursive parser's stack, small files that decode to gigabytes, GLB headers whose sizes underflow,
+    text that breaks a terminal line, inputs that are not regular files."""
+    # ---- The resource root: external files only from inside the model's folder -----------------------
+    outside = "leads outside the model's folder.*dqskin does not read it$"
+    for name, uri in [("parent", "../" * 8 + "etc/passwd"),
+                      ("percent_encoded", "..%2F" * 8 + "etc%2Fpasswd"),
+                      ("percent_encoded_dots", "%2E%2E/" * 8 + "etc/passwd"),
+                      ("inside_then_out", "sub/../../" + "../" * 8 + "etc/passwd")]:
+        cat.external("buffer_uri_traversal_" + name, base, r"buffer 0 uri '" + regex_escape(uri) + "' " + outside,
+                     uri=uri)
+    cat.external("buffer_uri_absolute", base, r"buffer 0 uri '/etc/passwd' is an absolute path", uri="/etc/passwd")
+    cat.external("buffer_uri_file_scheme", base, r"buffer 0 uri 'file:///etc/passwd' has a scheme",
+                 uri="file:///etc/passwd")
+    os.symlink("/etc/passwd", os.path.join(outdir, "link_to_passwd.bin"))
+    cat.external("buffer_uri_symlink_outside", base,
+                 r"buffer 0 uri 'link_to_passwd\.bin' leads outside the model's folder \(to /etc/passwd\)",
+                 uri="link_to_passwd.bin")
+    os.mkfifo(os.path.join(outdir, "a_fifo.bin"))
+    cat.external("buffer_uri_fifo", base, r"buffer 0 uri 'a_fifo\.bin' is a FIFO, not a regular file", uri="a_fifo.bin")
+    os.symlink("/dev/zero", os.path.join(outdir, "link_to_dev_zero.bin"))
+    cat.external("buffer_uri_symlink_to_device", base, r"buffer 0 uri 'link_to_dev_zero\.bin' leads outside",
+                 uri="link_to_dev_zero.bin")
+    for name, uri, regex in [("traversal", "../" * 8 + "etc/passwd", outside),
+                             ("absolute", "/etc/passwd", "is an absolute path"),
+                             ("symlink_outside", "link_to_passwd.bin", "leads outside")]:
+        g = copy.deepcopy(base.gltf)
+        g["images"] = [{"uri": uri}]
+        cat.case("image_uri_%s.gltf" % name, gltf_bytes(Asset(g, base.bin)),
+                 r"image 0 uri '" + regex_escape(uri) + "' " + regex)
+
+    # ---- Nesting: tinygltf recurses once per level (20000 levels crashed it) -----------------------------
+    for depth, fails in [(20000, True), (129, True), (100, False)]:
+        g = copy.deepcopy(base.gltf)
+        g["asset"]["extras"] = "NESTING"
+        text = gltf_bytes(Asset(g, base.bin)).replace(b'"NESTING"', b"[" * depth + b"]" * depth)
+        if fails:
+            cat.case("json_nested_%d_deep.gltf" % depth, text,
+                     r"its JSON nests arrays and objects more than 128 deep \(at byte [0-9]+\)$")
+        else:
+            cat.write("valid_json_nested_%d_deep.gltf" % depth, text)
+            cat.valid.append("valid_json_nested_%d_deep.gltf" % depth)
+    # Brackets inside strings are not nesting.
+    g = copy.deepcopy(base.gltf)
+    g["asset"]["copyright"] = "[" * 5000 + "{" * 5000
+    cat.write("valid_brackets_in_strings.gltf", gltf_bytes(Asset(g, base.bin)))
+    cat.valid.append("valid_brackets_in_strings.gltf")
+
+    # ---- Memory in proportion to the file: 3000 primitives share one 1.2 MB accessor (a 1.3 MB file) -------
+    a = base.copy()
+    count = 100000
+    view = a.add_view(bytes(12 * count), ARRAY_BUFFER)
+    shared = a.add_accessor({"bufferView": view, "componentType": FLOAT, "count": count, "type": "VEC3",
+                             "min": [0, 0, 0], "max": [0, 0, 0]})
+    a.gltf["meshes"].append({"primitives": [{"attributes": {"POSITION": shared}}] * 3000})
+    a.gltf["nodes"].append({"mesh": 1})
+    a.gltf["scenes"][0]["nodes"].append(len(a.gltf["nodes"]) - 1)
+    cat.case("shared_accessor_3000_primitives.glb", glb_bytes(a),
+             r"loading it needs about [0-9.]+ GiB \([0-9.]+ GiB decoded by 30[0-9][0-9] accessor reads, .*\), "
+             r"more than --max-memory 2\.00 GiB$")
+
+    # ---- GLB headers whose length is below the 20 bytes of the headers ----------------------------------
+    def patched(data, offset, fmt, value):
+        d = bytearray(data)
+        struct.pack_into(fmt, d, offset, value)
+        return bytes(d)
+    for length in (0, 12, 19):
+        cat.case("glb_header_length_%d.glb" % length, patched(glb, 8, "<I", length),
+                 r"GLB header gives a length of %d bytes, less than its headers \(20\)$" % length)
+
+    # ---- One clean line: control characters and bytes that are not UTF-8 are escaped ---------------------
+    g = copy.deepcopy(base.gltf)
+    g["extensionsUsed"] = g["extensionsRequired"] = ["KHR_\x1b[31mevil\nsecond line"]
+    cat.case("required_extension_with_escape_and_newline.gltf", gltf_bytes(Asset(g, base.bin)),
+             r"requires extension KHR_\\x1b.31mevil\\nsecond line, which dqskin does not support$")
+    cat.case("not_utf8.gltf", b'{"asset":{"version":"2.0"},"x":\xff\xfe}', r".*last read: .*\\xff")
+
+    # ---- Inputs that are not regular files: never waited on, never read forever ---------------------------
+    os.mkfifo(os.path.join(outdir, "fifo_input.gltf"))
+    cat.case("fifo_input.gltf", None, r"not a regular file")
+    os.symlink("/dev/zero", os.path.join(outdir, "dev_zero_input.glb"))
+    cat.case("dev_zero_input.glb", None, r"not a regular file")
+    os.makedirs(os.path.join(outdir, "folder_input.gltf"))
+    cat.case("folder_input.gltf", None, r"is a folder, not a file$")
 
 
 def edit(base, change):
@@ -203,16 +468,21 @@ def edit(base, change):
     return a
 
 
+MARKER = ".written-by-make_malformed"
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_malformed.py OUTDIR")
     outdir = sys.argv[1]
     if os.path.isdir(outdir) and os.listdir(outdir):
-        # Only ever delete a folder that an earlier run wrote.
-        if not os.path.isfile(os.path.join(outdir, "cases.txt")):
-            sys.exit("make_malformed: %s is not empty and holds no cases.txt; not touching it" % outdir)
+        # Only ever delete a folder that an earlier run wrote (its marker is written first, so a run that
+        # failed half-way is recognised too).
+        if not os.path.isfile(os.path.join(outdir, MARKER)) and not os.path.isfile(os.path.join(outdir, "cases.txt")):
+            sys.exit("make_malformed: %s is not empty and holds no %s; not touching it" % (outdir, MARKER))
         shutil.rmtree(outdir)
     os.makedirs(outdir, exist_ok=True)
+    open(os.path.join(outdir, MARKER), "w").close()
     cat = Catalogue(outdir)
     base = base_asset()
 
@@ -301,13 +571,12 @@ def main():
 
     def f(a):
         a.gltf["accessors"][POSITION]["count"] = 0
-    cat.gltf("accessor_count_zero", edit(base, f), r"mesh 0 primitive 0 POSITION \(accessor 0\): has count 0")
+    cat.gltf("accessor_count_zero", edit(base, f), r"accessor 0: count 0 must be an integer of at least 1")
 
     def f(a):
         a.gltf["accessors"][POSITION] = {"componentType": FLOAT, "count": 4000000000, "type": "VEC3"}
     cat.gltf("accessor_count_4e9_unbacked", edit(base, f),
-             r"mesh 0 primitive 0 POSITION \(accessor 0\): has count 4000000000 without a bufferView, "
-             r"more than dqskin accepts")
+             r"loading it needs about [0-9.]+ GiB \(.*\), more than --max-memory 2.00 GiB")
 
     def f(a):
         a.gltf["accessors"][POSITION]["bufferView"] = 42
@@ -587,7 +856,8 @@ def main():
     # elements, not components or bytes; a MAT4 element is 16 components.
     def f(a):
         a.gltf["accessors"][IBM] = {"componentType": FLOAT, "count": 1 << 26, "type": "MAT4"}
-    cat.gltf("accessor_unbacked_2e26_mat4", edit(base, f), r"skin 0 inverseBindMatrices \(accessor 5\): .*67108864")
+    cat.gltf("accessor_unbacked_2e26_mat4", edit(base, f),
+             r"loading it needs about [0-9.]+ GiB \(.*, 12.0 GiB while the largest is decoded, .*\), more than --max-memory")
 
     # An image stored in a bufferView that runs past the end of its buffer (no accessor uses the view, so
     # the accessor checks never see it): tinygltf hands &buffer.data[byteOffset] and byteLength to the
@@ -602,6 +872,9 @@ def main():
     # The same with byteLength 3e9: the callback's int size is negative, and std::length_error escapes
     # the loader (abort, exit status 134).
     cat.gltf("image_buffer_view_3e9_bytes", edit(base, image_view(3000000000)), r".*(image|bufferView 9)")
+
+    schema_value_cases(cat, base)
+    hostile_cases(cat, base, glb, outdir)
 
     # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
     # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.

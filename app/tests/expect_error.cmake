@@ -1,9 +1,10 @@
 # Runs `COMMAND info FILE` and fails unless it exits with status 2 (input error), prints nothing on
 # stdout, and prints exactly one line on stderr: "dqskin: FILE: MESSAGE" with MESSAGE matching REGEX
 # from its start (CMake regex syntax). CTest's PASS_REGULAR_EXPRESSION cannot check the exit status, so
-# this script checks both. With REGEX unset it checks the opposite: exit status 0, nothing on stderr.
+# this script checks both. With REGEX unset it checks the opposite: exit status 0, nothing on stderr; and
+# with WARNING set, that the text output lists a warning matching it (a line "    WARNING").
 #
-#   cmake -DCOMMAND=path/to/dqskin -DFILE=input.gltf [-DREGEX=...] [-DWORKING_DIRECTORY=dir]
+#   cmake -DCOMMAND=path/to/dqskin -DFILE=input.gltf [-DREGEX=... | -DWARNING=...] [-DWORKING_DIRECTORY=dir]
 #         [-DPRLIMIT=path/to/prlimit -DMEMORY_LIMIT_MB=n] -P expect_error.cmake
 #
 # A broken input may make the loader allocate far too much; MEMORY_LIMIT_MB caps the address space
@@ -34,10 +35,18 @@ if(NOT DEFINED REGEX)
     message(FATAL_ERROR "${FILE}: expected it to load (exit status 0, empty stderr), "
                         "got exit status ${status} and stderr:\n${err}")
   endif()
+  if(DEFINED WARNING AND NOT out MATCHES "\n    (${WARNING})\n")
+    message(FATAL_ERROR "${FILE}: expected a warning matching '${WARNING}', got:\n${out}")
+  endif()
   return()
 endif()
 
 set(problems "")
+# One printable line: no control character but the final newline (dqskin escapes them as \x1b, \n).
+string(ASCII 1 2 3 4 5 6 7 8 9 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31 127 controls)
+if(err MATCHES "[${controls}]")
+  string(APPEND problems "stderr holds a control character\n")
+endif()
 if(NOT status STREQUAL "2")
   string(APPEND problems "exit status is '${status}', expected 2\n")
 endif()

@@ -34,19 +34,26 @@ foreach(_file IN LISTS _valid_files)
   set_tests_properties(malformed.${_file} PROPERTIES TIMEOUT 20 LABELS malformed)
 endforeach()
 
-# cases.txt: "<file name>\t<regex>" per line; the regexes contain no ';' (make_malformed.py asserts it).
-file(STRINGS ${DQSKIN_MALFORMED_DIR}/cases.txt _cases)
-foreach(_line IN LISTS _cases)
-  string(FIND "${_line}" "\t" _tab)
-  if(_tab LESS 1)
-    message(FATAL_ERROR "malformed/cases.txt: bad line '${_line}'")
+# cases.txt: "<file name>\t<regex>" per line, files that must fail; warnings.txt the same for files that
+# must load with a warning. The regexes contain no ';' (make_malformed.py asserts it).
+foreach(_list cases warnings)
+  file(STRINGS ${DQSKIN_MALFORMED_DIR}/${_list}.txt _cases)
+  set(_variable REGEX)
+  if(_list STREQUAL "warnings")
+    set(_variable WARNING)
   endif()
-  string(SUBSTRING "${_line}" 0 ${_tab} _file)
-  math(EXPR _start "${_tab} + 1")
-  string(SUBSTRING "${_line}" ${_start} -1 _regex)
-  string(REGEX REPLACE "\\.(gltf|glb)$" "" _case "${_file}")
-  add_test(NAME malformed.${_case}
-    COMMAND ${CMAKE_COMMAND} -DCOMMAND=$<TARGET_FILE:dqskin_cli> -DFILE=${DQSKIN_MALFORMED_DIR}/${_file}
-            "-DREGEX=${_regex}" ${_options} -P ${_checker})
-  set_tests_properties(malformed.${_case} PROPERTIES TIMEOUT 20 LABELS malformed)
+  foreach(_line IN LISTS _cases)
+    string(FIND "${_line}" "\t" _tab)
+    if(_tab LESS 1)
+      message(FATAL_ERROR "malformed/${_list}.txt: bad line '${_line}'")
+    endif()
+    string(SUBSTRING "${_line}" 0 ${_tab} _file)
+    math(EXPR _start "${_tab} + 1")
+    string(SUBSTRING "${_line}" ${_start} -1 _regex)
+    string(REGEX REPLACE "\\.(gltf|glb)$" "" _case "${_file}")
+    add_test(NAME malformed.${_case}
+      COMMAND ${CMAKE_COMMAND} -DCOMMAND=$<TARGET_FILE:dqskin_cli> -DFILE=${DQSKIN_MALFORMED_DIR}/${_file}
+              "-D${_variable}=${_regex}" ${_options} -P ${_checker})
+    set_tests_properties(malformed.${_case} PROPERTIES TIMEOUT 20 LABELS malformed)
+  endforeach()
 endforeach()

@@ -3,8 +3,10 @@
 #include "dqskin/load.hpp"
 
 #include "accessor.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "materials.hpp"
+#include "memory_estimate.hpp"
 #include "mesh.hpp"
 #include "model_io.hpp"
 
@@ -272,9 +274,20 @@ void add_warnings(const tinygltf::Model& m, Asset& asset) {
       asset.warnings.push_back("extension " + ext + " is used but not supported; it is ignored");
 }
 
+// Refuses a file whose decoding would take more than options.max_memory, before anything is decoded.
+void check_memory(const tinygltf::Model& m, const LoadOptions& options) {
+  const gltf::MemoryEstimate need = gltf::estimate_memory(m);
+  if (need.total() > options.max_memory)
+    fail("loading it needs about " + byte_size(need.total()) + " (" + byte_size(need.asset) + " decoded by " +
+         std::to_string(need.accessor_uses) + " accessor reads, " + byte_size(need.transient) +
+         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images), more than --max-memory " +
+         byte_size(options.max_memory));
+}
+
 Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptions& options) {
   for (const std::string& ext : m.extensionsRequired)
     if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
+  check_memory(m, options);
 
   Asset asset;
   asset.path = path;
@@ -311,7 +324,10 @@ Asset load_asset(const std::string& path, const LoadOptions& options) {
 Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& base_dir,
                              const LoadOptions& options) {
   if (bytes.empty()) fail("the file is empty");
-  return convert(gltf::parse_model(bytes, base_dir, options.max_file_bytes), name, options);
+  gltf::ParsedModel parsed = gltf::parse_model(bytes, base_dir, options);
+  Asset asset = convert(parsed.model, name, options);
+  asset.warnings.insert(asset.warnings.begin(), parsed.warnings.begin(), parsed.warnings.end());
+  return asset;
 }
 
 }  // namespace dqskin

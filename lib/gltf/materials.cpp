@@ -19,7 +19,6 @@ TextureRef read_texture_ref(const tinygltf::TextureInfo& info, size_t textures, 
   TextureRef ref;
   if (info.index < 0) return ref;
   if (size_t(info.index) >= textures) drop(what + ": texture " + std::to_string(info.index) + " does not exist");
-  if (info.texCoord < 0) drop(what + ": texCoord must be at least 0");
   ref.texture = info.index;
   ref.texcoord = info.texCoord;
   return ref;
@@ -86,20 +85,9 @@ void read_materials(const tinygltf::Model& m, Asset& asset) {
     }
 }
 
-bool one_of(int value, std::initializer_list<int> allowed) {
-  for (int a : allowed)
-    if (value == a) return true;
-  return false;
-}
-
-Sampler read_sampler(const tinygltf::Sampler& s, const std::string& what) {
-  // §5.26: the allowed OpenGL enum values; filters may be left undefined (tinygltf: -1).
-  constexpr int kNearest = 9728, kLinear = 9729;
-  if (s.magFilter != -1 && !one_of(s.magFilter, {kNearest, kLinear})) drop(what + ": magFilter " + std::to_string(s.magFilter) + " is not allowed");
-  if (s.minFilter != -1 && !one_of(s.minFilter, {kNearest, kLinear, 9984, 9985, 9986, 9987}))
-    drop(what + ": minFilter " + std::to_string(s.minFilter) + " is not allowed");
-  for (int wrap : {s.wrapS, s.wrapT})
-    if (!one_of(wrap, {33071, 33648, 10497})) drop(what + ": wrap mode " + std::to_string(wrap) + " is not allowed");
+// §5.26's enum values were checked on the JSON (schema_values.cpp: a bad one is removed with a warning,
+// so tinygltf's default stands here); filters may be left undefined (tinygltf: -1).
+Sampler read_sampler(const tinygltf::Sampler& s) {
   Sampler out;
   out.mag_filter = s.magFilter == -1 ? 0 : s.magFilter;
   out.min_filter = s.minFilter == -1 ? 0 : s.minFilter;
@@ -116,13 +104,15 @@ void read_textures(const tinygltf::Model& m, Asset& asset) {
     or_warn(asset, "textures using it are not drawn", [&] {
       if (t.source >= 0 && size_t(t.source) >= m.images.size()) drop(what + ": image " + std::to_string(t.source) + " does not exist");
       // KHR_texture_basisu and EXT_texture_webp may leave out the core source (a PNG or JPEG fallback).
-      if (t.source < 0) drop(what + ": has no PNG or JPEG source (only an extension's image, which dqskin does not read)");
+      if (t.source < 0)
+        drop(what + (t.extensions.empty() ? ": has no image"
+                                          : ": has no PNG or JPEG source (only an extension's image, which dqskin does not read)"));
       out.image = t.source;
     });
     or_warn(asset, "the default sampler is used", [&] {
       if (t.sampler >= 0 && size_t(t.sampler) >= m.samplers.size())
         drop(what + ": sampler " + std::to_string(t.sampler) + " does not exist");
-      if (t.sampler >= 0) out.sampler = read_sampler(m.samplers[size_t(t.sampler)], at("sampler", size_t(t.sampler)));
+      if (t.sampler >= 0) out.sampler = read_sampler(m.samplers[size_t(t.sampler)]);
     });
     asset.textures.push_back(out);
   }

@@ -1,21 +1,33 @@
-// Reading a glTF file into a tinygltf::Model with file access that cannot hang or exhaust memory
-// (internal to the loader).
+// Reading a glTF file into a tinygltf::Model with file access that cannot hang, exhaust memory or leave
+// the model's resource root (internal to the loader).
 #pragma once
 
+#include "dqskin/load.hpp"
+
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace dqskin::gltf {
 
-// Parses .glb or .gltf bytes (chosen by the GLB magic). External buffers are read from base_dir, only
-// when they are regular files of at most max_file_bytes. Images are kept encoded, not decoded.
-// Throws InputError.
-tinygltf::Model parse_model(std::span<const uint8_t> bytes, const std::string& base_dir, uint64_t max_file_bytes);
+struct ParsedModel {
+  tinygltf::Model model;
+  nlohmann::json doc;  // the file's JSON as checked (precheck_json): what the model was read from
+  std::vector<std::string> warnings;  // appearance values removed by the checks
+};
 
-// Reads a whole regular file of at most max_bytes. Throws InputError, whose message does not repeat the
+// Parses .glb or .gltf bytes (chosen by the GLB magic) after precheck.hpp's checks. External buffers and
+// images are read relative to base_dir, only from inside the resource root (base_dir and
+// options.resource_roots), only when they are regular files of at most options.max_file_bytes. Images are
+// kept encoded, not decoded. Throws InputError.
+ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_dir, const LoadOptions& options);
+
+// Reads a whole regular file of at most max_bytes. Checks what it opened (a FIFO or device is refused
+// without waiting for a writer or reading forever). Throws InputError, whose message does not repeat the
 // path.
 std::vector<uint8_t> read_regular_file(const std::string& path, uint64_t max_bytes);
 

@@ -1,8 +1,7 @@
 #include "precheck.hpp"
 
 #include "dqskin/error.hpp"
-
-#include <nlohmann/json.hpp>
+#include "schema_values.hpp"
 
 #include <cstring>
 #include <string>
@@ -14,44 +13,68 @@ namespace {
 
 uint32_t le32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
-// A non-negative integer property, or `fallback` when absent. Anything else is an error.
-uint64_t count_property(const nlohmann::json& object, const char* key, uint64_t fallback, const std::string& what) {
-  const auto it = object.find(key);
-  if (it == object.end()) return fallback;
-  if (!it->is_number_unsigned() && !(it->is_number_integer() && it->get<int64_t>() >= 0))
-    fail(what + ": " + key + " must be a non-negative integer");
-  return it->get<uint64_t>();
-}
+bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
 }  // namespace
 
 std::span<const uint8_t> json_chunk(std::span<const uint8_t> bytes, bool glb) {
   if (!glb) return bytes;
-  // Header: magic, version, length; then chunks of (length, type, data) with 4-byte alignment.
-  if (bytes.size() < 20) fail("GLB is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its header");
+  // §4.4: a 12-byte header (magic, version, length), then chunks of (length, type, data), each 4-byte
+  // aligned; the first is JSON. Every size is checked against what the file holds before it is used, and
+  // every subtraction is of a smaller number, so nothing can wrap around.
+  constexpr size_t kHeader = 12, kChunkHeader = 8, kFirstChunkData = kHeader + kChunkHeader;
+  if (bytes.size() < kFirstChunkData)
+    fail("GLB is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its header");
   const uint32_t version = le32(&bytes[4]), length = le32(&bytes[8]);
   if (version != 2) fail("GLB version " + std::to_string(version) + ", but glTF 2.0 needs version 2");
+  if (length < kFirstChunkData)
+    fail("GLB header gives a length of " + std::to_string(length) + " bytes, less than its headers (" +
+         std::to_string(kFirstChunkData) + ")");
   if (length > bytes.size())
     fail("GLB is truncated: its header gives a length of " + std::to_string(length) + " bytes, the file has " +
          std::to_string(bytes.size()));
   const uint32_t json_length = le32(&bytes[12]);
   if (std::memcmp(&bytes[16], "JSON", 4) != 0) fail("GLB does not start with a JSON chunk");
-  if (json_length > length - 20)
+  if (json_length > length - kFirstChunkData)
     fail("GLB JSON chunk of " + std::to_string(json_length) + " bytes runs past the GLB length (" + std::to_string(length) + ")");
-  size_t next = 20 + size_t(json_length);
-  next = (next + 3) & ~size_t(3);
-  if (next + 8 <= length) {
+  const size_t next = (kFirstChunkData + size_t(json_length) + 3) & ~size_t(3);
+  if (next <= length && length - next >= kChunkHeader) {
     const uint32_t chunk_length = le32(&bytes[next]);
-    if (chunk_length > length - next - 8)
+    if (chunk_length > length - next - kChunkHeader)
       fail("GLB chunk at byte " + std::to_string(next) + " (" + std::to_string(chunk_length) +
            " bytes) runs past the GLB length (" + std::to_string(length) + ")");
   }
-  return bytes.subspan(20, json_length);
+  return bytes.subspan(kFirstChunkData, json_length);
 }
 
-void precheck_json(std::span<const uint8_t> text, uint64_t max_buffer_bytes) {
-  const nlohmann::json doc = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) return;  // tinygltf reports malformed JSON in its words
+void check_nesting(std::span<const uint8_t> json) {
+  size_t depth = 0;
+  bool in_string = false, escaped = false;
+  for (size_t i = 0; i < json.size(); ++i) {
+    const uint8_t c = json[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        fail("its JSON nests arrays and objects more than " + std::to_string(kMaxJsonDepth) + " deep (at byte " +
+             std::to_string(i) + ")");
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;  // unbalanced text is the JSON parser's to report
+    }
+  }
+}
+
+CheckedJson precheck_json(std::span<const uint8_t> text, uint64_t max_buffer_bytes, const ResourceRoot& root) {
+  check_nesting(text);
+  CheckedJson out;
+  nlohmann::json doc = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return out;  // tinygltf reports malformed JSON in its words
 
   const auto asset = doc.find("asset");
   if (asset == doc.end() || !asset->is_object()) fail("no asset object (glTF 2.0 requires asset.version)");
@@ -61,48 +84,84 @@ void precheck_json(std::span<const uint8_t> text, uint64_t max_buffer_bytes) {
   if (v.rfind("2.", 0) != 0) fail("asset.version is " + v + ", but dqskin reads glTF 2.x");
   if (const auto min = asset->find("minVersion"); min != asset->end()) {
     if (!min->is_string() || min->get<std::string>() != "2.0")
-      fail("asset.minVersion is " + min->dump() + ", newer than the glTF 2.0 dqskin reads");
+      fail("asset.minVersion is " + min->dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+           ", newer than the glTF 2.0 dqskin reads");
   }
 
+  out.warnings = check_schema_values(doc);
+  out.changed = !out.warnings.empty();
+
+  // Sizes and offsets are integers in range now (check_schema_values); what is left is how they fit.
+  auto size_of = [&doc](const char* array, size_t i, const char* key, uint64_t fallback) {
+    const nlohmann::json& object = doc[array][i];
+    return object.contains(key) ? object[key].get<uint64_t>() : fallback;
+  };
+  auto array_size = [&doc](const char* key) {
+    const auto it = doc.find(key);
+    return it != doc.end() && it->is_array() ? it->size() : size_t(0);
+  };
+  auto object_at = [&doc](const char* array, size_t i, const std::string& what) -> const nlohmann::json& {
+    if (!doc[array][i].is_object()) fail(what + ": is not an object");
+    return doc[array][i];
+  };
+
   std::vector<uint64_t> buffer_lengths;
-  if (const auto buffers = doc.find("buffers"); buffers != doc.end() && buffers->is_array()) {
-    for (size_t i = 0; i < buffers->size(); ++i) {
-      const std::string what = "buffer " + std::to_string(i);
-      if (!(*buffers)[i].is_object()) fail(what + ": is not an object");
-      const uint64_t length = count_property((*buffers)[i], "byteLength", 0, what);
-      if (length == 0) fail(what + ": byteLength must be at least 1");
-      if (length > max_buffer_bytes)
-        fail(what + ": byteLength " + std::to_string(length) + " is more than dqskin reads (" +
-             std::to_string(max_buffer_bytes) + ")");
-      buffer_lengths.push_back(length);
+  for (size_t i = 0; i < array_size("buffers"); ++i) {
+    const std::string what = "buffer " + std::to_string(i);
+    const nlohmann::json& buffer = object_at("buffers", i, what);
+    const uint64_t length = size_of("buffers", i, "byteLength", 0);
+    if (length == 0) fail(what + ": byteLength must be at least 1");
+    if (length > max_buffer_bytes)
+      fail(what + ": byteLength " + std::to_string(length) + " is more than dqskin reads (" +
+           std::to_string(max_buffer_bytes) + ")");
+    buffer_lengths.push_back(length);
+    if (const auto uri = buffer.find("uri"); uri != buffer.end() && uri->is_string()) {
+      const std::string u = uri->get<std::string>();
+      if (!is_data_uri(u) && !root.check(u, what)) fail(what + " uri '" + u + "': no such file beside the model");
     }
   }
-  size_t view_count = 0;
-  if (const auto views = doc.find("bufferViews"); views != doc.end() && views->is_array()) {
-    view_count = views->size();
-    for (size_t i = 0; i < views->size(); ++i) {
-      const std::string what = "bufferView " + std::to_string(i);
-      const nlohmann::json& view = (*views)[i];
-      if (!view.is_object()) fail(what + ": is not an object");
-      const uint64_t buffer = count_property(view, "buffer", UINT64_MAX, what);
-      if (buffer >= buffer_lengths.size()) fail(what + ": buffer does not exist");
-      const uint64_t offset = count_property(view, "byteOffset", 0, what);
-      const uint64_t length = count_property(view, "byteLength", 0, what);
-      if (length == 0) fail(what + ": byteLength must be at least 1");
-      if (offset > buffer_lengths[buffer] || length > buffer_lengths[buffer] - offset)
-        fail(what + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
-             ") runs past the end of buffer " + std::to_string(buffer) + " (" + std::to_string(buffer_lengths[buffer]) +
-             " bytes)");
-    }
+  const size_t view_count = array_size("bufferViews");
+  for (size_t i = 0; i < view_count; ++i) {
+    const std::string what = "bufferView " + std::to_string(i);
+    object_at("bufferViews", i, what);
+    const uint64_t buffer = size_of("bufferViews", i, "buffer", UINT64_MAX);
+    if (buffer >= buffer_lengths.size()) fail(what + ": buffer does not exist");
+    const uint64_t offset = size_of("bufferViews", i, "byteOffset", 0);
+    const uint64_t length = size_of("bufferViews", i, "byteLength", 0);
+    if (length == 0) fail(what + ": byteLength must be at least 1");
+    if (offset > buffer_lengths[buffer] || length > buffer_lengths[buffer] - offset)
+      fail(what + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
+           ") runs past the end of buffer " + std::to_string(buffer) + " (" + std::to_string(buffer_lengths[buffer]) +
+           " bytes)");
   }
-  if (const auto images = doc.find("images"); images != doc.end() && images->is_array()) {
-    for (size_t i = 0; i < images->size(); ++i) {
-      const std::string what = "image " + std::to_string(i);
-      if (!(*images)[i].is_object()) fail(what + ": is not an object");
-      const uint64_t view = count_property((*images)[i], "bufferView", UINT64_MAX, what);
-      if (view != UINT64_MAX && view >= view_count) fail(what + ": bufferView " + std::to_string(view) + " does not exist");
-    }
+  // §3.6.2.4: an accessor's offset into its view, and into its buffer, is a multiple of its component size
+  // (typed-array readers such as WebGL's depend on it).
+  for (size_t i = 0; i < array_size("accessors"); ++i) {
+    const nlohmann::json& accessor = object_at("accessors", i, "accessor " + std::to_string(i));
+    const uint64_t view = size_of("accessors", i, "bufferView", UINT64_MAX);
+    const auto type = accessor.find("componentType");
+    if (view >= view_count || type == accessor.end()) continue;
+    const int64_t t = type->get<int64_t>();
+    const uint64_t size = t == 5120 || t == 5121 ? 1 : t == 5122 || t == 5123 ? 2 : 4;
+    const uint64_t offset = size_of("accessors", i, "byteOffset", 0);
+    const uint64_t in_buffer = offset + size_of("bufferViews", size_t(view), "byteOffset", 0);
+    if (offset % size != 0 || in_buffer % size != 0)
+      fail("accessor " + std::to_string(i) + ": starts at byte " + std::to_string(offset) + " of bufferView " +
+           std::to_string(view) + " (byte " + std::to_string(in_buffer) + " of its buffer), not a multiple of " +
+           std::to_string(size) + ", the size of its components");
   }
+  for (size_t i = 0; i < array_size("images"); ++i) {
+    const std::string what = "image " + std::to_string(i);
+    const nlohmann::json& image = object_at("images", i, what);
+    const uint64_t view = size_of("images", i, "bufferView", UINT64_MAX);
+    if (view != UINT64_MAX && view >= view_count) fail(what + ": bufferView " + std::to_string(view) + " does not exist");
+    // A missing image file only costs the renderer the texture (the loader warns); one outside the root
+    // is refused like a buffer.
+    if (const auto uri = image.find("uri"); uri != image.end() && uri->is_string() && !is_data_uri(uri->get<std::string>()))
+      root.check(uri->get<std::string>(), what);
+  }
+  out.doc = std::move(doc);
+  return out;
 }
 
 }  // namespace dqskin::gltf

@@ -8,7 +8,6 @@
 #include "dqskin/load.hpp"
 #include "dqskin/version.hpp"
 #include "model_io.hpp"
-#include "precheck.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -218,13 +217,12 @@ int BinWriter::indices(std::span<const uint32_t> indices) {
 }
 
 Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
-                           std::span<const uint8_t> source, const std::string& base_dir) {
-  const LoadOptions limits;
-  const bool is_glb = source.size() >= 4 && std::memcmp(source.data(), "glTF", 4) == 0;
-  const std::span<const uint8_t> text = gltf::json_chunk(source, is_glb);
-  const json src = json::parse(text.begin(), text.end(), nullptr, false);
+                           std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load) {
+  // The JSON as the loader checked it: appearance values it refused are gone here too.
+  const gltf::ParsedModel parsed = gltf::parse_model(source, base_dir, load);
+  const json& src = parsed.doc;
+  const tinygltf::Model& model = parsed.model;
   if (!src.is_object()) throw InputError("the file's JSON cannot be read again");
-  const tinygltf::Model model = gltf::parse_model(source, base_dir, limits.max_file_bytes);
   if (model.meshes.size() != asset.meshes.size() || model.nodes.size() != asset.nodes.size())
     throw InputError("the file changed since it was loaded");
 
@@ -276,7 +274,7 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
   // The fixed attributes of each mesh that an instance draws, in the order instances first draw them.
   bool quantized = false;
   for (const std::string& e : model.extensionsUsed) quantized = quantized || e == "KHR_mesh_quantization";
-  const gltf::AccessorReader reader{model, limits.max_unbacked_elements};
+  const gltf::AccessorReader reader{model, load.max_unbacked_elements};
   const json src_meshes = array_of(src, "meshes");
   out.meshes.resize(asset.meshes.size());
   out.mesh_extras.resize(asset.meshes.size());

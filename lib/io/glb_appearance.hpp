@@ -3,6 +3,7 @@
 // not move (texture coordinates, colours, indices), written once into the start of the BIN chunk.
 #pragma once
 
+#include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <nlohmann/json.hpp>
@@ -65,9 +66,10 @@ struct Appearance {
   std::vector<std::string> source_extensions_required;
 };
 
-// Reads the source again (bytes of a .gltf or .glb, base_dir for its external files) and prepares what
-// every frame shares for the meshes that `instances` draw. Throws InputError.
+// Reads the source again (bytes of a .gltf or .glb, base_dir for its external files, `load` the options it
+// was loaded with) and prepares what every frame shares for the meshes that `instances` draw. Throws
+// InputError.
 Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
-                           std::span<const uint8_t> source, const std::string& base_dir);
+                           std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load);
 
 }  // namespace dqskin::glb

@@ -39,9 +39,9 @@ std::string directory_of(const std::string& path) {
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
 }
 
-std::vector<uint8_t> read_source(const std::string& path) {
+std::vector<uint8_t> read_source(const std::string& path, const LoadOptions& load) {
   try {
-    return gltf::read_regular_file(path, LoadOptions{}.max_file_bytes);
+    return gltf::read_regular_file(path, load.max_file_bytes);
   } catch (const InputError& e) {
     throw InputError(path + ": " + e.what());
   }
@@ -259,16 +259,16 @@ std::string glb_container(const json& doc, std::string bin) {
 
 }  // namespace
 
-GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene)
-    : GlbWriter(asset, std::move(instances), scene, read_source(asset.path), directory_of(asset.path)) {}
+GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, const LoadOptions& load)
+    : GlbWriter(asset, std::move(instances), scene, read_source(asset.path, load), directory_of(asset.path), load) {}
 
 GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene,
-                     std::span<const uint8_t> source, const std::string& base_dir) {
+                     std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load) {
   auto w = std::make_unique<Impl>();
   w->asset = &asset;
   w->instances = std::move(instances);
   if (scene >= int(asset.scenes.size())) throw std::invalid_argument("GlbWriter: scene does not exist");
-  w->fixed = glb::read_appearance(asset, w->instances, scene, source, base_dir);
+  w->fixed = glb::read_appearance(asset, w->instances, scene, source, base_dir, load);
 
   // The nodes the scene reaches (§3.5.3); with no scene, every tree.
   std::vector<int> roots;

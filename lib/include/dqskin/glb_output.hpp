@@ -6,6 +6,7 @@
 
 #include "dqskin/animation.hpp"
 #include "dqskin/frame_view.hpp"
+#include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <cstdint>
@@ -30,12 +31,13 @@ public:
   // attributes that Asset does not keep). `instances` = mesh_instances(asset, scene), the order of the
   // FrameView primitives; `scene` = choose_scene(...), -1 when the file has no scenes (then one scene of
   // every root node is written). Throws InputError when the file cannot be read again or an attribute
-  // that Asset does not keep (TEXCOORD_n, COLOR_n) is malformed.
-  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene);
+  // that Asset does not keep (TEXCOORD_n, COLOR_n) is malformed. `load`: the options the asset was loaded
+  // with (resource roots, limits), which the second reading obeys too.
+  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, const LoadOptions& load = {});
   // The same for an asset loaded from memory (load_asset_from_memory): its bytes and the folder of its
   // external files.
   GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, std::span<const uint8_t> source,
-            const std::string& base_dir);
+            const std::string& base_dir, const LoadOptions& load = {});
   ~GlbWriter();
   GlbWriter(GlbWriter&&) noexcept;
   GlbWriter& operator=(GlbWriter&&) noexcept;

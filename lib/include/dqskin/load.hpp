@@ -6,8 +6,14 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace dqskin {
+
+// The default of LoadOptions::max_memory and of the commands' --max-memory: 2 GiB, so that a hostile file
+// is refused well before it can exhaust a build machine, while the largest real characters (a million
+// vertices with morph targets, a few hundred megabytes decoded) load.
+inline constexpr uint64_t kDefaultMaxMemory = uint64_t(2) << 30;
 
 struct LoadOptions {
   // Most values (count × components) accepted for an accessor that has no buffer behind it (a sparse
@@ -15,13 +21,20 @@ struct LoadOptions {
   uint64_t max_unbacked_elements = uint64_t(1) << 26;
   // Largest file, and largest external buffer, that is read (bytes).
   uint64_t max_file_bytes = uint64_t(4) << 30;
+  // Most memory loading may take, estimated from the file's declared counts before anything is decoded
+  // (every use of an accessor counted, morph targets, animation keys, the file's buffers and images).
+  uint64_t max_memory = kDefaultMaxMemory;
+  // Folders besides the model's own that its external buffers and images may come from (--resource-root).
+  // A URI that resolves anywhere else, by "..", an absolute path or a symbolic link, is refused.
+  std::vector<std::string> resource_roots;
 };
 
 // Loads a .gltf (external or data-URI buffers) or .glb file. Images are not decoded. Throws InputError
 // with a one-line message naming the problem (not the file) when the file is not a valid glTF 2.0 asset
-// that dqskin can deform: unreadable or truncated, malformed JSON, indices out of range, data that does
-// not fit its buffer, NaN or infinite values, mismatched counts, non-increasing key times, unsupported
-// required extensions.
+// that dqskin can deform: unreadable or truncated, not a regular file, malformed or too deeply nested JSON,
+// an integer the schema constrains out of its range, indices out of range, data that does not fit its
+// buffer, NaN or infinite values, mismatched counts, non-increasing key times, unsupported required
+// extensions, an external file outside the resource root, or more memory than options.max_memory.
 //
 // Primitives without NORMAL get smooth, area-weighted vertex normals. The specification asks viewers for
 // flat normals; those split every vertex, which would break dqskin's promise that its outputs keep the

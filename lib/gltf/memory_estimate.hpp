@@ -1,0 +1,24 @@
+// How much memory loading a parsed file will take, known before anything is decoded (internal to the
+// loader): so that a small file whose primitives share one large accessor a thousand times is refused in
+// one line instead of exhausting the machine.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <cstdint>
+
+namespace dqskin::gltf {
+
+struct MemoryEstimate {
+  uint64_t file = 0;       // what tinygltf already holds: buffers and encoded images
+  uint64_t asset = 0;      // the Asset: decoded attributes (every use of an accessor counted), morph
+                           // targets, generated normals, skins, animation keys, nodes, copied images
+  uint64_t transient = 0;  // the largest temporary of one decode (an accessor as double, normals' sums)
+  uint64_t accessor_uses = 0;  // accessor reads by meshes, skins and animations, for the message
+  uint64_t total() const;      // saturating sum
+};
+
+// Estimates from the model's declared counts (no accessor is read). Saturates instead of overflowing.
+MemoryEstimate estimate_memory(const tinygltf::Model& model);
+
+}  // namespace dqskin::gltf

@@ -1,0 +1,129 @@
+#include "resource_root.hpp"
+
+#include "dqskin/error.hpp"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+
+namespace dqskin::gltf {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The real path of `path` (every symbolic link, "." and ".." resolved), or "" with errno set.
+std::string real_path(const std::string& path) {
+  const std::unique_ptr<char, decltype(&std::free)> resolved(::realpath(path.c_str(), nullptr), &std::free);
+  return resolved ? std::string(resolved.get()) : std::string();
+}
+
+// RFC 3986 §3.1: scheme = ALPHA *( ALPHA / DIGIT / "+" / "-" / "." ), then ':' before any '/'.
+bool has_scheme(const std::string& uri) {
+  const size_t colon = uri.find(':');
+  if (colon == std::string::npos || colon == 0 || uri.find('/') < colon) return false;
+  if (!std::isalpha(static_cast<unsigned char>(uri[0]))) return false;
+  for (size_t i = 1; i < colon; ++i) {
+    const char c = uri[i];
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '.') return false;
+  }
+  return true;
+}
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+}  // namespace
+
+std::string percent_decode(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] != '%') {
+      out += uri[i];
+      continue;
+    }
+    const int high = i + 2 < uri.size() ? hex_digit(uri[i + 1]) : -1;
+    const int low = high >= 0 ? hex_digit(uri[i + 2]) : -1;
+    if (low < 0) throw InputError("'%' at byte " + std::to_string(i) + " is not followed by two hex digits");
+    if (high == 0 && low == 0) throw InputError("decodes to a NUL byte (%00)");
+    out += char(high * 16 + low);
+    i += 2;
+  }
+  return out;
+}
+
+ResourceRoot::ResourceRoot(const std::string& model_dir, const std::vector<std::string>& extra)
+    : model_dir_(model_dir.empty() ? "." : model_dir) {
+  for (const std::string& dir : [&] {
+         std::vector<std::string> all{model_dir_};
+         all.insert(all.end(), extra.begin(), extra.end());
+         return all;
+       }()) {
+    std::string real = real_path(dir);
+    if (real.empty()) throw InputError("resource root " + dir + ": " + std::strerror(errno));
+    while (real.size() > 1 && real.back() == '/') real.pop_back();
+    roots_.push_back(std::move(real));
+  }
+}
+
+bool ResourceRoot::inside(const std::string& path) const {
+  for (const std::string& root : roots_)
+    if (root == "/" || (path.size() > root.size() && path.compare(0, root.size(), root) == 0 && path[root.size()] == '/'))
+      return true;
+  return false;
+}
+
+bool ResourceRoot::check(const std::string& uri, const std::string& what) const {
+  const std::string named = what + " uri '" + uri + "'";
+  if (has_scheme(uri)) throw InputError(named + " has a scheme; dqskin reads only files relative to the model");
+  std::string decoded;
+  try {
+    decoded = percent_decode(uri);
+  } catch (const InputError& e) {
+    throw InputError(named + ": " + e.what());
+  }
+  if (decoded.empty()) throw InputError(named + " is empty");
+  if (decoded.front() == '/') throw InputError(named + " is an absolute path; dqskin reads only files relative to the model");
+  const std::string joined = model_dir_ + "/" + decoded;
+  const std::string real = real_path(joined);
+  if (real.empty()) {
+    if (errno != ENOENT) throw InputError(named + ": " + std::strerror(errno));
+    // Missing: still refuse a path that leaves every root on its face ("../../secret/x.bin").
+    const std::string lexical = (fs::path(real_path(model_dir_)) / decoded).lexically_normal().string();
+    if (!inside(lexical))
+      throw InputError(named + " leads outside the model's folder" + (roots_.size() > 1 ? " and --resource-root" : "") +
+                       "; dqskin does not read it");
+    return false;
+  }
+  if (!inside(real))
+    throw InputError(named + " leads outside the model's folder" + (roots_.size() > 1 ? " and --resource-root" : "") +
+                     " (to " + real + "); dqskin does not read it");
+  struct stat st {};
+  if (::stat(real.c_str(), &st) != 0) throw InputError(named + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) throw InputError(named + " is " + kind_of(st.st_mode) + ", not a regular file");
+  return true;
+}
+
+bool ResourceRoot::allows(const std::string& path) const {
+  const std::string real = real_path(path);
+  struct stat st {};
+  return !real.empty() && inside(real) && ::stat(real.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+}  // namespace dqskin::gltf
