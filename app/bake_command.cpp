@@ -8,6 +8,8 @@
 
 #include "dqskin/bake.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/output_journal.hpp"
+#include "dqskin/stderr_lock.hpp"
 #include "dqskin/version.hpp"
 
 #include <nlohmann/json.hpp>
@@ -51,6 +53,7 @@ public:
                                             {"frames_per_s", rate},   {"eta_s", left}})
                 << std::endl;
     } else if (bar_ && (elapsed - last_draw_ > 0.1 || p.frames_done == p.frames_total)) {
+      const std::lock_guard<std::mutex> stderr_lock(stderr_mutex());
       last_draw_ = elapsed;
       const int width = 30;
       const int filled = p.frames_total ? int(double(width) * double(p.frames_done) / double(p.frames_total)) : width;
@@ -62,6 +65,7 @@ public:
   }
 
   void done() {
+    const std::lock_guard<std::mutex> stderr_lock(stderr_mutex());
     if (drawn_) std::fputs("\r\033[K", stderr);
   }
 
@@ -75,6 +79,7 @@ private:
 BakeOptions to_options(const BakeSettings& s) {
   BakeOptions o;
   o.out_dir = s.out_dir;
+  o.load = to_load_options(s.load);
   o.clips = s.selection.anim;
   o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
@@ -135,12 +140,13 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
 int run_bake(const BakeSettings& given) {
   BakeSettings settings = given;
   Progress progress(settings);
+  OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing baked
   try {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     BakeOptions options = to_options(settings);
     options.cancel = catch_interrupts();
-    if (!options.dry_run) std::filesystem::create_directories(options.out_dir);
+    if (!options.dry_run) out_folder.make_folders(options.out_dir);
 
     const BakeReport report = bake(settings.inputs, options, [&](const BakeProgress& p) { progress(p); });
     progress.done();
@@ -152,6 +158,7 @@ int run_bake(const BakeSettings& given) {
     }
     const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
                                                [](const BakeInputResult& r) { return !r.error.empty(); }));
+    if (failed < report.inputs.size()) out_folder.keep();
     if (failed == 0) return kSuccess;
     if (!settings.quiet && failed < report.inputs.size())
       print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others baked");

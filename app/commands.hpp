@@ -3,6 +3,7 @@
 
 #include "dqskin/animation.hpp"
 #include "dqskin/image_diff.hpp"
+#include "dqskin/load.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -13,8 +14,22 @@
 
 namespace dqskin::cli {
 
+// How every command that reads glTF files reads them (--resource-root, --max-memory), shared so that info,
+// bake and render read the same flags the same way.
+struct LoadSettings {
+  std::vector<std::string> resource_roots;
+  std::string max_memory = "2G";
+};
+
+// Adds the LoadSettings flags to a command.
+void add_load_settings(CLI::App& command, LoadSettings& settings);
+
+// The LoadOptions they ask for. Throws InputError for a size that is not one, or a root that is not a folder.
+LoadOptions to_load_options(const LoadSettings& settings);
+
 struct InfoSettings {
   std::vector<std::string> inputs;
+  LoadSettings load;
   bool json = false;
 };
 
@@ -49,6 +64,7 @@ FrameSpec to_frame_spec(const FrameSelection& selection);
 struct BakeSettings {
   std::vector<std::string> inputs;  // empty: the bundled default input
   std::string out_dir;
+  LoadSettings load;
   FrameSelection selection;
   std::string shard;
   std::string mode = "dqs";
@@ -66,6 +82,7 @@ int run_bake(const BakeSettings& settings);
 struct RenderSettings {
   std::vector<std::string> inputs;
   std::string out_dir;
+  LoadSettings load;
   FrameSelection selection;
   std::string shard;
   std::string mode = "dqs";

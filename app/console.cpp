@@ -1,19 +1,30 @@
 #include "console.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/stderr_lock.hpp"
 
 #include <iostream>
 
 namespace dqskin::cli {
 
-void print_error(std::string_view message) { std::cerr << "dqskin: " << printable(message) << '\n'; }
+namespace {
+
+// One write of a whole line, under the lock the library takes while it captures stderr.
+void print_line(const std::string& line) {
+  const std::lock_guard<std::mutex> lock(stderr_mutex());
+  std::cerr << line << std::flush;
+}
+
+}  // namespace
+
+void print_error(std::string_view message) { print_line("dqskin: " + printable(message) + "\n"); }
 
 void print_error(std::string_view file, std::string_view message) {
-  std::cerr << "dqskin: " << printable(file) << ": " << printable(message) << '\n';
+  print_line("dqskin: " + printable(file) + ": " + printable(message) + "\n");
 }
 
 void print_warning(std::string_view file, std::string_view message) {
-  std::cerr << "dqskin: " << printable(file) << ": warning: " << printable(message) << '\n';
+  print_line("dqskin: " + printable(file) + ": warning: " + printable(message) + "\n");
 }
 
 void print_input_messages(const std::vector<BakeInputResult>& inputs, bool quiet) {

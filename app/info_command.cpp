@@ -96,10 +96,12 @@ nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
 int run_info(const InfoSettings& settings) {
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   size_t failed = 0;
+  const LoadOptions options = to_load_options(settings.load);
   for (size_t i = 0; i < settings.inputs.size(); ++i) {
     const std::string& path = settings.inputs[i];
+    std::string error;
     try {
-      const AssetFacts facts = describe(load_asset(path));
+      const AssetFacts facts = describe(load_asset(path, options));
       if (settings.json) {
         files.push_back(to_json(path, facts));
       } else {
@@ -107,10 +109,14 @@ int run_info(const InfoSettings& settings) {
         print_text(path, facts);
       }
     } catch (const InputError& e) {
-      ++failed;
-      print_error(path, e.what());
-      if (settings.json) files.push_back({{"path", path}, {"error", e.what()}});
+      error = e.what();
+    } catch (const std::bad_alloc&) {
+      error = kOutOfMemory;
     }
+    if (error.empty()) continue;
+    ++failed;
+    print_error(path, error);
+    if (settings.json) files.push_back({{"path", path}, {"error", error}});
   }
   if (settings.json) std::cout << json_text(nlohmann::ordered_json{{"files", files}}, 2) << '\n';
   if (failed == 0) return kSuccess;

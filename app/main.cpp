@@ -3,6 +3,7 @@
 #include "console.hpp"
 #include "exit_codes.hpp"
 
+#include "dqskin/error.hpp"
 #include "dqskin/version.hpp"
 
 #include <CLI/CLI.hpp>
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
       "info", "Print scenes, skinned meshes, skins, animations, morph targets and warnings of glTF files");
   info_cmd->add_option("FILE", info.inputs, ".gltf or .glb files")->required();
   info_cmd->add_flag("--json", info.json, "Print one JSON document instead of text");
+  add_load_settings(*info_cmd, info.load);
 
   BenchSettings bench;
   CLI::App* bench_cmd = app.add_subcommand(
@@ -52,6 +54,7 @@ int main(int argc, char** argv) {
                        "temporary folder, which is printed");
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*bake_cmd, bake.selection, "bake");
+  add_load_settings(*bake_cmd, bake.load);
   bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
       ->type_name("lbs|dqs|dib")
       ->capture_default_str();
@@ -100,6 +103,7 @@ int main(int argc, char** argv) {
                          "temporary folder (printed)");
   render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*render_cmd, render.selection, "render");
+  add_load_settings(*render_cmd, render.load);
   render_cmd->add_option("--mode", render.mode,
                          "Blending: lbs (linear), dqs (dual quaternion DLB) or dib (iterative, deformed on the CPU)")
       ->type_name("lbs|dqs|dib")
@@ -240,11 +244,21 @@ int main(int argc, char** argv) {
     return kUsageOrInputError;
   }
 
-  if (info_cmd->parsed()) return run_info(info);
-  if (bench_cmd->parsed()) return run_bench(bench);
-  if (bake_cmd->parsed()) return run_bake(bake);
-  if (diff_cmd->parsed()) return run_diff(diff);
-  if (render_cmd->parsed()) return run_render(render);
+  // The commands turn what goes wrong with an input into a line naming it; what escapes them (a usage error
+  // found late, memory running out outside any input) still ends in one line and a status, never an abort.
+  try {
+    if (info_cmd->parsed()) return run_info(info);
+    if (bench_cmd->parsed()) return run_bench(bench);
+    if (bake_cmd->parsed()) return run_bake(bake);
+    if (diff_cmd->parsed()) return run_diff(diff);
+    if (render_cmd->parsed()) return run_render(render);
+  } catch (const std::bad_alloc&) {
+    print_error(dqskin::kOutOfMemory);
+    return kUsageOrInputError;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kUsageOrInputError;
+  }
 
   // No command given: show what there is to run.
   std::cout << app.help();

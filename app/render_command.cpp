@@ -7,6 +7,8 @@
 #include "interrupt.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/output_journal.hpp"
+#include "dqskin/stderr_lock.hpp"
 #include "dqskin/render.hpp"
 
 #include <nlohmann/json.hpp>
@@ -74,6 +76,7 @@ glm::vec4 parse_background(const std::string& text) {
 RenderOptions to_options(const RenderSettings& s) {
   RenderOptions o;
   o.out_dir = s.out_dir;
+  o.load = to_load_options(s.load);
   o.clips = s.selection.anim;
   o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
@@ -118,6 +121,7 @@ void report_progress(const RenderSettings& s, const BakeProgress& p, std::chrono
                                           {"animation", p.clip},          {"elapsed_s", elapsed}})
               << std::endl;
   } else if (!s.quiet && ::isatty(2)) {
+    const std::lock_guard<std::mutex> lock(stderr_mutex());
     std::fprintf(stderr, "\r\033[K%zu/%zu frames  %s", p.frames_done, p.frames_total, printable(p.clip).c_str());
   }
 }
@@ -131,18 +135,20 @@ int run_render(const RenderSettings& given) {
   auto clear_bar = [&]() {
     if (bar) std::fputs("\r\033[K", stderr);
   };
+  OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing rendered
   try {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     RenderOptions options = to_options(settings);
     options.cancel = catch_interrupts();
-    std::filesystem::create_directories(options.out_dir);
+    out_folder.make_folders(options.out_dir);
     const RenderReport report =
         render(settings.inputs, options, [&](const BakeProgress& p) { report_progress(settings, p, start); });
     clear_bar();
     print_input_messages(report.inputs, settings.quiet);
     const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
                                                [](const BakeInputResult& r) { return !r.error.empty(); }));
+    if (failed < report.inputs.size()) out_folder.keep();
     // mode-diff: what the heat map's top color stands for, per animation.
     nlohmann::json scales = nlohmann::json::array();
     for (const ModeDiffScale& m : report.mode_diff) {

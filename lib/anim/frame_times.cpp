@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <set>
 
@@ -12,6 +13,8 @@ namespace dqskin {
 namespace {
 
 [[noreturn]] void fail(const std::string& message) { throw InputError(message); }
+
+constexpr int kMaxFrames = 10000000;  // 92 hours at 30 fps; far more is a mistake, not an animation
 
 int parse_int(const std::string& text, const std::string& what) {
   char* end = nullptr;
@@ -81,8 +84,14 @@ std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec) {
   // Frames whose time start + i/fps is at most the last key; the 1e-9 absorbs rounding of durations
   // that are whole frames (2 s at 30 fps is 61 frames, not 60).
   const double span = std::max(0.0, clip.last_key - start);
-  const double frames = std::floor(span * spec.fps + 1e-9) + 1;
-  if (frames > 1e7) fail("the clip would have " + std::to_string(uint64_t(frames)) + " frames at this fps");
+  const double frames = std::floor(span * spec.fps + 1e-9) + 1;  // +inf for --fps 1e300 and a clip of 1 s
+  // Compared as doubles: converting one above the integers' range would be undefined.
+  if (!(frames <= kMaxFrames)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "the clip would have %.3g frames (%.6g s at %.6g fps), more than %d", frames, span,
+                  spec.fps, kMaxFrames);
+    fail(text);
+  }
   const int count = int(frames);
   const int first = spec.first.value_or(0);
   const int last = spec.last.value_or(count - 1);

@@ -8,6 +8,7 @@
 #include "dqskin/glb_output.hpp"
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/mesh_output.hpp"
+#include "dqskin/output_journal.hpp"
 #include "dqskin/sha256.hpp"
 #include "dqskin/texture_output.hpp"
 #include "manifest.hpp"
@@ -55,11 +56,11 @@ struct Ledger {
   }
 
   // Writes bytes we encoded: hashed from memory, no second read.
-  void write(const std::string& relative, const std::string& bytes) {
+  void write(const std::string& relative, const std::string& bytes, OutputJournal& journal) {
     const Clock::time_point start = Clock::now();
     AtomicFile file(absolute(relative), false);  // synced all at once before the manifest
     file.write(bytes);
-    const bool unchanged = file.commit(options.overwrite) == Committed::kUnchanged;
+    const bool unchanged = file.commit({options.overwrite, &journal}) == Committed::kUnchanged;
     const std::string digest = sha256_hex(bytes);
     add_time(&BakeStageTimes::write, since(start));
     record({relative, bytes.size(), digest, unchanged});
@@ -72,6 +73,13 @@ struct Ledger {
       record({relative[i], uint64_t(std::filesystem::file_size(path)), sha256_file(path),
               i < committed.size() && committed[i] == Committed::kUnchanged});
     }
+  }
+
+  // An input failed and its files were taken back: they leave the report (and so the manifest) too.
+  void forget(const InputPlan& input) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const std::string prefix = input.stem + "/";
+    std::erase_if(report.outputs, [&](const BakeOutput& o) { return o.path.rfind(prefix, 0) == 0; });
   }
 
   void frames_finished(size_t count, const InputPlan& input, const ClipPlan& clip) {
@@ -88,11 +96,16 @@ struct Ledger {
 // Bakes the clips of one input with one deformer.
 class InputBaker {
 public:
-  InputBaker(const InputPlan& input, const BakeOptions& options, GpuContext* context, Ledger& ledger)
-      : input_(input), asset_(*input.asset), options_(options), ledger_(ledger),
+  InputBaker(const InputPlan& input, const BakeOptions& options, GpuContext* context, Ledger& ledger,
+             OutputJournal& journal)
+      : input_(input), asset_(*input.asset), options_(options), ledger_(ledger), journal_(journal),
         jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())) {
-    if (has(options.formats, BakeFormat::kGlb)) glb_ = std::make_unique<GlbWriter>(asset_, input.instances, input.scene);
-    if (context) {
+    if (has(options.formats, BakeFormat::kGlb))
+      glb_ = std::make_unique<GlbWriter>(asset_, input.instances, input.scene, options.load);
+    // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
+    const bool deforms = std::any_of(input.clips.begin(), input.clips.end(),
+                                     [&](const ClipPlan& c) { return !c.frames_to_deform(options.formats).empty(); });
+    if (context && deforms) {
       GpuDeformOptions gpu_options;
       gpu_options.mode = options.mode;
       gpu_options.memory_budget = options.gpu_memory;
@@ -110,7 +123,7 @@ public:
 
   size_t bake_clip(const ClipPlan& clip) {
     ledger_.check_cancel();
-    std::filesystem::create_directories(ledger_.absolute(clip.folder));
+    journal_.make_folders(ledger_.absolute(clip.folder));
     if (clip.clip_mine) write_clip_files(clip);
 
     const std::vector<size_t> frames = clip.frames_to_deform(options_.formats);
@@ -130,7 +143,7 @@ public:
       deform_on_cpu(clip, times, sink);
     }
     if (vat) {
-      const std::vector<Committed> committed = vat->commit(options_.overwrite);
+      const std::vector<Committed> committed = vat->commit({options_.overwrite, &journal_});
       ledger_.record_files({clip.folder + "/vat_positions.exr", clip.folder + "/vat_normals.exr", clip.folder + "/vat.json"},
                            committed);
     }
@@ -141,7 +154,7 @@ private:
   // Whole-animation files that need no deformation: the OBJ material library and the bone textures.
   void write_clip_files(const ClipPlan& clip) {
     if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
-      ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_));
+      ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
     if (!has(options_.formats, BakeFormat::kBones) || input_.skins.empty()) return;
     const Clock::time_point start = Clock::now();
     std::vector<Pose> poses;
@@ -153,7 +166,7 @@ private:
       const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
       const std::vector<Committed> committed = write_bone_texture(
           ledger_.absolute(base + ".exr"), ledger_.absolute(base + ".json"), texture, asset_, skin, clip.times, clip.fps,
-          options_.overwrite);
+          {options_.overwrite, &journal_});
       ledger_.record_files({base + ".exr", base + ".json"}, committed);
     }
     ledger_.add_time(&BakeStageTimes::sample, since(start));
@@ -202,7 +215,7 @@ private:
     if (glb_) {
       const std::string bytes = glb_->encode(view, clip.clip, clip.times[f]);
       ledger_.add_time(&BakeStageTimes::encode, since(start));
-      ledger_.write(clip.frame_file(f, "glb"), bytes);
+      ledger_.write(clip.frame_file(f, "glb"), bytes, journal_);
       start = Clock::now();
     }
     if (!has(options_.formats, BakeFormat::kPly) && !has(options_.formats, BakeFormat::kObj)) return;
@@ -210,13 +223,13 @@ private:
     if (has(options_.formats, BakeFormat::kPly)) {
       const std::string bytes = encode_ply(mesh);
       ledger_.add_time(&BakeStageTimes::encode, since(start));
-      ledger_.write(clip.frame_file(f, "ply"), bytes);
+      ledger_.write(clip.frame_file(f, "ply"), bytes, journal_);
       start = Clock::now();
     }
     if (has(options_.formats, BakeFormat::kObj)) {
       const std::string bytes = encode_obj(mesh, asset_, asset_.materials.empty() ? "" : "materials.mtl");
       ledger_.add_time(&BakeStageTimes::encode, since(start));
-      ledger_.write(clip.frame_file(f, "obj"), bytes);
+      ledger_.write(clip.frame_file(f, "obj"), bytes, journal_);
     }
   }
 
@@ -224,6 +237,7 @@ private:
   const Asset& asset_;
   const BakeOptions& options_;
   Ledger& ledger_;
+  OutputJournal& journal_;
   const unsigned jobs_;
   std::unique_ptr<GlbWriter> glb_;
   std::unique_ptr<GpuDeformer> gpu_;
@@ -301,19 +315,30 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   for (const InputPlan& plan : plans) {
     BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
+      OutputJournal journal;  // what this input wrote, taken back when it fails
       try {
         if (!cpu && !context) {
           context = create_gpu_context(backend);  // NoGpuContext ends the bake: exit status 3
           report.gpu = context->info();
         }
-        InputBaker baker(plan, options, context.get(), ledger);
-        for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
+        {
+          InputBaker baker(plan, options, context.get(), ledger, journal);
+          for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
+        }
+        journal.keep();
       } catch (const BakeCancelled&) {
+        journal.keep();  // an interrupted bake keeps its complete files; a rerun finishes the job
         throw;
       } catch (const NoGpuContext&) {
         throw;
+      } catch (const std::bad_alloc&) {
+        result.error = kOutOfMemory;
       } catch (const std::exception& e) {
         result.error = e.what();
+      }
+      if (!result.error.empty()) {
+        journal.roll_back();
+        ledger.forget(plan);
       }
     }
     report.inputs.push_back(std::move(result));

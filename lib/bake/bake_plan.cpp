@@ -3,8 +3,12 @@
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <climits>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <set>
 
@@ -23,6 +27,35 @@ int digits(size_t n) {
   int d = 1;
   while (n >= 10) n /= 10, ++d;
   return d;
+}
+
+// The longest file name the output's file system takes, asked of the output folder or, before it exists,
+// its nearest ancestor that does.
+size_t longest_name(const std::string& out_dir) {
+  std::filesystem::path p = out_dir.empty() ? "." : out_dir;
+  while (!p.empty() && ::access(p.c_str(), F_OK) != 0 && p != p.parent_path()) p = p.parent_path();
+  const long n = ::pathconf(p.empty() ? "." : p.c_str(), _PC_NAME_MAX);
+  return n > 0 ? size_t(n) : 255;
+}
+
+// What a name looks like in a message: printable, and at most 40 characters of it.
+std::string shortened(const std::string& name) { return name.size() <= 40 ? name : name.substr(0, 40) + "..."; }
+
+// Names that the file system would refuse only when the first file is written (an animation name of 254
+// bytes, with a suffix, makes a folder name of 256) are refused before anything is written. Frame and
+// texture names are short; their temporaries add about 30 bytes, which the path-length check allows for.
+void check_name_lengths(const std::string& out_dir, const ClipPlan& clip, const std::string& stem, size_t name_max) {
+  const std::string anim = clip.folder.substr(stem.size() + 1);
+  for (const auto& [name, what] : {std::pair{stem, "the input's file name"}, std::pair{anim, "the animation's name"}})
+    if (name.size() > name_max)
+      throw InputError(std::string(what) + " makes the folder name '" + shortened(name) + "' " +
+                       std::to_string(name.size()) + " bytes long; the output's file system takes at most " +
+                       std::to_string(name_max));
+  constexpr size_t kLongestFile = 96;  // "frame_NNNN.glb", "bones_skinK.json", "sheet_shardIofN.png" + temporary
+  const size_t path = out_dir.size() + 1 + clip.folder.size() + 1 + kLongestFile;
+  if (path >= PATH_MAX)
+    throw InputError("the output paths under " + shortened(clip.folder) + " would be about " + std::to_string(path) +
+                     " bytes long; the system takes at most " + std::to_string(PATH_MAX));
 }
 
 }  // namespace
@@ -55,6 +88,7 @@ std::vector<size_t> ClipPlan::frames_to_deform(unsigned formats) const {
 
 std::vector<InputPlan> plan_bake(const std::vector<std::string>& inputs, const BakeOptions& options, double& load_seconds) {
   std::vector<InputPlan> plans;
+  const size_t name_max = longest_name(options.out_dir);
   std::map<std::string, std::string> stems;  // output folder → the input that writes it
   size_t frame_unit = 0, clip_unit = 0;
   auto mine = [&](size_t unit) { return unit % options.shard_count == options.shard_index; };
@@ -67,7 +101,7 @@ std::vector<InputPlan> plan_bake(const std::vector<std::string>& inputs, const B
                        plan.stem + "; bake them into different folders");
     try {
       const auto start = std::chrono::steady_clock::now();
-      plan.asset = std::make_unique<Asset>(load_asset(path));
+      plan.asset = std::make_unique<Asset>(load_asset(path, options.load));
       load_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const Asset& asset = *plan.asset;
       plan.scene = choose_scene(asset, options.scene);
@@ -97,6 +131,7 @@ std::vector<InputPlan> plan_bake(const std::vector<std::string>& inputs, const B
         }
         cp.folder = plan.stem;
         cp.folder.append("/").append(folder);
+        check_name_lengths(options.out_dir, cp, plan.stem, name_max);
         if (cp.clip) {
           cp.times = frame_times(*cp.clip, options.frames);
         } else {
@@ -109,6 +144,8 @@ std::vector<InputPlan> plan_bake(const std::vector<std::string>& inputs, const B
         cp.number_width = std::max(4, digits(size_t(cp.numbers.empty() ? 0 : cp.numbers.back())));
         plan.clips.push_back(std::move(cp));
       }
+    } catch (const std::bad_alloc&) {
+      plan = InputPlan{path, plan.stem, nullptr, -1, {}, {}, {}, kOutOfMemory};
     } catch (const std::exception& e) {
       plan = InputPlan{path, plan.stem, nullptr, -1, {}, {}, {}, e.what()};
     }

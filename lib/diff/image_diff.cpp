@@ -2,6 +2,7 @@
 // of failing pairs, and text, JSON and JUnit XML reports (include/dqskin/image_diff.hpp).
 #include "dqskin/image_diff.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/stderr_capture.hpp"
 #include "../io/utf8.hpp"
 
 #include "dqskin/atomic_file.hpp"
@@ -76,13 +77,17 @@ std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_err
 
 // Reads the first subimage of `path` as float pixels into `image`. Returns why it cannot, or "".
 std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
+  // Checked before OpenImageIO opens it: a FIFO would block the open until a writer comes, a device such
+  // as /dev/zero would be read forever (symbolic links are followed to what they name).
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   if (error) return error.message();
   if (fs::is_directory(status)) return "is a folder";
+  if (!fs::is_regular_file(status)) return "not a regular file (a device, FIFO or socket)";
   OIIO::geterror();  // forget earlier messages
+  CapturedStderr capture;  // libpng prints its own "libpng error: …" line; it becomes part of ours
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-  if (!in) return oiio_message(OIIO::geterror());
+  if (!in) return with_library_text(oiio_message(OIIO::geterror()), capture.finish());
   OIIO::ImageSpec spec = in->spec();
   if (spec.deep) return "deep (multi-sample) images are not compared";
   if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0 || spec.nchannels <= 0)
@@ -93,7 +98,7 @@ std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
            std::to_string(spec.nchannels) + " channels are too large to compare";
   image.reset(spec, OIIO::InitializePixels::No);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.localpixels()))
-    return oiio_message(in->geterror());
+    return with_library_text(oiio_message(in->geterror()), capture.finish());
   return "";
 }
 
@@ -189,9 +194,13 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
                                          ", white not finite");
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
   if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
-  if (!out->open(temporary, out_spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close())
-    throw OutputError(path + ": " + oiio_message(out->geterror()));
+  CapturedStderr capture;  // libpng's own messages join our line
+  if (!out->open(temporary, out_spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
+    const std::string library = capture.finish();
+    throw OutputError(with_library_text(path + ": " + oiio_message(out->geterror()), library));
+  }
   out.reset();
+  capture.finish();
   file.commit(Overwrite::kReplace);
 }
 

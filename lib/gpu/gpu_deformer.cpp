@@ -81,6 +81,7 @@ struct GpuDeformer::Impl {
     context.make_current();
     if (const std::string missing = gl.load(context); !missing.empty())
       throw NoGpuContext("the OpenGL context has no " + missing);
+    check_texture_width();
     upload();
     choose_batch();
     textures.assign(instances.size(), 0);
@@ -97,6 +98,21 @@ struct GpuDeformer::Impl {
     for (GLuint t : textures)
       if (t) gl.DeleteTextures(1, &t);
     for (auto& [variant, program] : programs) gl.DeleteProgram(program);
+  }
+
+  // A skin's bone texture is at least 2 texels a joint wide (DESIGN.md "BoneTexture layout"): one wider than
+  // the GPU's largest texture is refused now, before the caller has written anything, not at the first batch.
+  void check_texture_width() {
+    GLint max_width = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_width);
+    for (const MeshInstance& inst : instances) {
+      if (inst.skin < 0) continue;
+      const size_t joints = asset.skins[size_t(inst.skin)].joints.size();
+      if (joints * 2 > size_t(max_width))
+        throw InputError("skin " + std::to_string(inst.skin) + " has " + std::to_string(joints) +
+                         " joints: its bone texture needs at least " + std::to_string(joints * 2) +
+                         " texels a row, and this GPU allows " + std::to_string(max_width));
+    }
   }
 
   void upload() {

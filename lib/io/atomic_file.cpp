@@ -1,6 +1,8 @@
 #include "dqskin/atomic_file.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/output_journal.hpp"
+#include "pending_files.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -9,6 +11,8 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <vector>
 
 namespace dqskin {
@@ -32,7 +36,36 @@ bool same_contents(const std::string& a, const std::string& b) {
   }
 }
 
+struct Pending {
+  std::mutex mutex;
+  std::set<std::string> paths;
+};
+Pending& pending() {
+  static Pending* p = new Pending;  // never destroyed: a stopping thread may use it during exit
+  return *p;
+}
+
 }  // namespace
+
+namespace pending_files {
+
+void add(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(pending().mutex);
+  pending().paths.insert(path);
+}
+
+void remove(const std::string& path) {
+  const std::lock_guard<std::mutex> lock(pending().mutex);
+  pending().paths.erase(path);
+}
+
+}  // namespace pending_files
+
+void remove_pending_files() noexcept {
+  const std::lock_guard<std::mutex> lock(pending().mutex);
+  for (const std::string& path : pending().paths) ::unlink(path.c_str());
+  pending().paths.clear();
+}
 
 AtomicFile::AtomicFile(std::string path, bool sync) : path_(std::move(path)), sync_(sync) {
   // Unique per process and object, hidden, in the destination folder.
@@ -41,14 +74,20 @@ AtomicFile::AtomicFile(std::string path, bool sync) : path_(std::move(path)), sy
   const std::string folder = slash == std::string::npos ? "" : path_.substr(0, slash + 1);
   const std::string name = slash == std::string::npos ? path_ : path_.substr(slash + 1);
   temporary_ = folder + "." + name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  pending_files::add(temporary_);
   file_ = std::fopen(temporary_.c_str(), "wb");
-  if (!file_) fail(path_, "cannot create", errno);
+  if (!file_) {
+    const int error = errno;
+    pending_files::remove(temporary_);
+    fail(path_, "cannot create", error);
+  }
   open_ = true;
 }
 
 AtomicFile::~AtomicFile() {
   if (file_) std::fclose(file_);
   if (open_) std::remove(temporary_.c_str());
+  pending_files::remove(temporary_);
 }
 
 void AtomicFile::write(std::span<const char> bytes) {
@@ -69,7 +108,7 @@ const std::string& AtomicFile::hand_over() {
   return temporary_;
 }
 
-Committed AtomicFile::commit(Overwrite overwrite) {
+Committed AtomicFile::commit(const CommitOptions& options) {
   if (!open_) throw OutputError(path_ + ": committed twice");
   // Flush our stream, or the hand-over writer's file, to disk before it gets its final name.
   if (file_) {
@@ -86,12 +125,15 @@ Committed AtomicFile::commit(Overwrite overwrite) {
     ::close(fd);
     if (!synced) fail(path_, "cannot write", error);
   }
-  if (overwrite == Overwrite::kRefuseDifferent && ::access(path_.c_str(), F_OK) == 0) {
+  if (options.overwrite == Overwrite::kRefuseDifferent && ::access(path_.c_str(), F_OK) == 0) {
     if (conflicts()) throw OutputError(path_ + ": exists with different contents; not overwritten");
     return Committed::kUnchanged;  // the destructor removes the temporary
   }
+  if (options.journal) options.journal->before_replacing(path_);
   if (std::rename(temporary_.c_str(), path_.c_str()) != 0) fail(path_, "cannot rename into place", errno);
   open_ = false;
+  pending_files::remove(temporary_);
+  if (options.journal) options.journal->replaced(path_);
   return Committed::kWritten;
 }
 

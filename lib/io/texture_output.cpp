@@ -142,12 +142,12 @@ private:
 
 // Commits the files in order. Under kRefuseDifferent they are all compared first, so that a refusal leaves
 // every final name as it was (AtomicFile alone would refuse file by file, after renaming the earlier ones).
-std::vector<Committed> commit_all(const std::vector<AtomicFile*>& files, Overwrite overwrite) {
-  if (overwrite == Overwrite::kRefuseDifferent)
+std::vector<Committed> commit_all(const std::vector<AtomicFile*>& files, const CommitOptions& options) {
+  if (options.overwrite == Overwrite::kRefuseDifferent)
     for (const AtomicFile* f : files)
       if (f->conflicts()) throw OutputError(f->path() + ": exists with different contents; not overwritten");
   std::vector<Committed> result;
-  for (AtomicFile* f : files) result.push_back(f->commit(overwrite));
+  for (AtomicFile* f : files) result.push_back(f->commit(options));
   return result;
 }
 
@@ -267,7 +267,7 @@ void VatWriter::append(const FrameView& frame) {
   ++m.frames_written;
 }
 
-std::vector<Committed> VatWriter::commit(Overwrite overwrite) {
+std::vector<Committed> VatWriter::commit(const CommitOptions& options) {
   Impl& m = *impl_;
   if (m.frames_written != m.times.size())
     throw std::logic_error("VatWriter::commit: " + std::to_string(m.frames_written) + " of " +
@@ -310,12 +310,12 @@ std::vector<Committed> VatWriter::commit(Overwrite overwrite) {
                    {"type", "float32"}, {"content", "unit normal xyz (0 where the primitive has none), w = 0"}}}};
   m.json.write(dump(doc));
 
-  return commit_all({&m.positions.file(), &m.normals.file(), &m.json.file()}, overwrite);
+  return commit_all({&m.positions.file(), &m.normals.file(), &m.json.file()}, options);
 }
 
 std::vector<Committed> write_bone_texture(const std::string& exr_path, const std::string& json_path,
                                           const BoneTexture& texture, const Asset& asset, int skin,
-                                          std::span<const double> times, double fps, Overwrite overwrite) {
+                                          std::span<const double> times, double fps, const CommitOptions& options) {
   assert(skin >= 0 && size_t(skin) < asset.skins.size());
   assert(times.size() == texture.frames);
   assert(texture.rgba.size() == texture.frames * texture.width() * 4);
@@ -353,7 +353,7 @@ std::vector<Committed> write_bone_texture(const std::string& exr_path, const std
   doc["type"] = "float32";
   json.write(dump(doc));
 
-  return commit_all({&image.file(), &json.file()}, overwrite);
+  return commit_all({&image.file(), &json.file()}, options);
 }
 
 }  // namespace dqskin

@@ -2,6 +2,7 @@
 // built-in digit font) and animated GIFs, both through OpenImageIO and written atomically.
 #include "dqskin/render.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/stderr_capture.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -112,7 +113,7 @@ Image8 ContactSheet::compose() const {
   return sheet;
 }
 
-Committed ContactSheet::write(const std::string& path, Overwrite overwrite) const {
+Committed ContactSheet::write(const std::string& path, const CommitOptions& options) const {
   const Image8 sheet = compose();
   AtomicFile file(path, false);
   const std::string& temporary = file.hand_over();
@@ -121,10 +122,14 @@ Committed ContactSheet::write(const std::string& path, Overwrite overwrite) cons
   spec.attribute("oiio:UnassociatedAlpha", 1);
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
   if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
-  if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, sheet.rgba.data()) || !out->close())
-    throw OutputError(path + ": " + oiio_message(out->geterror()));
+  CapturedStderr capture;  // libpng's own messages join our line
+  if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, sheet.rgba.data()) || !out->close()) {
+    const std::string library = capture.finish();
+    throw OutputError(with_library_text(path + ": " + oiio_message(out->geterror()), library));
+  }
   out.reset();
-  return file.commit(overwrite);
+  capture.finish();
+  return file.commit(options);
 }
 
 struct GifWriter::Impl {
@@ -157,7 +162,8 @@ void GifWriter::add(const Image& frame) {
     g.spec = OIIO::ImageSpec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8);
     g.spec.attribute("oiio:ColorSpace", "sRGB");
     // GIF counts delays in hundredths of a second; a rational keeps fractional rates such as 29.97.
-    const int rate[2] = {int(std::lround(g.fps * 1000)), 1000};
+    // Clamped first: lround of a rate beyond long's range has no defined value.
+    const int rate[2] = {int(std::lround(std::clamp(g.fps, 1e-3, 1e6) * 1000)), 1000};
     g.spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
     g.spec.attribute("oiio:Movie", 1);
     g.spec.attribute("gif:LoopCount", 0);  // loop forever
@@ -172,12 +178,12 @@ void GifWriter::add(const Image& frame) {
   ++frames_;
 }
 
-Committed GifWriter::commit(Overwrite overwrite) {
+Committed GifWriter::commit(const CommitOptions& options) {
   Impl& g = *impl_;
   if (frames_ == 0) throw OutputError(g.file.path() + ": a GIF needs at least one frame");
   if (!g.out->close()) g.fail();
   g.out.reset();
-  return g.file.commit(overwrite);
+  return g.file.commit(options);
 }
 
 }  // namespace dqskin

@@ -2,6 +2,7 @@
 // to an AtomicFile's temporary and renamed when complete.
 #include "dqskin/render.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/stderr_capture.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -35,7 +36,7 @@ bool parse_image_format(const std::string& text, ImageFormat& format) {
 
 const char* extension(ImageFormat format) { return format == ImageFormat::kPng ? "png" : "exr"; }
 
-Committed write_image(const std::string& path, const Image& image, ImageFormat format, Overwrite overwrite) {
+Committed write_image(const std::string& path, const Image& image, ImageFormat format, const CommitOptions& options) {
   AtomicFile file(path, false);
   const std::string& temporary = file.hand_over();
   const bool png = format == ImageFormat::kPng;
@@ -52,7 +53,11 @@ Committed write_image(const std::string& path, const Image& image, ImageFormat f
   }
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(png ? "png" : "openexr");
   if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
-  auto fail = [&]() { throw OutputError(path + ": " + oiio_message(out->geterror())); };
+  CapturedStderr capture;  // libpng prints "libpng error: Write Error" (a full disk) itself; it joins our line
+  auto fail = [&]() {
+    const std::string library = capture.finish();
+    throw OutputError(with_library_text(path + ": " + oiio_message(out->geterror()), library));
+  };
   if (!out->open(temporary, spec)) fail();
   bool ok = false;
   if (png) {
@@ -65,7 +70,8 @@ Committed write_image(const std::string& path, const Image& image, ImageFormat f
   if (!ok) fail();
   if (!out->close()) fail();
   out.reset();
-  return file.commit(overwrite);
+  capture.finish();
+  return file.commit(options);
 }
 
 }  // namespace dqskin

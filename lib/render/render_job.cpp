@@ -6,6 +6,7 @@
 #include "../bake/bake_plan.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/gpu_deform.hpp"
+#include "dqskin/output_journal.hpp"
 #include "ordered_worker.hpp"
 
 #include <algorithm>
@@ -89,8 +90,8 @@ RendererOptions renderer_options(const InputPlan& input, const RenderOptions& op
 class InputRenderer {
 public:
   InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, bool deform_on_cpu,
-                RenderReport& report, const std::function<void(const BakeProgress&)>& progress)
-      : input_(input), options_(options), report_(report), progress_(progress),
+                RenderReport& report, const std::function<void(const BakeProgress&)>& progress, OutputJournal& journal)
+      : input_(input), options_(options), report_(report), progress_(progress), journal_(journal),
         camera_node_(options.camera_node.empty() ? -1 : find_camera_node(*input.asset, options.camera_node)),
         renderer_options_(renderer_options(input, options, camera_node_)),
         source_(context, input, options.mode, deform_on_cpu),
@@ -110,7 +111,7 @@ public:
     for (size_t f = 0; f < clip.times.size(); ++f)
       if (clip.frame_mine[f]) mine.push_back(f);
     if (mine.empty()) return;
-    std::filesystem::create_directories(options_.out_dir + "/" + clip.folder);
+    journal_.make_folders(options_.out_dir + "/" + clip.folder);
 
     // The box (and the largest mode difference) over every frame, not only this shard's, so that every
     // shard frames the same camera and colors with the same scale. A glTF camera needs no box.
@@ -156,7 +157,7 @@ public:
       gpu::OrderedWorker<std::pair<size_t, Image>> writer([&](const std::pair<size_t, Image>& item) {
         const auto& [f, image] = item;
         const std::string relative = clip.frame_file(f, extension(options_.format));
-        write_image(options_.out_dir + "/" + relative, image, options_.format, options_.overwrite);
+        write_image(options_.out_dir + "/" + relative, image, options_.format, {options_.overwrite, &journal_});
         report_.outputs.push_back(relative);
         if (sheet) sheet->add(image, clip.numbers[f]);
         if (gif) gif->add(image);
@@ -176,11 +177,11 @@ public:
     }
     if (sheet) {
       const std::string relative = clip.folder + "/sheet" + suffix + ".png";
-      sheet->write(options_.out_dir + "/" + relative, options_.overwrite);
+      sheet->write(options_.out_dir + "/" + relative, {options_.overwrite, &journal_});
       report_.outputs.push_back(relative);
     }
     if (gif) {
-      gif->commit(options_.overwrite);
+      gif->commit({options_.overwrite, &journal_});
       report_.outputs.push_back(gif_file);
     }
   }
@@ -219,6 +220,7 @@ private:
   const RenderOptions& options_;
   RenderReport& report_;
   const std::function<void(const BakeProgress&)>& progress_;
+  OutputJournal& journal_;
   const int camera_node_;  // --camera: the node, or -1 for the automatic camera
   const RendererOptions renderer_options_;
   FrameSource source_;
@@ -249,6 +251,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
 
   BakeOptions plan_options;  // the planner's view of a render: which frames, clips and names
   plan_options.out_dir = options.out_dir;
+  plan_options.load = options.load;
   plan_options.clips = options.clips;
   plan_options.frames = options.frames;
   plan_options.scene = options.scene;
@@ -266,6 +269,8 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
   for (const InputPlan& plan : plans) {
     BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
+      OutputJournal journal;  // what this input wrote, taken back when it fails
+      const size_t outputs_before = report.outputs.size(), mode_diff_before = report.mode_diff.size();
       try {
         if (!context) {
           context = create_gpu_context(backend);  // NoGpuContext ends the render: exit status 3
@@ -275,16 +280,28 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
         const std::function<void(const BakeProgress&)> counted = [&](const BakeProgress& p) {
           if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
         };
-        InputRenderer renderer(plan, options, *context, deform_on_cpu, report, counted);
-        for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
-        result.frames = renderer.frames_done();
+        {
+          InputRenderer renderer(plan, options, *context, deform_on_cpu, report, counted, journal);
+          for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
+          result.frames = renderer.frames_done();
+        }
+        journal.keep();
         done += result.frames;
       } catch (const BakeCancelled&) {
+        journal.keep();  // an interrupted render keeps its complete images
         throw;
       } catch (const NoGpuContext&) {
         throw;
+      } catch (const std::bad_alloc&) {
+        result.error = kOutOfMemory;
       } catch (const std::exception& e) {
         result.error = e.what();
+      }
+      if (!result.error.empty()) {
+        journal.roll_back();
+        report.outputs.resize(outputs_before);
+        report.mode_diff.resize(mode_diff_before);
+        result.frames = 0;
       }
     }
     report.inputs.push_back(std::move(result));

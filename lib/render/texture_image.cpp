@@ -1,5 +1,6 @@
 #include "texture_image.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/stderr_capture.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -43,9 +44,16 @@ Image8 decode_texture_image(const EncodedImage& image, size_t index, int max_sid
   // reader is made by format name and given the proxy itself.
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(format);
   if (!in) throw InputError(what + ": OpenImageIO has no " + format + " reader (" + oiio_message(OIIO::geterror()) + ")");
+  // libpng prints its own "libpng error: …" line; it becomes part of ours.
+  auto fail = [&](CapturedStderr& capture) {
+    const std::string library = capture.finish();
+    throw InputError(with_library_text(what + ": cannot be decoded (" + oiio_message(in->geterror()) + ")", library));
+  };
   OIIO::ImageSpec spec;
-  if (!in->set_ioproxy(&reader) || !in->open(std::string("texture.") + format, spec, config))
-    throw InputError(what + ": cannot be decoded (" + oiio_message(in->geterror()) + ")");
+  {
+    CapturedStderr capture;
+    if (!in->set_ioproxy(&reader) || !in->open(std::string("texture.") + format, spec, config)) fail(capture);
+  }
   if (spec.width < 1 || spec.height < 1 || spec.width > max_side || spec.height > max_side)
     throw InputError(what + ": is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                      " pixels; this GPU takes textures of 1 to " + std::to_string(max_side) + " a side");
@@ -67,8 +75,10 @@ Image8 decode_texture_image(const EncodedImage& image, size_t index, int max_sid
   }
   // Read straight into RGBA (4-byte pixel stride), then fill what the stored channels lack.
   const size_t channels = size_t(spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out.rgba.data(), 4))
-    throw InputError(what + ": cannot be decoded (" + oiio_message(in->geterror()) + ")");
+  {
+    CapturedStderr capture;
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, out.rgba.data(), 4)) fail(capture);
+  }
   for (size_t p = 0; p < pixels && channels < 4; ++p) {
     uint8_t* d = &out.rgba[p * 4];
     // 1: grey; 2: grey and alpha; 3: RGB (PNG's colour types after expansion).

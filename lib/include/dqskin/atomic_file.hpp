@@ -18,6 +18,17 @@ enum class Overwrite {
 // What commit() did.
 enum class Committed { kWritten, kUnchanged };
 
+class OutputJournal;
+
+// How commit() treats an existing file, and the journal (output_journal.hpp) that records what it changed
+// so that a failed input can take it back; none when null. Converts from an Overwrite.
+struct CommitOptions {
+  CommitOptions(Overwrite overwrite_ = Overwrite::kReplace, OutputJournal* journal_ = nullptr)  // NOLINT: implicit
+      : overwrite(overwrite_), journal(journal_) {}
+  Overwrite overwrite;
+  OutputJournal* journal;
+};
+
 // Opens a temporary file beside `path` (same folder, so the rename cannot cross file systems). commit()
 // flushes it to disk and renames it to `path`; destroying an uncommitted AtomicFile removes the temporary,
 // so a failed or interrupted write leaves nothing under the final name. Throws OutputError naming `path`.
@@ -33,7 +44,7 @@ public:
 
   void write(std::span<const char> bytes);
   void write(const std::string& text) { write(std::span<const char>(text.data(), text.size())); }
-  Committed commit(Overwrite overwrite = Overwrite::kReplace);
+  Committed commit(const CommitOptions& options = {});
 
   // For writers that open files themselves (OpenImageIO): closes our stream so that they can write the
   // temporary by name; commit() then flushes it to disk and renames it as usual.
@@ -55,5 +66,10 @@ private:
 
 // Flushes every file of the file system holding `folder` to disk (syncfs). Throws OutputError.
 void sync_folder(const std::string& folder);
+
+// Deletes every temporary this process has open, and every old file an OutputJournal keeps aside, for a
+// process that must end at once (a stop that cannot wait for the work to unwind). Thread-safe; never
+// throws; files under final names are left as they are.
+void remove_pending_files() noexcept;
 
 }  // namespace dqskin

@@ -5,6 +5,7 @@
 #include "dqskin/animation.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/gpu_context.hpp"
+#include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <atomic>
@@ -22,6 +23,7 @@ unsigned parse_bake_formats(const std::string& list);
 
 struct BakeOptions {
   std::string out_dir;
+  LoadOptions load;  // resource roots and limits for reading the inputs
   std::string clips = "all";  // select_clips: all, a name or an index
   FrameSpec frames;
   BlendMode mode = BlendMode::kDqs;

@@ -19,6 +19,12 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+// The message for std::bad_alloc caught at an input's or a command's boundary: the estimate that
+// --max-memory checks was within it, but the machine could not give that much.
+inline constexpr const char* kOutOfMemory =
+    "ran out of memory: this machine has less free memory than --max-memory allows; lower --max-memory to refuse "
+    "such inputs at once";
+
 // `text` made safe to print as (part of) one line on a terminal: control characters become escapes
 // (`\n`, `\r`, `\t`, `\x1b`, …), as do bytes that are not UTF-8 (`\xff`) and the code points that move
 // or reorder text (C1 controls, bidirectional overrides and isolates, line and paragraph separators:

@@ -118,7 +118,7 @@ const char* extension(ImageFormat format);
 // Writes `image` atomically: PNG as 8-bit sRGB (RGBA, converted from linear here, rounded to nearest),
 // EXR as 32-bit linear float, no time stamp in either. Throws OutputError naming `path`.
 Committed write_image(const std::string& path, const Image& image, ImageFormat format,
-                      Overwrite overwrite = Overwrite::kReplace);
+                      const CommitOptions& options = {});
 
 // 8-bit sRGB RGBA pixels, top row first: what PNG and GIF store, and what a contact sheet keeps per frame.
 struct Image8 {
@@ -143,7 +143,7 @@ public:
   size_t size() const { return cells_.size(); }
   Image8 compose() const;  // throws InputError when empty
   // compose() written atomically as an 8-bit sRGB PNG. Throws OutputError naming `path`.
-  Committed write(const std::string& path, Overwrite overwrite = Overwrite::kReplace) const;
+  Committed write(const std::string& path, const CommitOptions& options = {}) const;
 
 private:
   int cell_width_;
@@ -167,7 +167,7 @@ public:
   GifWriter& operator=(const GifWriter&) = delete;
   void add(const Image& frame);  // every frame the size of the first
   size_t frames() const { return frames_; }
-  Committed commit(Overwrite overwrite = Overwrite::kReplace);
+  Committed commit(const CommitOptions& options = {});
 
 private:
   struct Impl;
@@ -181,6 +181,7 @@ private:
 // render this shard's frames.
 struct RenderOptions {
   std::string out_dir;
+  LoadOptions load;  // resource roots and limits for reading the inputs
   std::string clips = "all";
   FrameSpec frames;
   BlendMode mode = BlendMode::kDqs;  // lbs or dqs: the geometry drawn (mode-diff deforms with both)

@@ -64,7 +64,7 @@ public:
   // compared before any is renamed, so a refusal changes none of them. Returns what happened to
   // positions, normals and JSON, in that order. Throws std::logic_error when frames are missing,
   // OutputError naming the file otherwise.
-  std::vector<Committed> commit(Overwrite overwrite);
+  std::vector<Committed> commit(const CommitOptions& options);
 
 private:
   struct Impl;
@@ -78,6 +78,6 @@ private:
 // is renamed) and returns what happened to each, image then JSON. Throws OutputError naming the file.
 std::vector<Committed> write_bone_texture(const std::string& exr_path, const std::string& json_path,
                                           const BoneTexture& texture, const Asset& asset, int skin,
-                                          std::span<const double> times, double fps, Overwrite overwrite);
+                                          std::span<const double> times, double fps, const CommitOptions& options);
 
 }  // namespace dqskin

@@ -1,0 +1,37 @@
+// The flags of every command that reads glTF files (commands.hpp LoadSettings).
+#include "commands.hpp"
+
+#include "dqskin/byte_size.hpp"
+#include "dqskin/error.hpp"
+
+#include <filesystem>
+
+namespace dqskin::cli {
+
+void add_load_settings(CLI::App& command, LoadSettings& settings) {
+  command
+      .add_option("--resource-root", settings.resource_roots,
+                  "A folder that the inputs' external buffers and images may also come from (repeatable); by "
+                  "default only the input's own folder")
+      ->type_name("DIR");
+  command
+      .add_option("--max-memory", settings.max_memory,
+                  "Refuse an input whose loading would take more memory than this (estimated before anything is "
+                  "decoded): bytes, or K, M, G, T")
+      ->type_name("SIZE")
+      ->capture_default_str();
+}
+
+LoadOptions to_load_options(const LoadSettings& settings) {
+  LoadOptions options;
+  options.max_memory = parse_byte_size(settings.max_memory, "--max-memory");
+  for (const std::string& root : settings.resource_roots) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(root, error))
+      throw InputError("--resource-root " + root + ": " + (error ? error.message() : "not a folder"));
+  }
+  options.resource_roots = settings.resource_roots;
+  return options;
+}
+
+}  // namespace dqskin::cli
