@@ -7,6 +7,7 @@
 #include "interrupt.hpp"
 
 #include "dqskin/bake.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/output_journal.hpp"
 #include "dqskin/stderr_lock.hpp"
@@ -145,7 +146,7 @@ int run_bake(const BakeSettings& given) {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     BakeOptions options = to_options(settings);
-    options.cancel = catch_interrupts();
+    options.cancel = catch_interrupts("bake");
     if (!options.dry_run) out_folder.make_folders(options.out_dir);
 
     const BakeReport report = bake(settings.inputs, options, [&](const BakeProgress& p) { progress(p); });
@@ -153,6 +154,12 @@ int run_bake(const BakeSettings& given) {
     if (options.dry_run) {
       for (const BakeOutput& o : report.outputs) std::cout << printable(options.out_dir + '/' + o.path) << '\n';
       print_input_messages(report.inputs, settings.quiet);
+      const bool any_planned = std::any_of(report.inputs.begin(), report.inputs.end(),
+                                           [](const BakeInputResult& in) { return in.error.empty(); });
+      if (!settings.quiet && any_planned)
+        std::fprintf(stderr, "dry run: %zu frames to deform (%.4g vertex-frames), up to %s in %zu files; %s free on the output's file system\n",
+                     report.frames_total, double(report.vertex_frames), byte_size(report.planned_bytes).c_str(),
+                     report.outputs.size(), byte_size(report.free_bytes).c_str());
     } else {
       print_summary(settings, report);
     }

@@ -1,34 +1,97 @@
 #include "interrupt.hpp"
 #include "console.hpp"
 
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/stderr_lock.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
 #include <csignal>
-#include <iostream>
+#include <string>
+#include <thread>
 
 namespace dqskin::cli {
 namespace {
 
+// How long the work may take to unwind after the first signal (finishing the frame being encoded, closing
+// its files, taking back a failed input) before the process ends anyway. Ending a process that holds a GL
+// context takes another 0.1-0.25 s on llvmpipe (measured on BrainStem bakes), so the whole stop stays well
+// within the second that schedulers and users wait.
+constexpr int kGraceMilliseconds = 250;
+
 std::atomic<bool> g_cancel{false};
 volatile std::sig_atomic_t g_signal = 0;
+std::atomic<bool> g_dying{false};  // one thread prints the last message and ends the process
+int g_pipe[2] = {-1, -1};          // the handler wakes the watchdog through it (write is async-signal-safe)
+const char* g_what = "work";
 
 extern "C" void on_interrupt(int signal) {
   g_signal = signal;
   g_cancel = true;
+  const char byte = 1;
+  const int saved = errno;
+  [[maybe_unused]] const ssize_t ignored = ::write(g_pipe[1], &byte, 1);
+  errno = saved;
+}
+
+// Ends the process by the signal that stopped it, so that make, shells and job schedulers see what happened.
+[[noreturn]] void die_of(int signal) {
+  std::signal(signal, SIG_DFL);
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, signal);
+  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+  std::raise(signal);
+  std::_Exit(128 + signal);  // should the signal not end the process
+}
+
+// Waits for the first signal; then gives the work kGraceMilliseconds (less, on a second signal) to stop by
+// itself, and otherwise ends the process: temporaries and kept-aside files removed, complete files left.
+void watchdog() {
+  pollfd wake{g_pipe[0], POLLIN, 0};
+  while (::poll(&wake, 1, -1) < 0 && errno == EINTR) {
+  }
+  char byte;
+  [[maybe_unused]] ssize_t ignored = ::read(g_pipe[0], &byte, 1);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kGraceMilliseconds);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) break;
+    const int ready = ::poll(&wake, 1, int(left.count()));
+    if (ready > 0) break;  // a second signal: the user does not want to wait
+  }
+  if (g_dying.exchange(true)) return;  // the work stopped in time and is ending the process itself
+  remove_pending_files();
+  // The lock keeps this line out of a library's captured stderr; it is only waited for briefly.
+  std::unique_lock<std::mutex> lock(stderr_mutex(), std::defer_lock);
+  for (int i = 0; i < 50 && !lock.try_lock(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  const std::string line = "dqskin: " + std::string(g_what) + " stopped by signal " + std::to_string(int(g_signal)) +
+                           "; files under final names are complete, temporaries were removed\n";
+  ignored = ::write(2, line.data(), line.size());
+  die_of(int(g_signal));
 }
 
 }  // namespace
 
-const std::atomic<bool>* catch_interrupts() {
+const std::atomic<bool>* catch_interrupts(const char* what) {
+  g_what = what;
+  if (g_pipe[0] < 0 && ::pipe2(g_pipe, O_CLOEXEC | O_NONBLOCK) == 0) std::thread(watchdog).detach();
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   return &g_cancel;
 }
 
 int die_of_interrupt(const char* what) {
-  const int signal = int(g_signal);
-  print_error(std::string(what) + " stopped by signal " + std::to_string(signal) + "; no partial files were left under final names");
-  std::signal(signal, SIG_DFL);
-  std::raise(signal);
-  return 128 + signal;
+  if (g_dying.exchange(true)) {
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // the watchdog is ending the process
+  }
+  print_error(std::string(what) + " stopped by signal " + std::to_string(int(g_signal)) +
+              "; no partial files were left under final names");
+  die_of(int(g_signal));
 }
 
 }  // namespace dqskin::cli

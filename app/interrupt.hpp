@@ -1,17 +1,20 @@
 // SIGINT and SIGTERM for long commands (bake, render): the first one asks the work to stop (the library
 // polls the flag and unwinds, removing its temporaries); then the process dies of that same signal, so
-// that make, shells and job schedulers see what happened.
+// that make, shells and job schedulers see what happened. Whatever the work is doing (a batch on the GPU,
+// a large texture being compressed), the process ends within a second: a watchdog thread gives the work
+// a quarter of a second to unwind, then removes the temporaries itself and ends the process. A second signal ends
+// it at once.
 #pragma once
 
 #include <atomic>
 
 namespace dqskin::cli {
 
-// Installs the handlers; the flag becomes true when a signal arrives.
-const std::atomic<bool>* catch_interrupts();
+// Installs the handlers and starts the watchdog; the flag becomes true when a signal arrives. `what` names
+// the work in the last message ("bake").
+const std::atomic<bool>* catch_interrupts(const char* what);
 
 // Prints "dqskin: WHAT stopped by signal N; …" and re-raises the signal with its default action.
-// Returns 128 + N should the signal not end the process.
-int die_of_interrupt(const char* what);
+[[noreturn]] int die_of_interrupt(const char* what);
 
 }  // namespace dqskin::cli

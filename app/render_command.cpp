@@ -140,7 +140,7 @@ int run_render(const RenderSettings& given) {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     RenderOptions options = to_options(settings);
-    options.cancel = catch_interrupts();
+    options.cancel = catch_interrupts("render");
     out_folder.make_folders(options.out_dir);
     const RenderReport report =
         render(settings.inputs, options, [&](const BakeProgress& p) { report_progress(settings, p, start); });

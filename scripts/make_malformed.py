@@ -461,6 +461,89 @@ def hostile_cases(cat, base, glb, outdir):
     cat.case("folder_input.gltf", None, r"is a folder, not a file$")
 
 
+def job_inputs(base, folder):
+    """Inputs for the command-line tests of bake, render and diff (app/tests/hardening.cmake): files that load
+    but fail a job half-way on the landed code, or that need more than `info` to show a problem.
+
+    huge_skin.gltf        a skin of 70000 joints: its bone texture is wider than any GPU's
+    long_names.gltf       two animations named with 254 bytes: the second folder's name gets a suffix
+    endless_clip.gltf     a clip whose last key is at 1e30 s
+    models/shared_texture.gltf and textures/checker.png
+                          a model whose image is in a sibling folder (--resource-root)
+    truncated_texture.gltf    a model whose PNG texture is cut short
+    truncated.png, good.png   a PNG cut short, and a whole one
+    fifo.png, zero.png        a FIFO, and a symbolic link to /dev/zero, named as images
+    "line\nbreak\x1bc.gltf"   a valid file whose name holds a newline and an escape sequence
+    """
+    os.makedirs(folder)
+    os.mkfifo(os.path.join(folder, "fifo.png"))
+    os.symlink("/dev/zero", os.path.join(folder, "zero.png"))
+    write_file(folder, "line\nbreak\x1bc.gltf", gltf_bytes(base))
+
+    a = base.copy()
+    joints = 70000
+    first = len(a.gltf["nodes"])
+    a.gltf["nodes"][1]["children"] = [2] + list(range(first, first + joints - 2))
+    a.gltf["nodes"] += [{} for _ in range(joints - 2)]
+    a.gltf["skins"][0]["joints"] = [1, 2] + list(range(first, first + joints - 2))
+    del a.gltf["skins"][0]["inverseBindMatrices"]
+    write_file(folder, "huge_skin.gltf", gltf_bytes(a))
+
+    a = base.copy()
+    a.gltf["animations"].append(copy.deepcopy(a.gltf["animations"][0]))
+    for animation in a.gltf["animations"]:
+        animation["name"] = "a" * 254
+    write_file(folder, "long_names.gltf", gltf_bytes(a))
+
+    a = base.copy()
+    struct.pack_into("<f", a.bin, a.accessor_offset(TIMES) + 8, 1e30)
+    a.gltf["accessors"][TIMES]["max"] = [1e30]
+    write_file(folder, "endless_clip.gltf", gltf_bytes(a))
+
+    png = tiny_png(8, 8)
+    os.makedirs(os.path.join(folder, "models"))
+    os.makedirs(os.path.join(folder, "textures"))
+    write_file(folder, "textures/checker.png", png)
+    write_file(folder, "good.png", png)
+    write_file(folder, "truncated.png", png[:len(png) - 20])
+    a = textured(base, {"uri": "../textures/checker.png"})
+    write_file(folder, "models/shared_texture.gltf", gltf_bytes(a))
+    image_view = a.add_view(png[:len(png) - 20])
+    a = textured(a, {"bufferView": image_view, "mimeType": "image/png"})
+    write_file(folder, "truncated_texture.gltf", gltf_bytes(a))
+
+
+def tiny_png(width, height):
+    """An RGB PNG of a checker pattern (only the standard library: zlib and CRC-32)."""
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    rows = b"".join(b"\x00" + b"".join(b"\xff\xff\xff" if (x + y) % 2 else b"\x20\x40\x80" for x in range(width))
+                    for y in range(height))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def textured(base, image):
+    """A copy of base whose quad has TEXCOORD_0 and a material with a base color texture from `image`."""
+    a = base.copy()
+    uv = a.add_view(floats([0, 0, 1, 0, 0, 1, 1, 1]), ARRAY_BUFFER)
+    uv_accessor = a.add_accessor({"bufferView": uv, "componentType": FLOAT, "count": 4, "type": "VEC2"})
+    primitive = a.gltf["meshes"][0]["primitives"][0]
+    primitive["attributes"]["TEXCOORD_0"] = uv_accessor
+    primitive["material"] = 0
+    a.gltf["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    a.gltf["textures"] = [{"source": 0}]
+    a.gltf["images"] = [image]
+    return a
+
+
+def write_file(folder, name, data):
+    with open(os.path.join(folder, name), "wb") as f:
+        f.write(data)
+
+
 def edit(base, change):
     """A copy of base with change(asset) applied."""
     a = base.copy()
@@ -889,6 +972,7 @@ def main():
     cat.valid.append("valid_deep_hierarchy.gltf")
 
     cat.finish()
+    job_inputs(base, os.path.join(outdir, "jobs"))
     print("make_malformed: %d cases, %d valid files in %s" % (len(cat.cases), len(cat.valid), outdir))
 
 

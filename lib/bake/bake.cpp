@@ -3,6 +3,8 @@
 #include "dqskin/bake.hpp"
 
 #include "bake_plan.hpp"
+#include "bake_work.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/frame_view.hpp"
 #include "dqskin/glb_output.hpp"
@@ -96,12 +98,11 @@ struct Ledger {
 // Bakes the clips of one input with one deformer.
 class InputBaker {
 public:
+  // `glb`: the input's glb writer when glb is asked for (made while planning the work).
   InputBaker(const InputPlan& input, const BakeOptions& options, GpuContext* context, Ledger& ledger,
-             OutputJournal& journal)
+             OutputJournal& journal, std::unique_ptr<GlbWriter> glb)
       : input_(input), asset_(*input.asset), options_(options), ledger_(ledger), journal_(journal),
-        jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())) {
-    if (has(options.formats, BakeFormat::kGlb))
-      glb_ = std::make_unique<GlbWriter>(asset_, input.instances, input.scene, options.load);
+        jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())), glb_(std::move(glb)) {
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
     const bool deforms = std::any_of(input.clips.begin(), input.clips.end(),
                                      [&](const ClipPlan& c) { return !c.frames_to_deform(options.formats).empty(); });
@@ -296,6 +297,32 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   for (const InputPlan& plan : plans)
     for (const ClipPlan& clip : plan.clips) report.frames_total += clip.frames_to_deform(options.formats).size();
 
+  // The work in numbers, before anything is written. The glb writers made for it (they measure a frame's
+  // size) are the ones that bake.
+  std::vector<std::unique_ptr<GlbWriter>> glb_writers(plans.size());
+  BakeWork work;
+  for (size_t i = 0; i < plans.size(); ++i) {
+    InputPlan& plan = plans[i];
+    if (!plan.error.empty()) continue;
+    try {
+      if (has(options.formats, BakeFormat::kGlb))
+        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene, options.load);
+      work += estimate_work(plan, options, glb_writers[i].get());
+    } catch (const std::bad_alloc&) {
+      plan.error = kOutOfMemory;
+    } catch (const std::exception& e) {
+      plan.error = e.what();
+    }
+  }
+  report.vertex_frames = work.vertex_frames;
+  report.planned_bytes = work.bytes;
+  report.free_bytes = free_bytes(options.out_dir);
+  const uint64_t needed = work.bytes > work.existing ? work.bytes - work.existing : 0;
+  if (needed > report.free_bytes)
+    throw InputError(options.out_dir + ": the bake would write up to " + byte_size(work.bytes) + " in " +
+                     std::to_string(work.files) + " files, but the file system has " + byte_size(report.free_bytes) +
+                     " free");
+
   if (options.dry_run) {
     for (const InputPlan& plan : plans) {
       report.inputs.push_back({plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}});
@@ -312,7 +339,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     report.gpu = {"cpu", "", "dqskin CPU reference (double precision)"};
   }
   Ledger ledger{options, progress, report, {}, 0};
-  for (const InputPlan& plan : plans) {
+  for (size_t i = 0; i < plans.size(); ++i) {
+    const InputPlan& plan = plans[i];
     BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
       OutputJournal journal;  // what this input wrote, taken back when it fails
@@ -322,7 +350,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
           report.gpu = context->info();
         }
         {
-          InputBaker baker(plan, options, context.get(), ledger, journal);
+          InputBaker baker(plan, options, context.get(), ledger, journal, std::move(glb_writers[i]));
           for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
         }
         journal.keep();

@@ -65,6 +65,10 @@ struct BakeReport {
   std::string manifest;             // path of the manifest written (empty for dry runs)
   GpuContextInfo gpu;               // backend "cpu" when the CPU reference deformed
   size_t frames_total = 0;          // frames to deform over all inputs
+  // The planned work, known before anything is written (with dry_run, what a bake would do): vertices ×
+  // frames deformed, bytes of the files this shard writes (EXR at their uncompressed size, an upper bound),
+  // and the bytes free on the output's file system.
+  uint64_t vertex_frames = 0, planned_bytes = 0, free_bytes = 0;
   BakeStageTimes times;
   double wall_seconds = 0;
   bool any_failed() const;
@@ -75,10 +79,12 @@ struct BakeProgress {
   std::string input, clip;  // what is being baked now
 };
 
-// Bakes `inputs` (each on its own: a failing input is reported in BakeReport::inputs and the rest go on).
-// Throws NoGpuContext when a GPU backend is needed and none can be made, BakeCancelled when
-// options.cancel was set, InputError for options that cannot work (a bad --shard, two inputs whose
-// outputs would collide). `progress` is called after every batch, from a worker thread.
+// Bakes `inputs` (each on its own: a failing input is reported in BakeReport::inputs and the rest go on;
+// the files it wrote are taken back). Throws NoGpuContext when a GPU backend is needed and none can be
+// made, BakeCancelled when options.cancel was set, InputError for options that cannot work (a bad
+// --shard, two inputs whose outputs would collide) and, before writing anything, when the planned files
+// cannot fit the free space of the output's file system. `progress` is called after every batch, from a
+// worker thread.
 BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
                 const std::function<void(const BakeProgress&)>& progress = {});
 

@@ -1,0 +1,108 @@
+#include "bake_work.hpp"
+
+#include "dqskin/mesh_output.hpp"
+#include "dqskin/texture_output.hpp"
+
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+
+namespace dqskin::bake_detail {
+namespace {
+
+constexpr uint64_t kMax = std::numeric_limits<uint64_t>::max();
+uint64_t add(uint64_t a, uint64_t b) { return a > kMax - b ? kMax : a + b; }
+uint64_t mul(uint64_t a, uint64_t b) { return a != 0 && b > kMax / a ? kMax : a * b; }
+
+bool ends_with(const std::string& s, const char* suffix) { return s.ends_with(suffix); }
+
+// The rest pose of every instance as one frame, in the writers' layout: the right counts for a size.
+DeformedBatch rest_frame(const Asset& asset, const std::vector<MeshInstance>& instances) {
+  DeformedBatch batch;
+  batch.frame_count = 1;
+  for (const MeshInstance& inst : instances)
+    for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) {
+      DeformedBatch::Primitive out;
+      out.vertices = p.vertex_count();
+      for (const glm::vec3& v : p.positions) out.positions.insert(out.positions.end(), {v.x, v.y, v.z});
+      for (const glm::vec3& n : p.normals) out.normals.insert(out.normals.end(), {n.x, n.y, n.z});
+      for (const glm::vec4& t : p.tangents) out.tangents.insert(out.tangents.end(), {t.x, t.y, t.z, t.w});
+      batch.primitives.push_back(std::move(out));
+    }
+  return batch;
+}
+
+// Uncompressed RGBA32F EXR of width × height, with its header and line offsets.
+uint64_t exr_bytes(uint64_t width, uint64_t height) { return add(mul(mul(width, height), 16), 1024 + height / 16 * 8); }
+
+}  // namespace
+
+BakeWork& BakeWork::operator+=(const BakeWork& o) {
+  vertex_frames = add(vertex_frames, o.vertex_frames);
+  bytes = add(bytes, o.bytes);
+  existing = add(existing, o.existing);
+  files += o.files;
+  return *this;
+}
+
+BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const GlbWriter* glb) {
+  const Asset& asset = *input.asset;
+  uint64_t vertices = 0;
+  for (const MeshInstance& inst : input.instances)
+    for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) vertices += p.vertex_count();
+
+  // One frame of each per-frame format, encoded from the rest pose.
+  uint64_t glb_frame = 0, ply_frame = 0, obj_frame = 0;
+  if (options.formats & (unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kPly) | unsigned(BakeFormat::kObj))) {
+    const DeformedBatch rest = rest_frame(asset, input.instances);
+    const FrameView view = frame_view(rest, 0);
+    if (glb) glb_frame = glb->encode(view, nullptr, 0.0).size();
+    if (options.formats & (unsigned(BakeFormat::kPly) | unsigned(BakeFormat::kObj))) {
+      const MergedMesh mesh = merge_frame(asset, input.instances, view);
+      if (options.formats & unsigned(BakeFormat::kPly)) ply_frame = encode_ply(mesh).size();
+      if (options.formats & unsigned(BakeFormat::kObj)) obj_frame = encode_obj(mesh, asset, "materials.mtl").size();
+    }
+  }
+  const uint64_t vat_width = std::min<uint64_t>(vertices, kVatMaxWidth);
+  const uint64_t vat_rows = vat_width ? (vertices + vat_width - 1) / vat_width : 0;
+
+  BakeWork work;
+  for (const ClipPlan& clip : input.clips) {
+    const uint64_t frames = clip.times.size();
+    work.vertex_frames = add(work.vertex_frames, mul(vertices, clip.frames_to_deform(options.formats).size()));
+    for (const std::string& file : planned_files(input, clip, options.formats)) {
+      uint64_t size = 0;
+      if (ends_with(file, ".glb")) size = glb_frame;
+      else if (ends_with(file, ".ply")) size = ply_frame;
+      else if (ends_with(file, ".obj")) size = obj_frame;
+      else if (ends_with(file, "materials.mtl")) size = encode_mtl(asset).size();
+      else if (ends_with(file, "vat_positions.exr") || ends_with(file, "vat_normals.exr")) size = exr_bytes(vat_width, mul(frames, vat_rows));
+      else if (ends_with(file, "vat.json")) size = add(4096, mul(frames, 24));
+      else if (file.find("/bones_skin") != std::string::npos) {
+        const size_t skin = std::stoul(file.substr(file.rfind("bones_skin") + 10));
+        const uint64_t joints = asset.skins[skin].joints.size();
+        size = ends_with(file, ".exr") ? exr_bytes(mul(joints, 5), frames) : add(1024, add(mul(joints, 48), mul(frames, 24)));
+      }
+      work.bytes = add(work.bytes, add(size, 160));  // and its line in the manifest
+      ++work.files;
+      struct stat st {};
+      if (::stat((options.out_dir + "/" + file).c_str(), &st) == 0 && S_ISREG(st.st_mode))
+        work.existing = add(work.existing, uint64_t(st.st_size));
+    }
+  }
+  return work;
+}
+
+uint64_t free_bytes(const std::string& folder) {
+  std::filesystem::path p = folder.empty() ? "." : folder;
+  while (!p.empty() && ::access(p.c_str(), F_OK) != 0 && p != p.parent_path()) p = p.parent_path();
+  struct statvfs fs {};
+  if (::statvfs(p.empty() ? "." : p.c_str(), &fs) != 0) return kMax;  // unknown: do not refuse
+  return mul(fs.f_bavail, fs.f_frsize);
+}
+
+}  // namespace dqskin::bake_detail
