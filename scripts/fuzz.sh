@@ -7,7 +7,7 @@
 #   scripts/fuzz.sh SECONDS            (from the repository root or anywhere)
 #
 # Environment: FUZZ_JOBS (build parallelism, default 1), FUZZ_MAX_LEN (largest generated input, default
-# 65536), FUZZ_ARTIFACTS (where crashing inputs are written, default build/fuzz/artifacts), FUZZ_ARGS
+# 262144: room for 20,000 levels of nesting or thousands of primitives), FUZZ_ARTIFACTS (where crashing inputs are written, default build/fuzz/artifacts), FUZZ_ARGS
 # (more libFuzzer flags). The corpus (build/fuzz/corpus) grows across runs; seeds are re-added each run.
 set -euo pipefail
 
@@ -32,7 +32,8 @@ mkdir -p "$corpus" "$artifacts"
 rm -rf "$seeds"
 python3 scripts/make_malformed.py "$build/malformed" >/dev/null
 mkdir -p "$seeds"
-cp "$build/malformed/valid.gltf" "$build/malformed/valid.glb" "$seeds/"
+cp "$build/malformed/valid.gltf" "$build/malformed/valid.glb" "$build/malformed/valid_json_nested_100_deep.gltf" \
+  "$build/malformed/value_sampler_wrap_t.gltf" "$build/malformed/value_variant_material.gltf" "$seeds/"
 shopt -s nullglob
 for f in testdata/*.gltf testdata/*.glb; do
   [ "$(stat -c %s "$f")" -le 1048576 ] && cp "$f" "$seeds/"
@@ -61,7 +62,7 @@ status=0
 "$fuzzer" "$corpus" "$seeds" \
   -dict="$root/fuzz/glTF.dict" \
   -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
-  -max_len="${FUZZ_MAX_LEN:-65536}" -print_final_stats=1 \
+  -max_len="${FUZZ_MAX_LEN:-262144}" -print_final_stats=1 \
   -artifact_prefix="$artifacts/" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
 
 grep -E "^(==[0-9]+==|SUMMARY|artifact_prefix|Test unit written|INFO: seed|Done)" "$log" | tail -n 20 || true

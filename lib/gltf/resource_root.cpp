@@ -69,16 +69,12 @@ std::string percent_decode(const std::string& uri) {
 }
 
 ResourceRoot::ResourceRoot(const std::string& model_dir, const std::vector<std::string>& extra)
-    : model_dir_(model_dir.empty() ? "." : model_dir) {
-  for (const std::string& dir : [&] {
-         std::vector<std::string> all{model_dir_};
-         all.insert(all.end(), extra.begin(), extra.end());
-         return all;
-       }()) {
-    std::string real = real_path(dir);
+    : model_dir_(model_dir.empty() ? "." : model_dir), model_root_(real_path(model_dir_)) {
+  if (!model_root_.empty()) roots_.push_back(model_root_);
+  for (const std::string& dir : extra) {
+    const std::string real = real_path(dir);  // realpath leaves no trailing '/'
     if (real.empty()) throw InputError("resource root " + dir + ": " + std::strerror(errno));
-    while (real.size() > 1 && real.back() == '/') real.pop_back();
-    roots_.push_back(std::move(real));
+    roots_.push_back(real);
   }
 }
 
@@ -100,19 +96,20 @@ bool ResourceRoot::check(const std::string& uri, const std::string& what) const 
   }
   if (decoded.empty()) throw InputError(named + " is empty");
   if (decoded.front() == '/') throw InputError(named + " is an absolute path; dqskin reads only files relative to the model");
+  if (model_root_.empty()) throw InputError(named + ": the model's folder " + model_dir_ + " cannot be resolved");
   const std::string joined = model_dir_ + "/" + decoded;
   const std::string real = real_path(joined);
   if (real.empty()) {
     if (errno != ENOENT) throw InputError(named + ": " + std::strerror(errno));
     // Missing: still refuse a path that leaves every root on its face ("../../secret/x.bin").
-    const std::string lexical = (fs::path(real_path(model_dir_)) / decoded).lexically_normal().string();
+    const std::string lexical = (fs::path(model_root_) / decoded).lexically_normal().string();
     if (!inside(lexical))
-      throw InputError(named + " leads outside the model's folder" + (roots_.size() > 1 ? " and --resource-root" : "") +
+      throw InputError(named + " leads outside the model's folder" + (roots_.size() > 1 ? " and the resource roots" : "") +
                        "; dqskin does not read it");
     return false;
   }
   if (!inside(real))
-    throw InputError(named + " leads outside the model's folder" + (roots_.size() > 1 ? " and --resource-root" : "") +
+    throw InputError(named + " leads outside the model's folder" + (roots_.size() > 1 ? " and the resource roots" : "") +
                      " (to " + real + "); dqskin does not read it");
   struct stat st {};
   if (::stat(real.c_str(), &st) != 0) throw InputError(named + ": " + std::strerror(errno));

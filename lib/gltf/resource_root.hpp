@@ -10,8 +10,9 @@ namespace dqskin::gltf {
 
 class ResourceRoot {
 public:
-  // `model_dir`: the folder the model's relative URIs start from. `extra`: further folders that files may
-  // come from (a shared texture folder). Throws InputError when one of them does not exist.
+  // `model_dir`: the folder the model's relative URIs start from (a model read from memory may name one
+  // that does not exist: then only a file without external URIs loads). `extra`: further folders that
+  // files may come from (a shared texture folder); throws InputError when one of them does not exist.
   ResourceRoot(const std::string& model_dir, const std::vector<std::string>& extra);
 
   // Checks the external URI of a buffer or an image (`what`, for messages) as RFC 3986 and glTF 2.0 §2.8
@@ -29,7 +30,8 @@ private:
   bool inside(const std::string& real_path) const;
 
   std::string model_dir_;
-  std::vector<std::string> roots_;  // real paths, without a trailing '/'
+  std::string model_root_;          // the model folder's real path, or empty when it cannot be resolved
+  std::vector<std::string> roots_;  // real paths of the model folder and the extra ones, without a trailing '/'
 };
 
 // RFC 3986 percent-decoding of a URI's path ("%20" → ' '; '+' stays '+'). Throws InputError for a '%'

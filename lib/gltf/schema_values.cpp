@@ -217,7 +217,7 @@ std::vector<std::string> check_schema_values(json& doc) {
   struct Drop {
     json::json_pointer at;
     std::string warning;
-    std::string order;  // the pointer with array indices zero-padded: document order as text order
+    std::string order;  // the pointer with array indices zero-padded, so that text order is index order
   };
   std::vector<Drop> drops;
   for (const Rule& rule : kRules) {
@@ -235,8 +235,8 @@ std::vector<std::string> check_schema_values(json& doc) {
     };
     visit_matches(doc, pattern, json::json_pointer(), found);
   }
-  // In document order for the warnings; removed last to first, so that erasing an array element (a variant
-  // mapping) leaves the pointers still to be removed valid. Two rules may drop the same object.
+  // Warnings ordered by where they are; values removed last to first, so that erasing an array element (a
+  // variant mapping) leaves the pointers still to be removed valid. Two rules may drop the same object.
   std::stable_sort(drops.begin(), drops.end(), [](const Drop& a, const Drop& b) { return a.order < b.order; });
   std::vector<std::string> warnings;
   for (const Drop& d : drops) warnings.push_back(d.warning);
