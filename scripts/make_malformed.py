@@ -468,6 +468,7 @@ def job_inputs(base, folder):
     huge_skin.gltf        a skin of 70000 joints: its bone texture is wider than any GPU's
     long_names.gltf       two animations named with 254 bytes: the second folder's name gets a suffix
     endless_clip.gltf     a clip whose last key is at 1e30 s
+    still_clip.gltf       a clip of one key at 0 s: one frame at any fps
     models/shared_texture.gltf and textures/checker.png
                           a model whose image is in a sibling folder (--resource-root)
     truncated_texture.gltf    a model whose PNG texture is cut short
@@ -499,6 +500,12 @@ def job_inputs(base, folder):
     struct.pack_into("<f", a.bin, a.accessor_offset(TIMES) + 8, 1e30)
     a.gltf["accessors"][TIMES]["max"] = [1e30]
     write_file(folder, "endless_clip.gltf", gltf_bytes(a))
+
+    a = base.copy()
+    for accessor in (TIMES, TRANSLATIONS, ROTATIONS):
+        a.gltf["accessors"][accessor]["count"] = 1
+    a.gltf["accessors"][TIMES]["max"] = [0.0]
+    write_file(folder, "still_clip.gltf", gltf_bytes(a))
 
     png = tiny_png(8, 8)
     os.makedirs(os.path.join(folder, "models"))

@@ -1,9 +1,10 @@
 # Runs `COMMAND ARGS` (a ;-list) and checks what a user of a failing or hostile run relies on: the exit status
-# (EXPECTED), stderr (STDERR_REGEX; with ONE_LINE, exactly one line and no control character in it), and
+# (EXPECTED), stdout (STDOUT_REGEX), stderr (STDERR_REGEX; with ONE_LINE, exactly one line and no control
+# character in it), and
 # that FOLDER is afterwards exactly as it was before (UNCHANGED: the same entries, hidden ones included, with
 # the same bytes; "absent" stays absent). The command has TIMEOUT seconds (default 60): a hang fails.
 #
-#   cmake -DCOMMAND=dqskin "-DARGS=bake;x.gltf;-o;out" -DEXPECTED=2 [-DSTDERR_REGEX=...] [-DONE_LINE=ON]
+#   cmake -DCOMMAND=dqskin "-DARGS=bake;x.gltf;-o;out" -DEXPECTED=2 [-DSTDOUT_REGEX=...] [-DSTDERR_REGEX=...] [-DONE_LINE=ON]
 #         [-DFOLDER=out [-DUNCHANGED=ON] [-DPREPARE=args of a run that must succeed first]
 #          [-DALTER=file in FOLDER to overwrite after it] [-DPRESENT=paths] [-DABSENT=paths]]
 #         [-DWORKING_DIRECTORY=dir] [-DTIMEOUT=s] -P expect_outcome.cmake
@@ -55,6 +56,9 @@ execute_process(COMMAND ${COMMAND} ${ARGS} WORKING_DIRECTORY ${WORKING_DIRECTORY
 set(problems "")
 if(NOT status STREQUAL EXPECTED)
   string(APPEND problems "exit status '${status}', expected ${EXPECTED}\n")
+endif()
+if(DEFINED STDOUT_REGEX AND NOT out MATCHES "${STDOUT_REGEX}")
+  string(APPEND problems "stdout does not match ${STDOUT_REGEX}\n")
 endif()
 if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
   string(APPEND problems "stderr does not match ${STDERR_REGEX}\n")
