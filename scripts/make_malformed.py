@@ -469,6 +469,8 @@ def job_inputs(base, folder):
     long_names.gltf       two animations named with 254 bytes: the second folder's name gets a suffix
     endless_clip.gltf     a clip whose last key is at 1e30 s
     still_clip.gltf       a clip of one key at 0 s: one frame at any fps
+    many_instances.gltf   1000 nodes drawing one mesh of 20000 points: 2e7 vertices a frame
+    big_textures.gltf     ten images whose PNG headers declare 8192 x 8192 pixels (2.5 GiB decoded)
     models/shared_texture.gltf and textures/checker.png
                           a model whose image is in a sibling folder (--resource-root)
     truncated_texture.gltf    a model whose PNG texture is cut short
@@ -507,6 +509,17 @@ def job_inputs(base, folder):
     a.gltf["accessors"][TIMES]["max"] = [0.0]
     write_file(folder, "still_clip.gltf", gltf_bytes(a))
 
+    a = base.copy()
+    points = 20000
+    view = a.add_view(bytes(12 * points), ARRAY_BUFFER)
+    accessor = a.add_accessor({"bufferView": view, "componentType": FLOAT, "count": points, "type": "VEC3",
+                               "min": [0, 0, 0], "max": [0, 0, 0]})
+    a.gltf["meshes"].append({"primitives": [{"attributes": {"POSITION": accessor}, "mode": 0}]})
+    first = len(a.gltf["nodes"])
+    a.gltf["nodes"] += [{"mesh": 1} for _ in range(1000)]
+    a.gltf["scenes"][0]["nodes"] += list(range(first, first + 1000))
+    write_file(folder, "many_instances.gltf", gltf_bytes(a))
+
     png = tiny_png(8, 8)
     os.makedirs(os.path.join(folder, "models"))
     os.makedirs(os.path.join(folder, "textures"))
@@ -518,6 +531,13 @@ def job_inputs(base, folder):
     image_view = a.add_view(png[:len(png) - 20])
     a = textured(a, {"bufferView": image_view, "mimeType": "image/png"})
     write_file(folder, "truncated_texture.gltf", gltf_bytes(a))
+
+    header_only = png[:33]  # the signature and IHDR, which then declares 8192 x 8192
+    header_only = header_only[:16] + struct.pack(">II", 8192, 8192) + header_only[24:]
+    a = textured(base, {"uri": "data:image/png;base64," + base64.b64encode(header_only).decode()})
+    a.gltf["images"] *= 10
+    a.gltf["textures"] = [{"source": i} for i in range(10)]
+    write_file(folder, "big_textures.gltf", gltf_bytes(a))
 
 
 def tiny_png(width, height):

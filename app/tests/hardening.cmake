@@ -109,7 +109,14 @@ dqskin_outcome_test(render_still_clip_at_fps_1e300 0 FOLDER ${hard_scratch}/stil
 dqskin_outcome_test(max_memory_not_a_size 2 ARGS info good.png --max-memory 1e400
   ONE_LINE STDERR "^dqskin: --max-memory '1e400' is not a size in bytes")
 
-# ---- Work in proportion: the plan, and a bake that cannot fit its disk -------------------------------------
+# ---- Work in proportion: memory per frame, decoded images, the plan, a bake that cannot fit its disk --------
+# 1000 nodes drawing one mesh of 20000 points: a small file, 2e7 vertices to deform every frame.
+dqskin_outcome_test(instances_multiply_the_frame 2 ARGS bake many_instances.gltf -o ${hard_scratch}/instances --dry-run
+  ONE_LINE STDERR "^dqskin: many_instances.gltf: the scene draws 20000004 vertices a frame \\(1001 mesh instances\\). deforming one frame needs about 2.24 GiB, more than --max-memory 2.00 GiB\n$")
+# Ten images declaring 8192 x 8192: render decodes them (2.5 GiB), info and bake do not.
+dqskin_outcome_test(render_counts_decoded_images 2 ARGS render big_textures.gltf -o ${hard_scratch}/big_textures
+  ONE_LINE STDERR "^dqskin: big_textures.gltf: loading it needs about 2.50 GiB \\(.*, 2.50 GiB of decoded images\\), more than --max-memory 2.00 GiB\n$")
+dqskin_outcome_test(info_does_not_decode_images 0 ARGS info big_textures.gltf STDERR "^$")
 dqskin_outcome_test(dry_run_prints_the_planned_work 0 ARGS bake ${rig} -o ${hard_scratch}/dry --dry-run --format glb,vat
   STDERR "^dry run: [0-9]+ frames to deform \\([0-9.e+]+ vertex-frames\\), up to [0-9.]+ (KiB|MiB) in [0-9]+ files. [0-9.]+ [KMGT]iB free")
 # A 1 MiB file system (a tmpfs in a user and mount namespace of its own, so no root is needed): the bake is

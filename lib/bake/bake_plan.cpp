@@ -1,5 +1,6 @@
 #include "bake_plan.hpp"
 
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 
@@ -58,6 +59,20 @@ void check_name_lengths(const std::string& out_dir, const ClipPlan& clip, const 
                      " bytes long; the system takes at most " + std::to_string(PATH_MAX));
 }
 
+// One deformed frame holds every instance's vertices: a small file whose nodes draw one large mesh a
+// thousand times would need a thousand times its memory per frame. The CPU reference keeps positions,
+// normals and tangents in double (80 bytes a vertex), a batch of frames in float beside them.
+void check_frame_size(const Asset& asset, const std::vector<MeshInstance>& instances, uint64_t max_memory) {
+  constexpr uint64_t kBytesPerVertex = 80 + 40;
+  uint64_t vertices = 0;
+  for (const MeshInstance& inst : instances)
+    for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) vertices += p.vertex_count();
+  if (vertices > max_memory / kBytesPerVertex)
+    throw InputError("the scene draws " + std::to_string(vertices) + " vertices a frame (" +
+                     std::to_string(instances.size()) + " mesh instances); deforming one frame needs about " +
+                     byte_size(vertices * kBytesPerVertex) + ", more than --max-memory " + byte_size(max_memory));
+}
+
 }  // namespace
 
 std::string safe_name(const std::string& name) {
@@ -107,6 +122,7 @@ std::vector<InputPlan> plan_bake(const std::vector<std::string>& inputs, const B
       plan.scene = choose_scene(asset, options.scene);
       plan.instances = mesh_instances(asset, plan.scene);
       if (plan.instances.empty()) throw InputError("the scene draws no meshes");
+      check_frame_size(asset, plan.instances, options.load.max_memory);
       std::set<int> skins;
       for (const MeshInstance& inst : plan.instances)
         if (inst.skin >= 0) skins.insert(inst.skin);

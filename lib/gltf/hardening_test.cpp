@@ -4,6 +4,7 @@
 // line; these tests check the parts one by one, under the sanitizers in the sanitize build.
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
+#include "image_size.hpp"
 #include "memory_estimate.hpp"
 #include "model_io.hpp"
 #include "precheck.hpp"
@@ -11,12 +12,14 @@
 #include "schema_values.hpp"
 #include "../test_support/scratch_dir.hpp"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 
 namespace dqskin::gltf {
@@ -180,6 +183,34 @@ TEST(MemoryEstimate, IsInProportionToTheDecodedAsset) {
   EXPECT_GE(estimate.asset, decoded);
   EXPECT_LE(estimate.asset, 3 * decoded);
   EXPECT_LE(estimate.total(), 4 * (decoded + bytes.size()));
+}
+
+// The sizes that headers declare, read for PNG, JPEG and WebP as OpenImageIO writes them, and every prefix
+// of each file in an exactly sized allocation (nothing read past the end; a prefix gives the size or none).
+TEST(DeclaredImageSize, ReadsPngJpegAndWebpHeadersWithinTheBytes) {
+  const testing_support::ScratchDir scratch("image_size");
+  for (const char* format : {"png", "jpg", "webp"}) {
+    const fs::path path = scratch.path() / (std::string("image.") + format);
+    const int width = 37, height = 21;
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
+    if (!out) GTEST_SKIP() << "OpenImageIO cannot write " << format;
+    std::vector<uint8_t> pixels(size_t(width * height * 3), 128);
+    ASSERT_TRUE(out->open(path.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    ASSERT_TRUE(out->close());
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto size = declared_image_size(bytes);
+    ASSERT_TRUE(size.has_value()) << format;
+    EXPECT_EQ(size->first, uint32_t(width)) << format;
+    EXPECT_EQ(size->second, uint32_t(height)) << format;
+    for (size_t n = 0; n < std::min<size_t>(bytes.size(), 1024); ++n) {
+      const std::unique_ptr<uint8_t[]> copy(new uint8_t[std::max<size_t>(n, 1)]);
+      std::copy_n(bytes.begin(), n, copy.get());
+      const auto prefix = declared_image_size({copy.get(), n});
+      EXPECT_TRUE(!prefix || *prefix == *size) << format << " prefix " << n;
+    }
+  }
 }
 
 }  // namespace

@@ -276,12 +276,13 @@ void add_warnings(const tinygltf::Model& m, Asset& asset) {
 
 // Refuses a file whose decoding would take more than options.max_memory, before anything is decoded.
 void check_memory(const tinygltf::Model& m, const LoadOptions& options) {
-  const gltf::MemoryEstimate need = gltf::estimate_memory(m);
+  const gltf::MemoryEstimate need = gltf::estimate_memory(m, options.decoded_images);
   if (need.total() > options.max_memory)
     fail("loading it needs about " + byte_size(need.total()) + " (" + byte_size(need.asset) + " decoded by " +
          std::to_string(need.accessor_uses) + " accessor reads, " + byte_size(need.transient) +
-         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images), more than --max-memory " +
-         byte_size(options.max_memory));
+         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images" +
+         (need.images ? ", " + byte_size(need.images) + " of decoded images" : std::string()) +
+         "), more than --max-memory " + byte_size(options.max_memory));
 }
 
 Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptions& options) {

@@ -1,6 +1,7 @@
 #include "memory_estimate.hpp"
 
 #include "dqskin/asset.hpp"
+#include "image_size.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -82,9 +83,9 @@ private:
 
 }  // namespace
 
-uint64_t MemoryEstimate::total() const { return add(add(file, asset), transient); }
+uint64_t MemoryEstimate::total() const { return add(add(add(file, asset), transient), images); }
 
-MemoryEstimate estimate_memory(const tinygltf::Model& model) {
+MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images) {
   Tally tally(model);
   for (const tinygltf::Mesh& mesh : model.meshes)
     for (const tinygltf::Primitive& p : mesh.primitives) tally.primitive(p);
@@ -99,6 +100,10 @@ MemoryEstimate estimate_memory(const tinygltf::Model& model) {
       tally.read(s.input, 4);  // each channel decodes its sampler's keys and values again
       tally.read(s.output, 4);
     }
+  if (decoded_images)
+    for (const tinygltf::Image& i : model.images)
+      if (const auto size = declared_image_size(i.image))
+        tally.e.images = add(tally.e.images, mul(mul(size->first, size->second), 4));
   return tally.finish();
 }
 

@@ -11,6 +11,7 @@ namespace dqskin::gltf {
 
 struct MemoryEstimate {
   uint64_t file = 0;       // what tinygltf already holds: buffers and encoded images
+  uint64_t images = 0;     // decoded images (RGBA, 8 bits) by their declared size, when they are decoded
   uint64_t asset = 0;      // the Asset: decoded attributes (every use of an accessor counted), morph
                            // targets, generated normals, skins, animation keys, nodes, copied images
   uint64_t transient = 0;  // the largest temporary of one decode (an accessor as double, normals' sums)
@@ -18,7 +19,9 @@ struct MemoryEstimate {
   uint64_t total() const;      // saturating sum
 };
 
-// Estimates from the model's declared counts (no accessor is read). Saturates instead of overflowing.
-MemoryEstimate estimate_memory(const tinygltf::Model& model);
+// Estimates from the model's declared counts (no accessor is read, no image decoded). `decoded_images`:
+// the caller will decode the images (the renderer), so their declared sizes count too. Saturates instead of
+// overflowing.
+MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images = false);
 
 }  // namespace dqskin::gltf

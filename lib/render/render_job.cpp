@@ -252,6 +252,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
   BakeOptions plan_options;  // the planner's view of a render: which frames, clips and names
   plan_options.out_dir = options.out_dir;
   plan_options.load = options.load;
+  plan_options.load.decoded_images = true;  // the renderer decodes the textures
   plan_options.clips = options.clips;
   plan_options.frames = options.frames;
   plan_options.scene = options.scene;

@@ -24,6 +24,9 @@ struct LoadOptions {
   // Most memory loading may take, estimated from the file's declared counts before anything is decoded
   // (every use of an accessor counted, morph targets, animation keys, the file's buffers and images).
   uint64_t max_memory = kDefaultMaxMemory;
+  // The caller decodes the images (the renderer): their declared sizes (RGBA, 8 bits) count toward
+  // max_memory too.
+  bool decoded_images = false;
   // Folders besides the model's own that its external buffers and images may come from (--resource-root).
   // A URI that resolves anywhere else, by "..", an absolute path or a symbolic link, is refused.
   std::vector<std::string> resource_roots;
