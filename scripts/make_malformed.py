@@ -451,6 +451,9 @@ def hostile_cases(cat, base, glb, outdir):
     cat.case("required_extension_with_escape_and_newline.gltf", gltf_bytes(Asset(g, base.bin)),
              r"requires extension KHR_\\x1b.31mevil\\nsecond line, which dqskin does not support$")
     cat.case("not_utf8.gltf", b'{"asset":{"version":"2.0"},"x":\xff\xfe}', r".*last read: .*\\xff")
+    # Found by the fuzzer: a version string with a newline, quoted by the message.
+    cat.case("asset_version_with_newline.gltf", b'{"asset":{"version":"2\\n"}}',
+             r"asset\.version is 2\\n, but dqskin reads glTF 2\.x$")
 
     # ---- Inputs that are not regular files: never waited on, never read forever ---------------------------
     os.mkfifo(os.path.join(outdir, "fifo_input.gltf"))

@@ -8,15 +8,26 @@
 
 namespace dqskin {
 
+// `text` made safe to print as (part of) one line on a terminal: control characters become escapes
+// (`\n`, `\r`, `\t`, `\x1b`, …), as do bytes that are not UTF-8 (`\xff`) and the code points that move
+// or reorder text (C1 controls, bidirectional overrides and isolates, line and paragraph separators:
+// `\u202e`). Everything else, UTF-8 letters included, is kept, and printable text stays as it is.
+// File names and messages built from a file's content go through it before they reach stderr or a text
+// report.
+std::string printable(std::string_view text);
+
+// An input that is not valid. The message is made printable() when the exception is made: parts of it
+// come from the file (names, values, a parser's quote of it), and it stays one line whatever they hold.
 class InputError : public std::runtime_error {
 public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(std::string_view message) : std::runtime_error(printable(message)) {}
 };
 
-// An output that cannot be written (folder missing or read-only, disk full); the message names the file.
+// An output that cannot be written (folder missing or read-only, disk full); the message names the file,
+// made printable() like InputError's.
 class OutputError : public std::runtime_error {
 public:
-  using std::runtime_error::runtime_error;
+  explicit OutputError(std::string_view message) : std::runtime_error(printable(message)) {}
 };
 
 // The message for std::bad_alloc caught at an input's or a command's boundary: the estimate that
@@ -24,12 +35,5 @@ public:
 inline constexpr const char* kOutOfMemory =
     "ran out of memory: this machine has less free memory than --max-memory allows; lower --max-memory to refuse "
     "such inputs at once";
-
-// `text` made safe to print as (part of) one line on a terminal: control characters become escapes
-// (`\n`, `\r`, `\t`, `\x1b`, …), as do bytes that are not UTF-8 (`\xff`) and the code points that move
-// or reorder text (C1 controls, bidirectional overrides and isolates, line and paragraph separators:
-// `\u202e`). Everything else, UTF-8 letters included, is kept. File names and messages built from a
-// file's content go through it before they reach stderr or a text report.
-std::string printable(std::string_view text);
 
 }  // namespace dqskin
