@@ -172,6 +172,7 @@ int run_bake(const BakeSettings& given) {
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
   } catch (const BakeCancelled&) {
     progress.done();
+    out_folder.roll_back();  // removes the output folder this run made only if it is still empty
     return die_of_interrupt("bake");
   } catch (const NoGpuContext& e) {
     progress.done();

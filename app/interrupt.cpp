@@ -2,7 +2,6 @@
 #include "console.hpp"
 
 #include "dqskin/atomic_file.hpp"
-#include "dqskin/stderr_lock.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -24,9 +23,11 @@ namespace {
 constexpr int kGraceMilliseconds = 250;
 
 std::atomic<bool> g_cancel{false};
-volatile std::sig_atomic_t g_signal = 0;
+std::atomic<int> g_signal{0};      // lock-free: the handler writes it, the watchdog reads it
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler stores to it");
 std::atomic<bool> g_dying{false};  // one thread prints the last message and ends the process
 int g_pipe[2] = {-1, -1};          // the handler wakes the watchdog through it (write is async-signal-safe)
+int g_stderr = -1;                 // stderr as it was at the start: a library may have it redirected
 const char* g_what = "work";
 
 extern "C" void on_interrupt(int signal) {
@@ -65,20 +66,18 @@ void watchdog() {
     if (ready > 0) break;  // a second signal: the user does not want to wait
   }
   if (g_dying.exchange(true)) return;  // the work stopped in time and is ending the process itself
-  remove_pending_files();
-  // The lock keeps this line out of a library's captured stderr; it is only waited for briefly.
-  std::unique_lock<std::mutex> lock(stderr_mutex(), std::defer_lock);
-  for (int i = 0; i < 50 && !lock.try_lock(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  const std::string line = "dqskin: " + std::string(g_what) + " stopped by signal " + std::to_string(int(g_signal)) +
+  remove_pending_files(/*hold=*/true);  // and no thread makes another
+  const std::string line = "dqskin: " + std::string(g_what) + " stopped by signal " + std::to_string(g_signal.load()) +
                            "; files under final names are complete, temporaries were removed\n";
-  ignored = ::write(2, line.data(), line.size());
-  die_of(int(g_signal));
+  ignored = ::write(g_stderr >= 0 ? g_stderr : 2, line.data(), line.size());
+  die_of(g_signal.load());
 }
 
 }  // namespace
 
 const std::atomic<bool>* catch_interrupts(const char* what) {
   g_what = what;
+  if (g_stderr < 0) g_stderr = ::fcntl(2, F_DUPFD_CLOEXEC, 3);
   if (g_pipe[0] < 0 && ::pipe2(g_pipe, O_CLOEXEC | O_NONBLOCK) == 0) std::thread(watchdog).detach();
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
@@ -89,9 +88,9 @@ int die_of_interrupt(const char* what) {
   if (g_dying.exchange(true)) {
     for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // the watchdog is ending the process
   }
-  print_error(std::string(what) + " stopped by signal " + std::to_string(int(g_signal)) +
+  print_error(std::string(what) + " stopped by signal " + std::to_string(g_signal.load()) +
               "; no partial files were left under final names");
-  die_of(int(g_signal));
+  die_of(g_signal.load());
 }
 
 }  // namespace dqskin::cli

@@ -2,8 +2,8 @@
 // polls the flag and unwinds, removing its temporaries); then the process dies of that same signal, so
 // that make, shells and job schedulers see what happened. Whatever the work is doing (a batch on the GPU,
 // a large texture being compressed), the process ends within a second: a watchdog thread gives the work
-// a quarter of a second to unwind, then removes the temporaries itself and ends the process. A second signal ends
-// it at once.
+// a quarter of a second to unwind, then removes the temporaries itself and ends the process. A second signal cuts
+// that quarter of a second short.
 #pragma once
 
 #include <atomic>

@@ -253,7 +253,7 @@ int main(int argc, char** argv) {
     if (diff_cmd->parsed()) return run_diff(diff);
     if (render_cmd->parsed()) return run_render(render);
   } catch (const std::bad_alloc&) {
-    print_error(dqskin::kOutOfMemory);
+    print_error("ran out of memory");
     return kUsageOrInputError;
   } catch (const std::exception& e) {
     print_error(e.what());

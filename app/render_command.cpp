@@ -176,6 +176,7 @@ int run_render(const RenderSettings& given) {
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
   } catch (const BakeCancelled&) {
     clear_bar();
+    out_folder.roll_back();  // removes the output folder this run made only if it is still empty
     return die_of_interrupt("render");
   } catch (const NoGpuContext& e) {
     clear_bar();

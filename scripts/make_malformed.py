@@ -398,13 +398,15 @@ def hostile_cases(cat, base, glb, outdir):
     os.symlink("/dev/zero", os.path.join(outdir, "link_to_dev_zero.bin"))
     cat.external("buffer_uri_symlink_to_device", base, r"buffer 0 uri 'link_to_dev_zero\.bin' leads outside",
                  uri="link_to_dev_zero.bin")
-    for name, uri, regex in [("traversal", "../" * 8 + "etc/passwd", outside),
+    # An image is appearance: one that leaves the root is not read, with a warning, and the file loads.
+    for name, uri, regex in [("traversal", "../" * 8 + "etc/passwd", "leads outside the model's folder"),
                              ("absolute", "/etc/passwd", "is an absolute path"),
-                             ("symlink_outside", "link_to_passwd.bin", "leads outside")]:
+                             ("scheme", "https://example.com/t.png", "has a scheme"),
+                             ("symlink_outside", "link_to_passwd.bin", "leads outside the model's folder")]:
         g = copy.deepcopy(base.gltf)
         g["images"] = [{"uri": uri}]
-        cat.case("image_uri_%s.gltf" % name, gltf_bytes(Asset(g, base.bin)),
-                 r"image 0 uri '" + regex_escape(uri) + "' " + regex)
+        cat.warning("image_uri_" + name, Asset(g, base.bin),
+                    r"image 0 uri '" + regex_escape(uri) + "' " + regex + ".*. textures using it are not drawn")
 
     # ---- Nesting: tinygltf recurses once per level (20000 levels crashed it) -----------------------------
     for depth, fails in [(20000, True), (129, True), (100, False)]:
@@ -441,6 +443,10 @@ def hostile_cases(cat, base, glb, outdir):
         d = bytearray(data)
         struct.pack_into(fmt, d, offset, value)
         return bytes(d)
+    # A JSON chunk whose length is not a multiple of 4: tinygltf reads the next chunk's header at the
+    # unpadded offset.
+    cat.case("glb_json_chunk_not_padded.glb", patched(glb, 12, "<I", struct.unpack_from("<I", glb, 12)[0] - 1),
+             r"GLB JSON chunk of [0-9]+ bytes is not padded to a multiple of 4$")
     for length in (0, 12, 19):
         cat.case("glb_header_length_%d.glb" % length, patched(glb, 8, "<I", length),
                  r"GLB header gives a length of %d bytes, less than its headers \(20\)$" % length)
@@ -457,11 +463,11 @@ def hostile_cases(cat, base, glb, outdir):
 
     # ---- Inputs that are not regular files: never waited on, never read forever ---------------------------
     os.mkfifo(os.path.join(outdir, "fifo_input.gltf"))
-    cat.case("fifo_input.gltf", None, r"not a regular file")
+    cat.case("fifo_input.gltf", None, r"is a FIFO, not a regular file$")
     os.symlink("/dev/zero", os.path.join(outdir, "dev_zero_input.glb"))
-    cat.case("dev_zero_input.glb", None, r"not a regular file")
+    cat.case("dev_zero_input.glb", None, r"is a device, not a regular file$")
     os.makedirs(os.path.join(outdir, "folder_input.gltf"))
-    cat.case("folder_input.gltf", None, r"is a folder, not a file$")
+    cat.case("folder_input.gltf", None, r"is a folder, not a regular file$")
 
 
 def job_inputs(base, folder):
@@ -480,6 +486,7 @@ def job_inputs(base, folder):
     truncated.png, good.png   a PNG cut short, and a whole one
     fifo.png, zero.png        a FIFO, and a symbolic link to /dev/zero, named as images
     "line\nbreak\x1bc.gltf"   a valid file whose name holds a newline and an escape sequence
+    image_traversal.gltf  a textured quad whose image uri is ../../../../../../../../etc/passwd
     """
     os.makedirs(folder)
     os.mkfifo(os.path.join(folder, "fifo.png"))
@@ -531,6 +538,7 @@ def job_inputs(base, folder):
     write_file(folder, "truncated.png", png[:len(png) - 20])
     a = textured(base, {"uri": "../textures/checker.png"})
     write_file(folder, "models/shared_texture.gltf", gltf_bytes(a))
+    write_file(folder, "image_traversal.gltf", gltf_bytes(textured(base, {"uri": "../" * 8 + "etc/passwd"})))
     image_view = a.add_view(png[:len(png) - 20])
     a = textured(a, {"bufferView": image_view, "mimeType": "image/png"})
     write_file(folder, "truncated_texture.gltf", gltf_bytes(a))

@@ -37,8 +37,9 @@ function(dqskin_outcome_test name expected)
 endfunction()
 
 # ---- The resource root: a sibling folder only with --resource-root ----------------------------------------
-dqskin_outcome_test(image_in_sibling_folder_refused 2 ARGS info models/shared_texture.gltf ONE_LINE
-  STDERR "^dqskin: models/shared_texture.gltf: image 0 uri '../textures/checker.png' leads outside the model's folder")
+# An image outside the root is not read: the file loads with a warning (the renderer has no texture).
+dqskin_outcome_test(image_in_sibling_folder_not_read 0 ARGS info models/shared_texture.gltf STDERR "^$"
+  STDOUT "\n    image 0 uri '../textures/checker.png' leads outside the model's folder \\(to [^\n]*\\). dqskin does not read it. textures using it are not drawn\n")
 dqskin_outcome_test(resource_root_widens_the_folder 0 ARGS info models/shared_texture.gltf --resource-root textures
   STDERR "^$")
 dqskin_outcome_test(resource_root_reaches_the_glb_writer 0 FOLDER ${hard_scratch}/root_bake
@@ -48,6 +49,11 @@ dqskin_outcome_test(resource_root_reaches_the_renderer 0 FOLDER ${hard_scratch}/
   ARGS render models/shared_texture.gltf -o ${hard_scratch}/root_render --resource-root textures --frames 0:0
        --size 32x32 --quiet
   PRESENT ${hard_scratch}/root_render/shared_texture/wave/frame_0000.png)
+# The landed code embedded /etc/passwd in every baked glb of such a file; now the image is not read (a
+# warning) and the glb holds none of its bytes.
+add_test(NAME cli.hardening_image_outside_the_root_is_not_embedded COMMAND sh -c
+  "rm -rf '${hard_scratch}/traversal' && '$<TARGET_FILE:dqskin_cli>' bake '${hostile}/image_traversal.gltf' -o '${hard_scratch}/traversal' --frames 0:0 2>'${hard_scratch}/traversal.err' && grep -q \"image 0 uri '../../../../../../../../etc/passwd' leads outside\" '${hard_scratch}/traversal.err' && ! grep -rq 'root:' '${hard_scratch}/traversal'")
+set_tests_properties(cli.hardening_image_outside_the_root_is_not_embedded PROPERTIES LABELS hardening)
 dqskin_outcome_test(resource_root_must_be_a_folder 2 ARGS info models/shared_texture.gltf --resource-root good.png
   ONE_LINE STDERR "^dqskin: --resource-root good.png: not a folder\n$")
 
@@ -94,7 +100,7 @@ dqskin_outcome_test(file_name_with_newline_in_text_report 0 ARGS info "line\nbre
 foreach(target IN ITEMS /dev/zero fifo.png zero.png)
   string(MAKE_C_IDENTIFIER "${target}" id)
   dqskin_outcome_test(diff_against_${id}_returns 2 ARGS diff good.png ${target} TIMEOUT 20
-    ONE_LINE STDERR "^dqskin: ${target}: not a regular file")
+    ONE_LINE STDERR "^dqskin: ${target}: is a (device|FIFO), not a regular file\n$")
 endforeach()
 
 # ---- Absurd numbers: refused in words, no undefined conversion (the sanitizer build checks that) -----------

@@ -317,7 +317,10 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   report.vertex_frames = work.vertex_frames;
   report.planned_bytes = work.bytes;
   report.free_bytes = free_bytes(options.out_dir);
-  const uint64_t needed = work.bytes > work.existing ? work.bytes - work.existing : 0;
+  // Files already there are kept when they are equal; with --force the old ones stay (linked aside) until
+  // their input has succeeded, so every new file needs its space.
+  const bool keeps_existing = options.overwrite == Overwrite::kRefuseDifferent;
+  const uint64_t needed = !keeps_existing ? work.bytes : work.bytes > work.existing ? work.bytes - work.existing : 0;
   if (needed > report.free_bytes)
     throw InputError(options.out_dir + ": the bake would write up to " + byte_size(work.bytes) + " in " +
                      std::to_string(work.files) + " files, but the file system has " + byte_size(report.free_bytes) +

@@ -3,13 +3,13 @@
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
+#include "../io/file_kind.hpp"
 
 #include <unistd.h>
 
 #include <chrono>
 #include <climits>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <set>
 
@@ -33,9 +33,7 @@ int digits(size_t n) {
 // The longest file name the output's file system takes, asked of the output folder or, before it exists,
 // its nearest ancestor that does.
 size_t longest_name(const std::string& out_dir) {
-  std::filesystem::path p = out_dir.empty() ? "." : out_dir;
-  while (!p.empty() && ::access(p.c_str(), F_OK) != 0 && p != p.parent_path()) p = p.parent_path();
-  const long n = ::pathconf(p.empty() ? "." : p.c_str(), _PC_NAME_MAX);
+  const long n = ::pathconf(nearest_existing(out_dir).c_str(), _PC_NAME_MAX);
   return n > 0 ? size_t(n) : 255;
 }
 

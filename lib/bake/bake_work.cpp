@@ -2,21 +2,19 @@
 
 #include "dqskin/mesh_output.hpp"
 #include "dqskin/texture_output.hpp"
+#include "../io/file_kind.hpp"
+#include "../io/saturating.hpp"
 
 #include <sys/stat.h>
 #include <sys/statvfs.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <limits>
 
 namespace dqskin::bake_detail {
 namespace {
 
-constexpr uint64_t kMax = std::numeric_limits<uint64_t>::max();
-uint64_t add(uint64_t a, uint64_t b) { return a > kMax - b ? kMax : a + b; }
-uint64_t mul(uint64_t a, uint64_t b) { return a != 0 && b > kMax / a ? kMax : a * b; }
+using saturating::add;
+using saturating::mul;
 
 bool ends_with(const std::string& s, const char* suffix) { return s.ends_with(suffix); }
 
@@ -98,10 +96,8 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
 }
 
 uint64_t free_bytes(const std::string& folder) {
-  std::filesystem::path p = folder.empty() ? "." : folder;
-  while (!p.empty() && ::access(p.c_str(), F_OK) != 0 && p != p.parent_path()) p = p.parent_path();
   struct statvfs fs {};
-  if (::statvfs(p.empty() ? "." : p.c_str(), &fs) != 0) return kMax;  // unknown: do not refuse
+  if (::statvfs(nearest_existing(folder).c_str(), &fs) != 0) return saturating::kMax;  // unknown: do not refuse
   return mul(fs.f_bavail, fs.f_frsize);
 }
 

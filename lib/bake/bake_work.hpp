@@ -13,7 +13,7 @@ namespace dqskin::bake_detail {
 struct BakeWork {
   uint64_t vertex_frames = 0;  // vertices × frames deformed
   uint64_t bytes = 0;          // the files this shard writes, manifest included
-  uint64_t existing = 0;       // bytes of those files already there (a rerun replaces or keeps them)
+  uint64_t existing = 0;       // bytes of those files already there (a rerun keeps the equal ones)
   size_t files = 0;
   BakeWork& operator+=(const BakeWork& o);
 };

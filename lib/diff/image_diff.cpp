@@ -1,6 +1,7 @@
 // `dqskin diff`: images compared by OpenImageIO's ImageBufAlgo::compare with idiff's thresholds, heat maps
 // of failing pairs, and text, JSON and JUnit XML reports (include/dqskin/image_diff.hpp).
 #include "dqskin/image_diff.hpp"
+#include "../io/file_kind.hpp"
 #include "../io/oiio_message.hpp"
 #include "../io/stderr_capture.hpp"
 #include "../io/utf8.hpp"
@@ -83,7 +84,9 @@ std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
   const fs::file_status status = fs::status(path, error);
   if (error) return error.message();
   if (fs::is_directory(status)) return "is a folder";
-  if (!fs::is_regular_file(status)) return "not a regular file (a device, FIFO or socket)";
+  struct stat st {};
+  if (!fs::is_regular_file(status))
+    return std::string("is ") + (::stat(path.c_str(), &st) == 0 ? file_kind(st.st_mode) : "not a file") + ", not a regular file";
   OIIO::geterror();  // forget earlier messages
   CapturedStderr capture;  // libpng prints its own "libpng error: …" line; it becomes part of ours
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);

@@ -121,18 +121,35 @@ TEST_F(ResourceRootTest, TheMessageNamesTheUriAndWhereItLeads) {
   }
 }
 
-TEST(Nesting, DepthIsCountedOutsideStringsOnly) {
+TEST(ScanJson, DepthIsCountedOutsideStringsOnly) {
   auto text = [](const std::string& s) { return std::span(reinterpret_cast<const uint8_t*>(s.data()), s.size()); };
   const std::string deep_ok = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
-  EXPECT_NO_THROW(check_nesting(text(deep_ok)));
+  EXPECT_NO_THROW(scan_json(text(deep_ok)));
   const std::string too_deep = std::string(kMaxJsonDepth + 1, '[') + std::string(kMaxJsonDepth + 1, ']');
-  EXPECT_THROW(check_nesting(text(too_deep)), InputError);
-  const std::string in_string = "{\"a\":\"" + std::string(10000, '[') + "\\\"[[\"}";
-  EXPECT_NO_THROW(check_nesting(text(in_string)));
-  // Siblings do not add up: a thousand arrays side by side are one level.
+  EXPECT_THROW(scan_json(text(too_deep)), InputError);
+  const std::string in_string = "{\"a\":\"" + std::string(10000, '[') + "\\\"[[,,\"}";
+  const JsonShape shape = scan_json(text(in_string));
+  EXPECT_EQ(shape.values, 1u);
+  EXPECT_EQ(shape.objects, 1u);
+  // Siblings do not add up: 1001 arrays side by side are one level, and 1001 values (empty arrays hold none).
   std::string wide = "[";
   for (int i = 0; i < 1000; ++i) wide += "[],";
-  EXPECT_NO_THROW(check_nesting(text(wide + "[]]")));
+  EXPECT_EQ(scan_json(text(wide + "[]]")).values, 1001u);
+}
+
+// Parsing a JSON text is refused before it starts when its shape says it would take more than the limit.
+TEST(ScanJson, ATextOfMillionsOfValuesIsRefusedBeforeItIsParsed) {
+  std::string text = "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[{}";
+  for (int i = 0; i < 200000; ++i) text += ",{}";
+  text += "]}";
+  LoadOptions options;
+  options.max_memory = uint64_t(64) << 20;  // 200,001 objects are about 200 MB
+  try {
+    load_asset_from_memory(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()), "nodes", ".", options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("its JSON (586 KiB, 200004 values) takes about", 0), 0u) << e.what();
+  }
 }
 
 TEST(SchemaValues, AppearanceValuesAreRemovedWithAWarningOrderedByWhereTheyAre) {

@@ -275,20 +275,23 @@ void add_warnings(const tinygltf::Model& m, Asset& asset) {
 }
 
 // Refuses a file whose decoding would take more than options.max_memory, before anything is decoded.
-void check_memory(const tinygltf::Model& m, const LoadOptions& options) {
-  const gltf::MemoryEstimate need = gltf::estimate_memory(m, options.decoded_images);
+// `json_bytes`: what parsing its JSON took (still held: the checked document and the model).
+void check_memory(const tinygltf::Model& m, uint64_t json_bytes, const LoadOptions& options) {
+  gltf::MemoryEstimate need = gltf::estimate_memory(m, options.decoded_images);
+  need.json = json_bytes;
   if (need.total() > options.max_memory)
     fail("loading it needs about " + byte_size(need.total()) + " (" + byte_size(need.asset) + " decoded by " +
          std::to_string(need.accessor_uses) + " accessor reads, " + byte_size(need.transient) +
-         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images" +
+         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images, " + byte_size(need.json) +
+         " for its JSON" +
          (need.images ? ", " + byte_size(need.images) + " of decoded images" : std::string()) +
          "), more than --max-memory " + byte_size(options.max_memory));
 }
 
-Asset convert(const tinygltf::Model& m, const std::string& path, const LoadOptions& options) {
+Asset convert(const tinygltf::Model& m, uint64_t json_bytes, const std::string& path, const LoadOptions& options) {
   for (const std::string& ext : m.extensionsRequired)
     if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
-  check_memory(m, options);
+  check_memory(m, json_bytes, options);
 
   Asset asset;
   asset.path = path;
@@ -317,8 +320,9 @@ Mat4<double> LocalTransform::to_matrix() const {
 }
 
 Asset load_asset(const std::string& path, const LoadOptions& options) {
-  const std::vector<uint8_t> bytes = gltf::read_regular_file(path, options.max_file_bytes);
-  // read_regular_file names the path in its messages; the caller adds it to ours.
+  // The file is held whole while it loads: it counts toward max_memory too. read_regular_file's messages do
+  // not name the path; the caller names it.
+  const std::vector<uint8_t> bytes = gltf::read_regular_file(path, std::min(options.max_file_bytes, options.max_memory));
   return load_asset_from_memory(bytes, path, directory_of(path), options);
 }
 
@@ -326,7 +330,7 @@ Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& 
                              const LoadOptions& options) {
   if (bytes.empty()) fail("the file is empty");
   gltf::ParsedModel parsed = gltf::parse_model(bytes, base_dir, options);
-  Asset asset = convert(parsed.model, name, options);
+  Asset asset = convert(parsed.model, parsed.json_bytes, name, options);
   asset.warnings.insert(asset.warnings.begin(), parsed.warnings.begin(), parsed.warnings.end());
   return asset;
 }

@@ -2,17 +2,15 @@
 
 #include "dqskin/asset.hpp"
 #include "image_size.hpp"
+#include "../io/saturating.hpp"
 
 #include <algorithm>
-#include <limits>
 
 namespace dqskin::gltf {
 namespace {
 
-constexpr uint64_t kMax = std::numeric_limits<uint64_t>::max();
-
-uint64_t add(uint64_t a, uint64_t b) { return a > kMax - b ? kMax : a + b; }
-uint64_t mul(uint64_t a, uint64_t b) { return a != 0 && b > kMax / a ? kMax : a * b; }
+using saturating::add;
+using saturating::mul;
 
 // Values (count × components) of accessor `index`; 0 when it does not exist (the loader reports that).
 uint64_t values(const tinygltf::Model& model, int index) {
@@ -83,7 +81,7 @@ private:
 
 }  // namespace
 
-uint64_t MemoryEstimate::total() const { return add(add(add(file, asset), transient), images); }
+uint64_t MemoryEstimate::total() const { return add(add(add(add(file, json), asset), transient), images); }
 
 MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images) {
   Tally tally(model);

@@ -11,6 +11,7 @@ namespace dqskin::gltf {
 
 struct MemoryEstimate {
   uint64_t file = 0;       // what tinygltf already holds: buffers and encoded images
+  uint64_t json = 0;       // what parsing the JSON took (precheck.hpp json_memory)
   uint64_t images = 0;     // decoded images (RGBA, 8 bits) by their declared size, when they are decoded
   uint64_t asset = 0;      // the Asset: decoded attributes (every use of an accessor counted), morph
                            // targets, generated normals, skins, animation keys, nodes, copied images

@@ -1,6 +1,7 @@
 #include "model_io.hpp"
 
 #include "dqskin/error.hpp"
+#include "../io/file_kind.hpp"
 #include "precheck.hpp"
 
 #include <fcntl.h>
@@ -88,8 +89,7 @@ std::vector<uint8_t> read_regular_file(const std::string& path, uint64_t max_byt
   } closer{fd};
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw InputError(std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) throw InputError("is a folder, not a file");
-  if (!S_ISREG(st.st_mode)) throw InputError("not a regular file (a device, FIFO or socket)");
+  if (!S_ISREG(st.st_mode)) throw InputError(std::string("is ") + file_kind(st.st_mode) + ", not a regular file");
   if (uint64_t(st.st_size) > max_bytes)
     throw InputError(std::to_string(st.st_size) + " bytes, more than dqskin reads (" + std::to_string(max_bytes) + ")");
   std::vector<uint8_t> bytes(size_t(st.st_size));
@@ -109,7 +109,7 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_
   if (bytes.size() > UINT32_MAX) throw InputError("larger than 4 GiB, the most glTF allows");
   const ResourceRoot root(base_dir, options.resource_roots);
   const std::span<const uint8_t> json = json_chunk(bytes, glb);
-  CheckedJson checked = precheck_json(json, options.max_file_bytes, root);
+  CheckedJson checked = precheck_json(json, options, root);
 
   // When the checks removed bad appearance values, tinygltf reads the document without them.
   std::vector<uint8_t> rewritten;
@@ -117,6 +117,7 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_
     const std::string text = checked.doc.dump();
     rewritten = glb ? with_json_chunk(bytes, json, text) : std::vector<uint8_t>(text.begin(), text.end());
     bytes = rewritten;
+    if (bytes.size() > UINT32_MAX) throw InputError("larger than 4 GiB once its bad values are removed");
   }
 
   FsLimits limits{options.max_file_bytes, root};
@@ -140,6 +141,7 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_
   if (!ok) throw InputError(err.empty() ? std::string("not a glTF file") : first_line(err));
   out.doc = std::move(checked.doc);
   out.warnings = std::move(checked.warnings);
+  out.json_bytes = checked.json_bytes;
   return out;
 }
 

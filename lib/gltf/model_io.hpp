@@ -17,7 +17,8 @@ namespace dqskin::gltf {
 struct ParsedModel {
   tinygltf::Model model;
   nlohmann::json doc;  // the file's JSON as checked (precheck_json): what the model was read from
-  std::vector<std::string> warnings;  // appearance values removed by the checks
+  std::vector<std::string> warnings;  // appearance values removed by the checks, images not read
+  uint64_t json_bytes = 0;            // what parsing the JSON took (json_memory), for the memory estimate
 };
 
 // Parses .glb or .gltf bytes (chosen by the GLB magic) after precheck.hpp's checks. External buffers and

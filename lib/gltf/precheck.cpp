@@ -1,6 +1,8 @@
 #include "precheck.hpp"
 
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "../io/saturating.hpp"
 #include "schema_values.hpp"
 
 #include <cstring>
@@ -20,8 +22,8 @@ bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 std::span<const uint8_t> json_chunk(std::span<const uint8_t> bytes, bool glb) {
   if (!glb) return bytes;
   // §4.4: a 12-byte header (magic, version, length), then chunks of (length, type, data), each 4-byte
-  // aligned; the first is JSON. Every size is checked against what the file holds before it is used, and
-  // every subtraction is of a smaller number, so nothing can wrap around.
+  // aligned; the first is JSON. Every size read here is checked against what the file holds before it is
+  // used, and every subtraction is of a smaller number, so nothing can wrap around.
   constexpr size_t kHeader = 12, kChunkHeader = 8, kFirstChunkData = kHeader + kChunkHeader;
   if (bytes.size() < kFirstChunkData)
     fail("GLB is truncated: " + std::to_string(bytes.size()) + " bytes, shorter than its header");
@@ -37,7 +39,11 @@ std::span<const uint8_t> json_chunk(std::span<const uint8_t> bytes, bool glb) {
   if (std::memcmp(&bytes[16], "JSON", 4) != 0) fail("GLB does not start with a JSON chunk");
   if (json_length > length - kFirstChunkData)
     fail("GLB JSON chunk of " + std::to_string(json_length) + " bytes runs past the GLB length (" + std::to_string(length) + ")");
-  const size_t next = (kFirstChunkData + size_t(json_length) + 3) & ~size_t(3);
+  // §4.4.3.1: chunks end 4-byte aligned (the JSON chunk padded with spaces). tinygltf looks for the next
+  // chunk right after an unpadded one and would read its header past the length it checked.
+  if (json_length % 4 != 0)
+    fail("GLB JSON chunk of " + std::to_string(json_length) + " bytes is not padded to a multiple of 4");
+  const size_t next = kFirstChunkData + size_t(json_length);
   if (next <= length && length - next >= kChunkHeader) {
     const uint32_t chunk_length = le32(&bytes[next]);
     if (chunk_length > length - next - kChunkHeader)
@@ -47,9 +53,11 @@ std::span<const uint8_t> json_chunk(std::span<const uint8_t> bytes, bool glb) {
   return bytes.subspan(kFirstChunkData, json_length);
 }
 
-void check_nesting(std::span<const uint8_t> json) {
+JsonShape scan_json(std::span<const uint8_t> json) {
+  JsonShape shape;
   size_t depth = 0;
   bool in_string = false, escaped = false;
+  bool opened = false;  // just after '[' or '{': what follows is a first value, or the closing bracket
   for (size_t i = 0; i < json.size(); ++i) {
     const uint8_t c = json[i];
     if (in_string) {
@@ -58,21 +66,39 @@ void check_nesting(std::span<const uint8_t> json) {
       else if (c == '"') in_string = false;
       continue;
     }
+    if (c == ' ' || c == '\n' || c == '\r' || c == '\t') continue;
+    if (opened && c != ']' && c != '}') ++shape.values;  // the first element or member
+    opened = false;
     if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
         fail("its JSON nests arrays and objects more than " + std::to_string(kMaxJsonDepth) + " deep (at byte " +
              std::to_string(i) + ")");
+      shape.objects += c == '{';
+      opened = true;
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;  // unbalanced text is the JSON parser's to report
+    } else if (c == ',') {
+      ++shape.values;
     }
   }
+  return shape;
 }
 
-CheckedJson precheck_json(std::span<const uint8_t> text, uint64_t max_buffer_bytes, const ResourceRoot& root) {
-  check_nesting(text);
+uint64_t json_memory(const JsonShape& shape, uint64_t text_bytes) {
+  using saturating::add;
+  using saturating::mul;
+  return add(add(mul(shape.values, 320), mul(shape.objects, 700)), mul(text_bytes, 2));
+}
+
+CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& options, const ResourceRoot& root) {
+  const JsonShape shape = scan_json(text);
   CheckedJson out;
+  out.json_bytes = json_memory(shape, text.size());
+  if (out.json_bytes > options.max_memory)
+    fail("its JSON (" + byte_size(text.size()) + ", " + std::to_string(shape.values) + " values) takes about " +
+         byte_size(out.json_bytes) + " to parse, more than --max-memory " + byte_size(options.max_memory));
   nlohmann::json doc = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
   if (doc.is_discarded() || !doc.is_object()) return out;  // tinygltf reports malformed JSON in its words
 
@@ -105,20 +131,31 @@ CheckedJson precheck_json(std::span<const uint8_t> text, uint64_t max_buffer_byt
     return doc[array][i];
   };
 
+  // tinygltf decodes '+' in a URI as a space (form encoding); RFC 3986 and glTF mean a plus sign.
+  auto keep_plus = [&out](nlohmann::json& object) {
+    const auto uri = object.find("uri");
+    if (uri == object.end() || !uri->is_string() || is_data_uri(uri->get<std::string>())) return;
+    std::string u = uri->get<std::string>();
+    for (size_t at; (at = u.find('+')) != std::string::npos;) u.replace(at, 1, "%2B");
+    if (u != uri->get<std::string>()) *uri = u, out.changed = true;
+  };
+
   std::vector<uint64_t> buffer_lengths;
   for (size_t i = 0; i < array_size("buffers"); ++i) {
     const std::string what = "buffer " + std::to_string(i);
     const nlohmann::json& buffer = object_at("buffers", i, what);
     const uint64_t length = size_of("buffers", i, "byteLength", 0);
     if (length == 0) fail(what + ": byteLength must be at least 1");
-    if (length > max_buffer_bytes)
+    if (length > options.max_file_bytes)
       fail(what + ": byteLength " + std::to_string(length) + " is more than dqskin reads (" +
-           std::to_string(max_buffer_bytes) + ")");
+           std::to_string(options.max_file_bytes) + ")");
     buffer_lengths.push_back(length);
+    out.data_bytes = saturating::add(out.data_bytes, length);  // decoded, read or copied out of the GLB once
     if (const auto uri = buffer.find("uri"); uri != buffer.end() && uri->is_string()) {
       const std::string u = uri->get<std::string>();
       if (!is_data_uri(u) && !root.check(u, what)) fail(what + " uri '" + u + "': no such file beside the model");
     }
+    keep_plus(doc["buffers"][i]);
   }
   const size_t view_count = array_size("bufferViews");
   for (size_t i = 0; i < view_count; ++i) {
@@ -150,16 +187,32 @@ CheckedJson precheck_json(std::span<const uint8_t> text, uint64_t max_buffer_byt
            std::to_string(view) + " (byte " + std::to_string(in_buffer) + " of its buffer), not a multiple of " +
            std::to_string(size) + ", the size of its components");
   }
+  // Images: each is copied once (from its buffer view, its data URI or its file). One whose URI leaves the
+  // root is not read, like a missing one: the renderer then has no texture, bake drops it from its glbs.
   for (size_t i = 0; i < array_size("images"); ++i) {
     const std::string what = "image " + std::to_string(i);
     const nlohmann::json& image = object_at("images", i, what);
     const uint64_t view = size_of("images", i, "bufferView", UINT64_MAX);
     if (view != UINT64_MAX && view >= view_count) fail(what + ": bufferView " + std::to_string(view) + " does not exist");
-    // A missing image file only costs the renderer the texture (the loader warns); one outside the root
-    // is refused like a buffer.
-    if (const auto uri = image.find("uri"); uri != image.end() && uri->is_string() && !is_data_uri(uri->get<std::string>()))
-      root.check(uri->get<std::string>(), what);
+    if (view != UINT64_MAX) out.data_bytes = saturating::add(out.data_bytes, size_of("bufferViews", size_t(view), "byteLength", 0));
+    const auto uri = image.find("uri");
+    if (uri == image.end() || !uri->is_string()) continue;
+    const std::string u = uri->get<std::string>();
+    if (is_data_uri(u)) {
+      out.data_bytes = saturating::add(out.data_bytes, u.size());
+      continue;
+    }
+    try {
+      if (root.check(u, what)) out.data_bytes = saturating::add(out.data_bytes, root.size_of(u));
+    } catch (const InputError& e) {
+      out.warnings.push_back(std::string(e.what()) + "; textures using it are not drawn");
+    }
+    keep_plus(doc["images"][i]);
   }
+  const uint64_t total = saturating::add(out.json_bytes, out.data_bytes);
+  if (total > options.max_memory)
+    fail("reading it needs about " + byte_size(total) + " (" + byte_size(out.data_bytes) + " of buffers and images, " +
+         byte_size(out.json_bytes) + " for its JSON), more than --max-memory " + byte_size(options.max_memory));
   out.doc = std::move(doc);
   return out;
 }

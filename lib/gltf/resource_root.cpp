@@ -1,6 +1,7 @@
 #include "resource_root.hpp"
 
 #include "dqskin/error.hpp"
+#include "../io/file_kind.hpp"
 
 #include <sys/stat.h>
 
@@ -32,14 +33,6 @@ bool has_scheme(const std::string& uri) {
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '.') return false;
   }
   return true;
-}
-
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
 }
 
 int hex_digit(char c) {
@@ -113,11 +106,17 @@ bool ResourceRoot::check(const std::string& uri, const std::string& what) const 
                      " (to " + real + "); dqskin does not read it");
   struct stat st {};
   if (::stat(real.c_str(), &st) != 0) throw InputError(named + ": " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) throw InputError(named + " is " + kind_of(st.st_mode) + ", not a regular file");
+  if (!S_ISREG(st.st_mode)) throw InputError(named + " is " + file_kind(st.st_mode) + ", not a regular file");
   return true;
 }
 
+uint64_t ResourceRoot::size_of(const std::string& uri) const {
+  struct stat st {};
+  return ::stat((model_dir_ + "/" + percent_decode(uri)).c_str(), &st) == 0 ? uint64_t(st.st_size) : 0;
+}
+
 bool ResourceRoot::allows(const std::string& path) const {
+  if (path.compare(0, model_dir_.size() + 1, model_dir_ + "/") != 0) return false;  // tinygltf's "./" search
   const std::string real = real_path(path);
   struct stat st {};
   return !real.empty() && inside(real) && ::stat(real.c_str(), &st) == 0 && S_ISREG(st.st_mode);

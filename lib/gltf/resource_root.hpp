@@ -3,6 +3,7 @@
 // --resource-root, compared by real path, symbolic links resolved (internal to the loader).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,12 @@ public:
   // socket). Returns false when no such file exists (whether that is an error is the caller's call).
   bool check(const std::string& uri, const std::string& what) const;
 
-  // Whether `path` (a URI already joined to a folder, as tinygltf asks for it) is a regular file under a
-  // root. tinygltf also looks in the current directory; this refuses what lies outside.
+  // The size of the file a URI that check() accepted names.
+  uint64_t size_of(const std::string& uri) const;
+
+  // Whether `path` (a URI joined to the model's folder, as tinygltf asks for it) is a regular file under a
+  // root. tinygltf also looks in the current directory: such a path, which names another file than the
+  // URI means, is refused.
   bool allows(const std::string& path) const;
 
 private:

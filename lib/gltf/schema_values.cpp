@@ -204,6 +204,16 @@ std::string describe(const json::json_pointer& pointer) {
   return owner.empty() ? property : owner + ": " + property;
 }
 
+// A bad value as a message shows it: numbers, booleans and null as written, a string of at most 40 bytes,
+// an object or array by its kind only (it may hold megabytes).
+std::string quoted(const json& value) {
+  if (value.is_object()) return "{...}";
+  if (value.is_array()) return "[...]";
+  if (value.is_string() && value.get_ref<const std::string&>().size() > 40)
+    return json(value.get_ref<const std::string&>().substr(0, 40)).dump(-1, ' ', false, json::error_handler_t::replace) + "...";
+  return value.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
 std::string sort_key(const json::json_pointer& pointer) {
   std::string key;
   for (const std::string& token : tokens(pointer))
@@ -226,8 +236,7 @@ std::vector<std::string> check_schema_values(json& doc) {
       const json& value = doc.at(at);
       const std::string want = violation(value, rule.constraint);
       if (want.empty()) return;
-      const std::string problem = describe(at) + " " + value.dump(-1, ' ', false, json::error_handler_t::replace) +
-                                  " must be " + want;
+      const std::string problem = describe(at) + " " + quoted(value) + " must be " + want;
       if (!rule.consequence) throw InputError(problem);
       json::json_pointer owner = at;
       for (int k = 0; k < rule.drop_levels; ++k) owner = owner.parent_pointer();
@@ -240,6 +249,9 @@ std::vector<std::string> check_schema_values(json& doc) {
   std::stable_sort(drops.begin(), drops.end(), [](const Drop& a, const Drop& b) { return a.order < b.order; });
   std::vector<std::string> warnings;
   for (const Drop& d : drops) warnings.push_back(d.warning);
+  // One removal per object: after an array element is erased, its pointer names the next one.
+  drops.erase(std::unique(drops.begin(), drops.end(), [](const Drop& a, const Drop& b) { return a.order == b.order; }),
+              drops.end());
   for (auto it = drops.rbegin(); it != drops.rend(); ++it) {
     if (!doc.contains(it->at)) continue;  // inside something already removed
     json& parent = doc.at(it->at.parent_pointer());

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <mutex>
-#include <set>
+#include <map>
 #include <vector>
 
 namespace dqskin {
@@ -38,7 +38,7 @@ bool same_contents(const std::string& a, const std::string& b) {
 
 struct Pending {
   std::mutex mutex;
-  std::set<std::string> paths;
+  std::map<std::string, std::string> paths;  // path → where to restore it ("" to delete it)
 };
 Pending& pending() {
   static Pending* p = new Pending;  // never destroyed: a stopping thread may use it during exit
@@ -49,9 +49,17 @@ Pending& pending() {
 
 namespace pending_files {
 
-void add(const std::string& path) {
+std::string hidden_name(const std::string& path, const char* kind) {
+  static std::atomic<unsigned> counter{0};
+  const size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  return folder + "." + name + "." + kind + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+void add(const std::string& path, const std::string& restore_to) {
   const std::lock_guard<std::mutex> lock(pending().mutex);
-  pending().paths.insert(path);
+  pending().paths[path] = restore_to;
 }
 
 void remove(const std::string& path) {
@@ -61,19 +69,18 @@ void remove(const std::string& path) {
 
 }  // namespace pending_files
 
-void remove_pending_files() noexcept {
-  const std::lock_guard<std::mutex> lock(pending().mutex);
-  for (const std::string& path : pending().paths) ::unlink(path.c_str());
+void remove_pending_files(bool hold) noexcept {
+  pending().mutex.lock();
+  for (const auto& [path, restore_to] : pending().paths) {
+    if (!restore_to.empty() && ::access(restore_to.c_str(), F_OK) != 0) std::rename(path.c_str(), restore_to.c_str());
+    else ::unlink(path.c_str());
+  }
   pending().paths.clear();
+  if (!hold) pending().mutex.unlock();  // held: any thread that tries to make another temporary waits for the end
 }
 
 AtomicFile::AtomicFile(std::string path, bool sync) : path_(std::move(path)), sync_(sync) {
-  // Unique per process and object, hidden, in the destination folder.
-  static std::atomic<unsigned> counter{0};
-  const size_t slash = path_.find_last_of('/');
-  const std::string folder = slash == std::string::npos ? "" : path_.substr(0, slash + 1);
-  const std::string name = slash == std::string::npos ? path_ : path_.substr(slash + 1);
-  temporary_ = folder + "." + name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  temporary_ = pending_files::hidden_name(path_, "tmp");
   pending_files::add(temporary_);
   file_ = std::fopen(temporary_.c_str(), "wb");
   if (!file_) {

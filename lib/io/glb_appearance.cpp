@@ -222,7 +222,6 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
   const gltf::ParsedModel parsed = gltf::parse_model(source, base_dir, load);
   const json& src = parsed.doc;
   const tinygltf::Model& model = parsed.model;
-  if (!src.is_object()) throw InputError("the file's JSON cannot be read again");
   if (model.meshes.size() != asset.meshes.size() || model.nodes.size() != asset.nodes.size())
     throw InputError("the file changed since it was loaded");
 

@@ -1,12 +1,12 @@
 #include "dqskin/output_journal.hpp"
 
 #include "dqskin/error.hpp"
+#include "file_kind.hpp"
 #include "pending_files.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -18,15 +18,6 @@ namespace {
 bool exists(const std::string& path) {
   struct stat st {};
   return ::lstat(path.c_str(), &st) == 0;
-}
-
-// ".NAME.old-PID-N" beside `path`: hidden, and unique per process and replacement.
-std::string backup_name(const std::string& path) {
-  static std::atomic<unsigned> counter{0};
-  const size_t slash = path.find_last_of('/');
-  const std::string folder = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  return folder + "." + name + ".old-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
 }  // namespace
@@ -50,11 +41,15 @@ void OutputJournal::make_folders(const std::string& folder) {
 
 void OutputJournal::before_replacing(const std::string& path) {
   Entry entry{path, "", false, false};
-  if (exists(path)) {
-    entry.backup = backup_name(path);
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (!S_ISREG(st.st_mode)) throw OutputError(path + ": is " + file_kind(st.st_mode) + "; not replaced by a file");
+    entry.backup = pending_files::hidden_name(path, "old");
     pending_files::add(entry.backup);  // a process that must end at once deletes it (the new file stays)
     if (::link(path.c_str(), entry.backup.c_str()) != 0) {
-      // No hard links on this file system: the old file moves aside for a moment instead.
+      // No hard links here (or links refused): the old file moves aside for a moment instead; a process
+      // that must end at once puts it back unless its replacement has arrived.
+      pending_files::add(entry.backup, path);
       if (std::rename(path.c_str(), entry.backup.c_str()) != 0) {
         const int error = errno;
         pending_files::remove(entry.backup);
@@ -91,12 +86,14 @@ void OutputJournal::keep() noexcept {
 void OutputJournal::roll_back() noexcept {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (auto it = files_.rbegin(); it != files_.rend(); ++it) {
-    if (it->written) ::unlink(it->path.c_str());
-    if (!it->backup.empty()) {
-      if (it->written || it->moved) std::rename(it->backup.c_str(), it->path.c_str());
-      else ::unlink(it->backup.c_str());  // the link was made, the file never replaced
-      pending_files::remove(it->backup);
+    if (it->backup.empty()) {
+      if (it->written) ::unlink(it->path.c_str());
+      continue;
     }
+    // The old file takes its place again in one rename (atomic: there is no moment without either).
+    if (it->written || it->moved) std::rename(it->backup.c_str(), it->path.c_str());
+    else ::unlink(it->backup.c_str());  // linked, never replaced
+    pending_files::remove(it->backup);
   }
   files_.clear();
   for (auto it = folders_.rbegin(); it != folders_.rend(); ++it) ::rmdir(it->c_str());  // only when empty

@@ -28,7 +28,14 @@ CapturedStderr::CapturedStderr() : lock_(stderr_mutex()) {
   }
 }
 
-CapturedStderr::~CapturedStderr() { finish(); }
+// Only restores stderr: nothing here allocates or throws.
+CapturedStderr::~CapturedStderr() {
+  if (!file_) return;
+  std::fflush(stderr);
+  ::dup2(saved_, 2);
+  ::close(saved_);
+  std::fclose(file_);
+}
 
 std::string CapturedStderr::finish() {
   if (!file_) return "";

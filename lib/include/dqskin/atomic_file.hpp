@@ -67,9 +67,11 @@ private:
 // Flushes every file of the file system holding `folder` to disk (syncfs). Throws OutputError.
 void sync_folder(const std::string& folder);
 
-// Deletes every temporary this process has open, and every old file an OutputJournal keeps aside, for a
-// process that must end at once (a stop that cannot wait for the work to unwind). Thread-safe; never
-// throws; files under final names are left as they are.
-void remove_pending_files() noexcept;
+// Deletes every temporary this process has open, and every old file an OutputJournal keeps aside (one
+// moved aside whose replacement never came is put back), for a process that must end at once (a stop that
+// cannot wait for the work to unwind). Files under final names are left as they are. With `hold`, no
+// temporary can be made afterwards: a thread that tries waits for the process to end. Thread-safe; never
+// throws.
+void remove_pending_files(bool hold = false) noexcept;
 
 }  // namespace dqskin

@@ -21,8 +21,9 @@ struct LoadOptions {
   uint64_t max_unbacked_elements = uint64_t(1) << 26;
   // Largest file, and largest external buffer, that is read (bytes).
   uint64_t max_file_bytes = uint64_t(4) << 30;
-  // Most memory loading may take, estimated from the file's declared counts before anything is decoded
-  // (every use of an accessor counted, morph targets, animation keys, the file's buffers and images).
+  // Most memory loading may take, estimated before each step from what the file declares: the file itself,
+  // parsing its JSON (from the text's shape), the buffers and images tinygltf reads (from their declared
+  // sizes), and decoding (every use of an accessor counted, morph targets, animation keys, nodes).
   uint64_t max_memory = kDefaultMaxMemory;
   // The caller decodes the images (the renderer): their declared sizes (RGBA, 8 bits) count toward
   // max_memory too.
