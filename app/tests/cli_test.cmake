@@ -1,5 +1,5 @@
 # dqskin_cli_test(NAME EXPECTED ARGS a b … [STDOUT regex] [STDERR regex] [ENVIRONMENT v=x …] [LABELS l …])
-# One CTest test running `dqskin ARGS` through expect_run.cmake: checks the exit status and, when given,
+# One CTest test running `dqskin ARGS` through expect_outcome.cmake: checks the exit status and, when given,
 # stdout and stderr against CMake regexes (without ";", the list separator: write "." for it).
 function(dqskin_cli_test name expected)
   cmake_parse_arguments(T "" "STDOUT;STDERR" "ARGS;ENVIRONMENT;LABELS" ${ARGN})
@@ -11,7 +11,7 @@ function(dqskin_cli_test name expected)
   if(DEFINED T_STDERR)
     list(APPEND script_args "-DSTDERR_REGEX=${T_STDERR}")
   endif()
-  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} ${script_args} -P ${PROJECT_SOURCE_DIR}/app/tests/expect_run.cmake)
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} ${script_args} -P ${PROJECT_SOURCE_DIR}/app/tests/expect_outcome.cmake)
   if(T_ENVIRONMENT)
     set_tests_properties(${name} PROPERTIES ENVIRONMENT "${T_ENVIRONMENT}")
   endif()

@@ -2,14 +2,14 @@
 # (EXPECTED), stdout (STDOUT_REGEX), stderr (STDERR_REGEX; with ONE_LINE, exactly one line and no control
 # character in it), and
 # that FOLDER is afterwards exactly as it was before (UNCHANGED: the same entries, hidden ones included, with
-# the same bytes; "absent" stays absent). The command has TIMEOUT seconds (default 60): a hang fails.
+# the same bytes; "absent" stays absent). The command has TIMEOUT seconds (default 300): a hang fails.
 #
 #   cmake -DCOMMAND=dqskin "-DARGS=bake;x.gltf;-o;out" -DEXPECTED=2 [-DSTDOUT_REGEX=...] [-DSTDERR_REGEX=...] [-DONE_LINE=ON]
 #         [-DFOLDER=out [-DUNCHANGED=ON] [-DPREPARE=args of a run that must succeed first]
 #          [-DALTER=file in FOLDER to overwrite after it] [-DPRESENT=paths] [-DABSENT=paths]]
 #         [-DWORKING_DIRECTORY=dir] [-DTIMEOUT=s] -P expect_outcome.cmake
 if(NOT DEFINED TIMEOUT)
-  set(TIMEOUT 60)
+  set(TIMEOUT 300)
 endif()
 if(NOT DEFINED WORKING_DIRECTORY)
   set(WORKING_DIRECTORY .)
