@@ -111,6 +111,17 @@ TEST_F(ResourceRootTest, AnExtraRootLetsASiblingFolderIn) {
   EXPECT_THROW(ResourceRoot(models_, {(dir_ / "nowhere").string()}), InputError);
 }
 
+// A model at the top of the file system: tinygltf joins "/" and "etc/passwd" to "/etc/passwd".
+TEST(ResourceRoot, AModelInTheRootFolderReadsBesideItself) {
+  if (!fs::exists("/etc/passwd")) GTEST_SKIP() << "no /etc/passwd to stand for a file beside a model in /";
+  const ResourceRoot root("/", {});
+  EXPECT_TRUE(root.check("etc/passwd", "buffer 0"));
+  EXPECT_TRUE(root.allows("/etc/passwd"));
+  EXPECT_EQ(folder_of("/model.gltf"), "/");
+  EXPECT_EQ(folder_of("model.gltf"), ".");
+  EXPECT_EQ(folder_of("a/b/model.gltf"), "a/b");
+}
+
 TEST_F(ResourceRootTest, TheMessageNamesTheUriAndWhereItLeads) {
   try {
     ResourceRoot(models_, {}).check("link.bin", "image 3");

@@ -306,11 +306,6 @@ Asset convert(const tinygltf::Model& m, uint64_t json_bytes, const std::string& 
   return asset;
 }
 
-std::string directory_of(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
-}
-
 }  // namespace
 
 Mat4<double> LocalTransform::to_matrix() const {
@@ -323,7 +318,7 @@ Asset load_asset(const std::string& path, const LoadOptions& options) {
   // The file is held whole while it loads: it counts toward max_memory too. read_regular_file's messages do
   // not name the path; the caller names it.
   const std::vector<uint8_t> bytes = gltf::read_regular_file(path, std::min(options.max_file_bytes, options.max_memory));
-  return load_asset_from_memory(bytes, path, directory_of(path), options);
+  return load_asset_from_memory(bytes, path, gltf::folder_of(path), options);
 }
 
 Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& base_dir,

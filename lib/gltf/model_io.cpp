@@ -78,6 +78,12 @@ std::vector<uint8_t> with_json_chunk(std::span<const uint8_t> glb, std::span<con
 
 }  // namespace
 
+std::string folder_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
 std::vector<uint8_t> read_regular_file(const std::string& path, uint64_t max_bytes) {
   // O_NONBLOCK: opening a FIFO does not wait for a writer. The check is on what was opened, so a file
   // swapped after a check by name cannot slip through.
@@ -104,9 +110,11 @@ std::vector<uint8_t> read_regular_file(const std::string& path, uint64_t max_byt
   return bytes;
 }
 
-ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_dir, const LoadOptions& options) {
+ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& folder, const LoadOptions& options) {
   const bool glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (bytes.size() > UINT32_MAX) throw InputError("larger than 4 GiB, the most glTF allows");
+  // tinygltf joins URIs to this folder as given: "" would make them relative to the current directory.
+  const std::string base_dir = folder.empty() ? "." : folder;
   const ResourceRoot root(base_dir, options.resource_roots);
   const std::span<const uint8_t> json = json_chunk(bytes, glb);
   CheckedJson checked = precheck_json(json, options, root);

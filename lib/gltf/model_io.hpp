@@ -27,6 +27,10 @@ struct ParsedModel {
 // kept encoded, not decoded. Throws InputError.
 ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_dir, const LoadOptions& options);
 
+// The folder a model's relative URIs start from: "dir" for "dir/model.gltf", "/" for "/model.gltf", "."
+// for "model.gltf".
+std::string folder_of(const std::string& path);
+
 // Reads a whole regular file of at most max_bytes. Checks what it opened (a FIFO or device is refused
 // without waiting for a writer or reading forever). Throws InputError, whose message does not repeat the
 // path.

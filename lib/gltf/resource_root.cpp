@@ -90,7 +90,7 @@ bool ResourceRoot::check(const std::string& uri, const std::string& what) const 
   if (decoded.empty()) throw InputError(named + " is empty");
   if (decoded.front() == '/') throw InputError(named + " is an absolute path; dqskin reads only files relative to the model");
   if (model_root_.empty()) throw InputError(named + ": the model's folder " + model_dir_ + " cannot be resolved");
-  const std::string joined = model_dir_ + "/" + decoded;
+  const std::string joined = folder_prefix() + decoded;
   const std::string real = real_path(joined);
   if (real.empty()) {
     if (errno != ENOENT) throw InputError(named + ": " + std::strerror(errno));
@@ -112,11 +112,12 @@ bool ResourceRoot::check(const std::string& uri, const std::string& what) const 
 
 uint64_t ResourceRoot::size_of(const std::string& uri) const {
   struct stat st {};
-  return ::stat((model_dir_ + "/" + percent_decode(uri)).c_str(), &st) == 0 ? uint64_t(st.st_size) : 0;
+  return ::stat((folder_prefix() + percent_decode(uri)).c_str(), &st) == 0 ? uint64_t(st.st_size) : 0;
 }
 
 bool ResourceRoot::allows(const std::string& path) const {
-  if (path.compare(0, model_dir_.size() + 1, model_dir_ + "/") != 0) return false;  // tinygltf's "./" search
+  const std::string prefix = folder_prefix();
+  if (path.compare(0, prefix.size(), prefix) != 0) return false;  // tinygltf's "./" search: another file than meant
   const std::string real = real_path(path);
   struct stat st {};
   return !real.empty() && inside(real) && ::stat(real.c_str(), &st) == 0 && S_ISREG(st.st_mode);

@@ -33,6 +33,8 @@ public:
 
 private:
   bool inside(const std::string& real_path) const;
+  // The model's folder with a '/' after it, as tinygltf's JoinPath makes it ("/" stays "/").
+  std::string folder_prefix() const { return model_dir_.back() == '/' ? model_dir_ : model_dir_ + "/"; }
 
   std::string model_dir_;
   std::string model_root_;          // the model folder's real path, or empty when it cannot be resolved

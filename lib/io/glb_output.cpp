@@ -34,11 +34,6 @@ namespace {
 using DVec3 = Vec3<double>;
 using DVec4 = glm::vec<4, double, glm::defaultp>;
 
-std::string directory_of(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
-}
-
 std::vector<uint8_t> read_source(const std::string& path, const LoadOptions& load) {
   try {
     return gltf::read_regular_file(path, load.max_file_bytes);
@@ -260,7 +255,7 @@ std::string glb_container(const json& doc, std::string bin) {
 }  // namespace
 
 GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, const LoadOptions& load)
-    : GlbWriter(asset, std::move(instances), scene, read_source(asset.path, load), directory_of(asset.path), load) {}
+    : GlbWriter(asset, std::move(instances), scene, read_source(asset.path, load), gltf::folder_of(asset.path), load) {}
 
 GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene,
                      std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load) {
