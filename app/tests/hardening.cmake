@@ -51,8 +51,13 @@ dqskin_outcome_test(resource_root_reaches_the_renderer 0 FOLDER ${hard_scratch}/
   PRESENT ${hard_scratch}/root_render/shared_texture/wave/frame_0000.png)
 # The landed code embedded /etc/passwd in every baked glb of such a file; now the image is not read (a
 # warning) and the glb holds none of its bytes.
+# On failure it says which check failed and shows what dqskin printed.
+set(out ${hard_scratch}/traversal)
 add_test(NAME cli.hardening_image_outside_the_root_is_not_embedded COMMAND sh -c
-  "rm -rf '${hard_scratch}/traversal' && '$<TARGET_FILE:dqskin_cli>' bake '${hostile}/image_traversal.gltf' -o '${hard_scratch}/traversal' --frames 0:0 2>'${hard_scratch}/traversal.err' && grep -q \"image 0 uri '../../../../../../../../etc/passwd' leads outside\" '${hard_scratch}/traversal.err' && ! grep -rq 'root:' '${hard_scratch}/traversal'")
+  "rm -rf '${out}' && '$<TARGET_FILE:dqskin_cli>' bake '${hostile}/image_traversal.gltf' -o '${out}' --frames 0:0 2>'${out}.err'; s=$?; cat '${out}.err'; \
+   [ $s = 0 ] || { echo \"FAILED: exit status $s\"; exit 1; }; \
+   grep -q \"image 0 uri '../../../../../../../../etc/passwd' leads outside\" '${out}.err' || { echo 'FAILED: no warning'; exit 1; }; \
+   if grep -rl 'root:' '${out}'; then echo 'FAILED: bytes of /etc/passwd in these files'; exit 1; fi")
 set_tests_properties(cli.hardening_image_outside_the_root_is_not_embedded PROPERTIES LABELS hardening)
 dqskin_outcome_test(resource_root_must_be_a_folder 2 ARGS info models/shared_texture.gltf --resource-root good.png
   ONE_LINE STDERR "^dqskin: --resource-root good.png: not a folder\n$")
