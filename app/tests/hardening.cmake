@@ -58,7 +58,8 @@ add_test(NAME cli.hardening_image_outside_the_root_is_not_embedded COMMAND sh -c
    [ $s = 0 ] || { echo \"FAILED: exit status $s\"; exit 1; }; \
    grep -q \"image 0 uri '../../../../../../../../etc/passwd' leads outside\" '${out}.err' || { echo 'FAILED: no warning'; exit 1; }; \
    if grep -rl 'root:' '${out}'; then echo 'FAILED: bytes of /etc/passwd in these files'; exit 1; fi")
-set_tests_properties(cli.hardening_image_outside_the_root_is_not_embedded PROPERTIES LABELS hardening)
+set_tests_properties(cli.hardening_image_outside_the_root_is_not_embedded PROPERTIES LABELS hardening
+  ENVIRONMENT "${bake_test_environment}")
 dqskin_outcome_test(resource_root_must_be_a_folder 2 ARGS info models/shared_texture.gltf --resource-root good.png
   ONE_LINE STDERR "^dqskin: --resource-root good.png: not a folder\n$")
 
