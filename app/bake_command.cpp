@@ -85,7 +85,7 @@ BakeOptions to_options(const BakeSettings& s) {
   o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   o.formats = parse_bake_formats(s.formats);
-  o.backend = s.backend;
+  if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
   o.gpu_memory = s.gpu_memory_mb << 20;
   o.scene = s.scene;
   if (!s.shard.empty()) parse_shard(s.shard, o);

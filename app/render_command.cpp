@@ -80,7 +80,7 @@ RenderOptions to_options(const RenderSettings& s) {
   o.clips = s.selection.anim;
   o.frames = to_frame_spec(s.selection);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
-  o.backend = s.backend;  // checked by render()
+  if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
   o.scene = s.scene;
   if (!s.shard.empty()) {
     BakeOptions shard;

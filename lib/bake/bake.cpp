@@ -8,7 +8,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/frame_view.hpp"
 #include "dqskin/glb_output.hpp"
-#include "dqskin/gpu_deform.hpp"
+#include "dqskin/deformer.hpp"
 #include "dqskin/mesh_output.hpp"
 #include "dqskin/output_journal.hpp"
 #include "dqskin/sha256.hpp"
@@ -106,19 +106,22 @@ public:
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
     const bool deforms = std::any_of(input.clips.begin(), input.clips.end(),
                                      [&](const ClipPlan& c) { return !c.frames_to_deform(options.formats).empty(); });
-    if (context && deforms) {
-      GpuDeformOptions gpu_options;
-      gpu_options.mode = options.mode;
-      gpu_options.memory_budget = options.gpu_memory;
-      gpu_ = std::make_unique<GpuDeformer>(*context, asset_, input.instances, gpu_options);
+    if (deforms) {
+      DeformerOptions o;
+      o.mode = options.mode;
+      o.backend = options.backend;
+      o.gpu_memory = options.gpu_memory;
+      o.threads = jobs_;
+      o.before_batch = [this] { ledger_.check_cancel(); };
+      deformer_ = make_deformer(context, asset_, input.instances, o);
     }
   }
 
   ~InputBaker() {
-    if (gpu_) {
-      ledger_.add_time(&BakeStageTimes::sample, gpu_->stats().sample_seconds);
-      ledger_.add_time(&BakeStageTimes::deform, gpu_->stats().deform_seconds);
-      ledger_.add_time(&BakeStageTimes::readback, gpu_->stats().readback_seconds);
+    if (deformer_) {
+      ledger_.add_time(&BakeStageTimes::sample, deformer_->stats().sample_seconds);
+      ledger_.add_time(&BakeStageTimes::deform, deformer_->stats().deform_seconds);
+      ledger_.add_time(&BakeStageTimes::readback, deformer_->stats().readback_seconds);
     }
   }
 
@@ -138,11 +141,7 @@ public:
     std::vector<double> times;
     for (size_t f : frames) times.push_back(clip.times[f]);
     auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, vat.get()); };
-    if (gpu_) {
-      gpu_->run(clip.clip, times, sink);
-    } else {
-      deform_on_cpu(clip, times, sink);
-    }
+    deformer_->run(clip.clip, times, sink);
     if (vat) {
       const std::vector<Committed> committed = vat->commit({options_.overwrite, &journal_});
       ledger_.record_files({clip.folder + "/vat_positions.exr", clip.folder + "/vat_normals.exr", clip.folder + "/vat.json"},
@@ -171,25 +170,6 @@ private:
       ledger_.record_files({base + ".exr", base + ".json"}, committed);
     }
     ledger_.add_time(&BakeStageTimes::sample, since(start));
-  }
-
-  // The CPU reference, in batches of frames so that encoding works like the GPU path's.
-  void deform_on_cpu(const ClipPlan& clip, const std::vector<double>& times,
-                     const std::function<void(const DeformedBatch&)>& sink) {
-    const size_t batch = 8;
-    for (size_t first = 0; first < times.size(); first += batch) {
-      ledger_.check_cancel();
-      std::vector<DeformedFrame> frames;
-      for (size_t f = first; f < std::min(times.size(), first + batch); ++f) {
-        Clock::time_point start = Clock::now();
-        const Pose pose = sample_pose(asset_, clip.clip, times[f]);
-        ledger_.add_time(&BakeStageTimes::sample, since(start));
-        start = Clock::now();
-        frames.push_back(deform_frame(asset_, input_.instances, pose, options_.mode, int(jobs_)));
-        ledger_.add_time(&BakeStageTimes::deform, since(start));
-      }
-      sink(to_batch(frames, first));
-    }
   }
 
   // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them.
@@ -241,7 +221,7 @@ private:
   OutputJournal& journal_;
   const unsigned jobs_;
   std::unique_ptr<GlbWriter> glb_;
-  std::unique_ptr<GpuDeformer> gpu_;
+  std::unique_ptr<Deformer> deformer_;
 };
 
 }  // namespace
@@ -286,12 +266,10 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   const Clock::time_point start = Clock::now();
   BakeReport report;
   if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
-  const bool cpu = options.backend == "cpu" || options.mode == BlendMode::kDib;
-  GpuBackend backend = GpuBackend::kAuto;
-  if (!cpu && !parse_gpu_backend(options.backend, backend))
-    throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa, cpu");
-  if (options.mode == BlendMode::kDib && options.backend != "auto" && options.backend != "cpu")
-    throw InputError("--mode dib runs on the CPU reference only; use --backend cpu (or auto)");
+  const bool cpu = deforms_on_cpu(options.backend, options.mode);
+  if (!has_gpu_path(options.mode) && options.backend != Backend::kAuto && options.backend != Backend::kCpu)
+    throw InputError("--mode " + std::string(to_string(options.mode)) +
+                     " runs on the CPU reference only; use --backend cpu (or auto)");
 
   std::vector<InputPlan> plans = plan_bake(inputs, options, report.times.load);
   for (const InputPlan& plan : plans)
@@ -349,7 +327,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       OutputJournal journal;  // what this input wrote, taken back when it fails
       try {
         if (!cpu && !context) {
-          context = create_gpu_context(backend);  // NoGpuContext ends the bake: exit status 3
+          context = create_gpu_context(context_backend(options.backend));  // NoGpuContext: exit status 3
           report.gpu = context->info();
         }
         {

@@ -307,7 +307,7 @@ TEST_F(BakeTest, DibBakesOnTheCpuReference) {
   const BakeReport r = bake({rig("twisted_cylinder.gltf")}, o);
   ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;
   EXPECT_EQ(r.gpu.backend, "cpu");
-  o.backend = "egl";
+  o.backend = Backend::kEgl;
   EXPECT_THROW(bake({rig("twisted_cylinder.gltf")}, o), InputError);
 }
 

@@ -76,7 +76,7 @@ struct GpuDeformer::Impl {
 
   Impl(GpuContext& c, const Asset& a, std::vector<MeshInstance> inst, const GpuDeformOptions& o)
       : context(c), asset(a), instances(std::move(inst)), options(o) {
-    if (options.mode == BlendMode::kDib)
+    if (!has_gpu_path(options.mode))
       throw InputError("mode dib runs on the CPU reference only; the GPU path offers lbs and dqs");
     context.make_current();
     if (const std::string missing = gl.load(context); !missing.empty())
@@ -259,7 +259,7 @@ struct GpuDeformer::Impl {
     GLsync done = nullptr;  // signalled when the batch's dispatches have finished
   };
 
-  GpuDeformStats stats;
+  DeformStats stats;
   using Clock = std::chrono::steady_clock;
   static double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -368,7 +368,7 @@ GpuDeformer::GpuDeformer(GpuContext& context, const Asset& asset, std::vector<Me
     : impl_(std::make_unique<Impl>(context, asset, std::move(instances), options)) {}
 GpuDeformer::~GpuDeformer() = default;
 size_t GpuDeformer::frames_per_batch() const { return impl_->batch; }
-const GpuDeformStats& GpuDeformer::stats() const { return impl_->stats; }
+const DeformStats& GpuDeformer::stats() const { return impl_->stats; }
 void GpuDeformer::run(const Clip* clip, std::span<const double> times,
                       const std::function<void(const DeformedBatch&)>& sink) {
   impl_->run(clip, times, sink);

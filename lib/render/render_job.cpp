@@ -5,7 +5,7 @@
 
 #include "../bake/bake_plan.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/gpu_deform.hpp"
+#include "dqskin/deformer.hpp"
 #include "dqskin/output_journal.hpp"
 #include "ordered_worker.hpp"
 
@@ -24,7 +24,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Frames deformed per GpuDeformer::run: the deformer hands batches to a thread of its own, but GL may
+// Frames deformed per Deformer::run: the deformer may hand batches to a thread of its own, but GL may
 // only be used from this one, so a chunk's batches are kept and rendered after the run.
 // Small enough to bound that copy, large enough that the GPU still works in batches.
 constexpr size_t kFramesPerChunk = 16;
@@ -45,33 +45,21 @@ std::vector<std::vector<float>> distances(const FrameView& a, const FrameView& b
 // (dib, which has no GPU path, and --backend cpu).
 class FrameSource {
 public:
-  FrameSource(GpuContext& context, const InputPlan& input, BlendMode mode, bool on_cpu)
-      : input_(input), mode_(mode) {
-    if (!on_cpu) {
-      GpuDeformOptions o;
-      o.mode = mode;
-      gpu_ = std::make_unique<GpuDeformer>(context, *input.asset, input.instances, o);
-    }
+  FrameSource(GpuContext& context, const InputPlan& input, BlendMode mode, Backend backend) {
+    DeformerOptions o;
+    o.mode = mode;
+    o.backend = backend;
+    deformer_ = make_deformer(&context, *input.asset, input.instances, o);
   }
 
   std::vector<DeformedBatch> deform(const Clip* clip, const std::vector<double>& times) {
     std::vector<DeformedBatch> batches;
-    if (gpu_) {
-      gpu_->run(clip, times, [&](const DeformedBatch& batch) { batches.push_back(batch); });
-      return batches;
-    }
-    const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<DeformedFrame> frames;
-    for (double t : times)
-      frames.push_back(deform_frame(*input_.asset, input_.instances, sample_pose(*input_.asset, clip, t), mode_, threads));
-    batches.push_back(to_batch(frames, 0));
+    deformer_->run(clip, times, [&](const DeformedBatch& batch) { batches.push_back(batch); });
     return batches;
   }
 
 private:
-  const InputPlan& input_;
-  BlendMode mode_;
-  std::unique_ptr<GpuDeformer> gpu_;
+  std::unique_ptr<Deformer> deformer_;
 };
 
 // The renderer options of one input: with a glTF camera that has an aspect ratio, and no size given by
@@ -89,12 +77,11 @@ RendererOptions renderer_options(const InputPlan& input, const RenderOptions& op
 
 class InputRenderer {
 public:
-  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, bool deform_on_cpu,
-                RenderReport& report, const std::function<void(const BakeProgress&)>& progress, OutputJournal& journal)
+  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report, const std::function<void(const BakeProgress&)>& progress, OutputJournal& journal)
       : input_(input), options_(options), report_(report), progress_(progress), journal_(journal),
         camera_node_(options.camera_node.empty() ? -1 : find_camera_node(*input.asset, options.camera_node)),
         renderer_options_(renderer_options(input, options, camera_node_)),
-        source_(context, input, options.mode, deform_on_cpu),
+        source_(context, input, options.mode, options.backend),
         renderer_(context, *input.asset, input.instances, renderer_options_) {
     if (options.renderer.shade == Shade::kWeights) {
       if (options.joint.empty()) throw InputError("--shade weights needs --joint NAME");
@@ -102,7 +89,7 @@ public:
     }
     if (options.renderer.shade == Shade::kModeDiff)  // against lbs, or dqs when lbs is drawn
       other_ = std::make_unique<FrameSource>(context, input, options.mode == BlendMode::kLbs ? BlendMode::kDqs : BlendMode::kLbs,
-                                             deform_on_cpu);
+                                             deforms_on_cpu(options.backend, options.mode) ? Backend::kCpu : options.backend);
   }
 
   void render_clip(const ClipPlan& clip) {
@@ -240,12 +227,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
                     const std::function<void(const BakeProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
   if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
-  // The backend draws; --backend cpu deforms on the CPU reference and draws on whichever context there is.
-  // dib has only the CPU reference.
-  const bool deform_on_cpu = options.backend == "cpu" || options.mode == BlendMode::kDib;
-  GpuBackend backend = GpuBackend::kAuto;
-  if (options.backend != "cpu" && !parse_gpu_backend(options.backend, backend))
-    throw InputError("--backend '" + options.backend + "' is not one of auto, egl, osmesa, cpu");
+  // The backend's context draws; where the deformation runs is deforms_on_cpu()'s decision.
   if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
     throw InputError("--sheet-cell must be 1 to 4096 pixels");
 
@@ -274,7 +256,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
       const size_t outputs_before = report.outputs.size(), mode_diff_before = report.mode_diff.size();
       try {
         if (!context) {
-          context = create_gpu_context(backend);  // NoGpuContext ends the render: exit status 3
+          context = create_gpu_context(context_backend(options.backend));  // NoGpuContext: exit status 3
           report.gpu = context->info();
         }
         // Progress counts over all inputs.
@@ -282,7 +264,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
           if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
         };
         {
-          InputRenderer renderer(plan, options, *context, deform_on_cpu, report, counted, journal);
+          InputRenderer renderer(plan, options, *context, report, counted, journal);
           for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
           result.frames = renderer.frames_done();
         }

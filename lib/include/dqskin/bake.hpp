@@ -4,6 +4,7 @@
 
 #include "dqskin/animation.hpp"
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/deformer.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
@@ -28,7 +29,7 @@ struct BakeOptions {
   FrameSpec frames;
   BlendMode mode = BlendMode::kDqs;
   unsigned formats = unsigned(BakeFormat::kGlb);
-  std::string backend = "auto";  // auto, egl, osmesa (GPU), or cpu (the double-precision reference)
+  Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   int scene = -1;  // choose_scene
   size_t shard_index = 0, shard_count = 1;  // this process bakes the units u with u mod count == index

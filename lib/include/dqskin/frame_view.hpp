@@ -4,7 +4,7 @@
 // converted once, so every writer has one input type.
 #pragma once
 
-#include "dqskin/gpu_deform.hpp"
+#include "dqskin/deformed_batch.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <span>

@@ -185,7 +185,7 @@ struct RenderOptions {
   std::string clips = "all";
   FrameSpec frames;
   BlendMode mode = BlendMode::kDqs;  // lbs or dqs: the geometry drawn (mode-diff deforms with both)
-  std::string backend = "auto";      // auto, egl, osmesa
+  Backend backend = Backend::kAuto;  // draws on its context; cpu: deformed on the CPU reference
   int scene = -1;
   size_t shard_index = 0, shard_count = 1;
   RendererOptions renderer;

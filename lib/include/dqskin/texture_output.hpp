@@ -5,8 +5,8 @@
 #pragma once
 
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/bone_texture.hpp"
 #include "dqskin/frame_view.hpp"
-#include "dqskin/gpu_deform.hpp"
 
 #include <cstddef>
 #include <memory>

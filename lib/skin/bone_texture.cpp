@@ -1,5 +1,5 @@
 // Packing JointTransforms into the BoneTexture layout of shared/DESIGN.md.
-#include "dqskin/gpu_deform.hpp"
+#include "dqskin/bone_texture.hpp"
 
 namespace dqskin {
 
