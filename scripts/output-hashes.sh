@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The output fingerprint of a dqskin build: runs a fixed set of commands (info, bake into every format,
-# render, diff) on every bundled rig and every shared sample model, and prints one line per file written,
-# "SHA-256  path", followed by each command's exit status. Two builds that print the same lines wrote the
-# same bytes: a refactor must not change them (compare with diff).
+# The output fingerprint of a dqskin build: runs a fixed set of commands (info; bake into every format with
+# lbs and dqs, on the GL path and on the CPU reference; dib; render; the golden render set; diff) on every
+# bundled rig and every shared sample model, and prints one line per file written, "SHA-256  path",
+# followed by each command's exit status. Two builds that print the same lines wrote the same bytes: a
+# refactor must not change them (compare with diff).
 #
 # Usage: scripts/output-hashes.sh [DQSKIN] > hashes.txt
 #   DQSKIN    the binary to run (default build/release/app/dqskin)
@@ -40,13 +41,21 @@ run() {
 for m in "${models[@]}"; do
   stem="$(basename "$m")"  # with its extension: RiggedSimple comes as .glb and .gltf
   run "info-$stem" "$DQSKIN" info --json "$m"
-  run "bake-$stem" "$DQSKIN" bake "$m" -o out --format glb,ply,obj,vat,bones --fps 10 --quiet
-  run "bake-lbs-cpu-$stem" "$DQSKIN" bake "$m" -o out --format ply,vat --fps 10 --mode lbs --backend cpu --quiet
+  # Every format, both blends, on the GL path and on the double-precision reference.
+  for mode in dqs lbs; do
+    for backend in auto cpu; do
+      run "bake-$mode-$backend-$stem" "$DQSKIN" bake "$m" -o out --format glb,ply,obj,vat,bones --fps 10 \
+        --mode "$mode" --backend "$backend" --quiet
+    done
+  done
   run "bake-dib-$stem" "$DQSKIN" bake "$m" -o out --format ply --frames 0:2 --mode dib --quiet
   run "render-$stem" "$DQSKIN" render "$m" -o out --size 96x96 --frames 0:1 --backend cpu --quiet
 done
 stem=twisted_cylinder.gltf
 run "render-sheet-$stem" "$DQSKIN" render "$ROOT/testdata/$stem" -o out --size 64x64 --fps 5 --sheet --gif \
   --shade mode-diff --backend cpu --quiet
+# The golden render set, as the golden tests and scripts/make_goldens.sh render it.
+run "golden-render" cmake -DDQSKIN="$DQSKIN" -DTESTDATA="$ROOT/testdata" -DOUT=out \
+  -P "$ROOT/app/tests/golden_render.cmake"
 # Relative paths: the report names them.
 run "diff-$stem" "$DQSKIN" diff "../render-$stem/out" "../render-sheet-$stem/out" --json
