@@ -3,6 +3,8 @@
 #include "dqskin/image_diff.hpp"
 #include "../io/file_kind.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/image_file.hpp"
+#include "../io/srgb.hpp"
 #include "../io/stderr_capture.hpp"
 #include "../io/utf8.hpp"
 
@@ -132,13 +134,6 @@ float channel_difference(float a, float b) {
   return std::abs(a - b);
 }
 
-// A linear value (OpenImageIO's colormaps are linear) as an 8-bit sRGB-encoded byte (IEC 61966-2-1).
-uint8_t to_srgb_byte(float linear) {
-  const double v = std::clamp(double(linear), 0.0, 1.0);
-  const double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-  return uint8_t(std::lround(encoded * 255.0));
-}
-
 // Writes the heat map of two same-sized float images (see DiffOptions::heat_map_dir) to `path`.
 void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, double fail) {
   const OIIO::ImageSpec& spec = a.spec();
@@ -177,7 +172,7 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
     for (size_t c = 0; c < 3; ++c) {
       uint8_t v = 0;  // black: not over the threshold
       if (!std::isfinite(d)) v = 255;
-      else if (double(d) > threshold) v = to_srgb_byte(cp[i * 3 + c]);
+      else if (double(d) > threshold) v = io::srgb8(cp[i * 3 + c]);  // OpenImageIO's colormaps are linear
       rgb[i * 3 + c] = v;
     }
   }
@@ -188,22 +183,13 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
   if (error) throw OutputError(parent.string() + ": cannot create folder: " + error.message());
 
   AtomicFile file(path);
-  const std::string& temporary = file.hand_over();
   OIIO::ImageSpec out_spec(int(width), int(rows), 3, OIIO::TypeDesc::UINT8);
   out_spec.attribute("oiio:ColorSpace", "sRGB");  // an sRGB chunk: the bytes are sRGB-encoded
   // The only text in the file; no time stamp, so the same inputs give the same bytes.
   out_spec.attribute("ImageDescription", "dqskin diff heat map: largest channel difference per pixel; black at most "
                                          "--fail " + number(fail) + ", viridis from there to " + number(double(top)) +
                                          ", white not finite");
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
-  if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
-  CapturedStderr capture;  // libpng's own messages join our line
-  if (!out->open(temporary, out_spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
-    const std::string library = capture.finish();
-    throw OutputError(with_library_text(path + ": " + oiio_message(out->geterror()), library));
-  }
-  out.reset();
-  capture.finish();
+  io::write_image_file(file, "png", out_spec, OIIO::TypeDesc::UINT8, rgb.data());
   file.commit(Overwrite::kReplace);
 }
 

@@ -2,7 +2,8 @@
 // built-in digit font) and animated GIFs, both through OpenImageIO and written atomically.
 #include "dqskin/render.hpp"
 #include "../io/oiio_message.hpp"
-#include "../io/stderr_capture.hpp"
+#include "../io/image_file.hpp"
+#include "../io/srgb.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -42,14 +43,9 @@ void fill(Image8& image, int x0, int y0, int w, int h, const std::array<uint8_t,
 }  // namespace
 
 Image8 to_srgb8(const Image& image) {
-  auto srgb8 = [](float linear) {
-    const double c = std::clamp(double(linear), 0.0, 1.0);
-    const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-    return uint8_t(std::lround(s * 255.0));
-  };
   Image8 out{image.width, image.height, std::vector<uint8_t>(image.rgba.size())};
   for (size_t i = 0; i < out.rgba.size(); ++i)
-    out.rgba[i] = i % 4 == 3 ? uint8_t(std::lround(std::clamp(double(image.rgba[i]), 0.0, 1.0) * 255.0)) : srgb8(image.rgba[i]);
+    out.rgba[i] = i % 4 == 3 ? io::unorm8(image.rgba[i]) : io::srgb8(image.rgba[i]);
   return out;
 }
 
@@ -116,19 +112,10 @@ Image8 ContactSheet::compose() const {
 Committed ContactSheet::write(const std::string& path, const CommitOptions& options) const {
   const Image8 sheet = compose();
   AtomicFile file(path, false);
-  const std::string& temporary = file.hand_over();
   OIIO::ImageSpec spec(sheet.width, sheet.height, 4, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
-  if (!out) throw OutputError(path + ": " + oiio_message(OIIO::geterror()));
-  CapturedStderr capture;  // libpng's own messages join our line
-  if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, sheet.rgba.data()) || !out->close()) {
-    const std::string library = capture.finish();
-    throw OutputError(with_library_text(path + ": " + oiio_message(out->geterror()), library));
-  }
-  out.reset();
-  capture.finish();
+  io::write_image_file(file, "png", spec, OIIO::TypeDesc::UINT8, sheet.rgba.data());
   return file.commit(options);
 }
 
