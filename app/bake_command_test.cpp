@@ -1,6 +1,7 @@
 // `dqskin bake` as a process: what a killed or interrupted bake leaves behind, and that a rerun
 // completes it. Runs the real binary (DQSKIN_CLI) on the twisted cylinder at a high frame rate, so that
 // the bake is still writing when the signal arrives.
+#include "../lib/test_support/read_file.hpp"
 #include "../lib/test_support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
@@ -69,10 +70,7 @@ std::map<std::string, std::string> final_files(const fs::path& dir) {
   std::map<std::string, std::string> out;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
     if (!e.is_regular_file() || is_temporary(e.path()) || e.path().filename() == "manifest.json") continue;
-    std::ifstream in(e.path(), std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    out[fs::relative(e.path(), dir).string()] = s.str();
+    out[fs::relative(e.path(), dir).string()] = dqskin::testing_support::read_file(e.path());
   }
   return out;
 }

@@ -6,8 +6,9 @@
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/sha256.hpp"
-#include "ply_test_reader.hpp"
+#include "../io/ply_test_reader.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/read_file.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -56,12 +57,7 @@ protected:
   const fs::path root_ = scratch_.path();
 };
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing_support::read_file;
 
 // Every file under `dir`, relative path → bytes (manifests left out when asked).
 std::map<std::string, std::string> tree(const fs::path& dir, bool manifests) {

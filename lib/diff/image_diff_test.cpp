@@ -1,6 +1,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/image_diff.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/read_file.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
@@ -55,12 +56,7 @@ protected:
   const fs::path dir_ = scratch_.path();
 };
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing_support::read_file;
 
 DiffOptions thresholds(double fail, double warn) {
   DiffOptions o;
@@ -200,7 +196,7 @@ TEST_F(ImageDiffTest, UnreadableAndMissingFilesFailNamingTheFile) {
   // pixels are lost; never read past its end (the sanitizers watch). EXR, not PNG: OpenImageIO 2.4's PNG
   // reader leaks its error message when libpng stops mid-file (png_chunk_error longjmps past a
   // std::string), which LeakSanitizer would report against this test.
-  const std::string bytes = read_bytes(image("whole.exr", 3, 3, 3, 0.25f));
+  const std::string bytes = read_file(image("whole.exr", 3, 3, 3, 0.25f));
   const std::string same = image("same.exr", 3, 3, 3, 0.25f);
   for (size_t n = 0; n < bytes.size(); n += 3) {
     const std::string cut = text_file("cut.exr", bytes.substr(0, n));
@@ -326,7 +322,7 @@ TEST_F(ImageDiffTest, HeatMapIsWrittenForFailingPairsOnlyAndIsDeterministic) {
 
   o.heat_map_dir = path("out2");
   const DiffReport again = diff_images(path("A"), path("B"), o);
-  EXPECT_EQ(read_bytes(again.pairs[1].heat_map), read_bytes(r.pairs[1].heat_map));
+  EXPECT_EQ(read_file(again.pairs[1].heat_map), read_file(r.pairs[1].heat_map));
 }
 
 TEST_F(ImageDiffTest, HeatMapThatCannotBeWrittenIsAnOutputError) {

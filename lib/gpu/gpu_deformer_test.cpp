@@ -3,6 +3,7 @@
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
+#include "../test_support/gpu_context.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,13 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<GpuContext> context_or_skip(GpuBackend backend) {
-  try {
-    return create_gpu_context(backend);
-  } catch (const NoGpuContext&) {
-    return nullptr;
-  }
-}
+using testing_support::context_or_null;
 
 // A deformed normal is only defined where the blended 3×3 does not collapse the surface: LBS of a
 // 180° twist (the candy wrapper) maps a ring onto the axis, and there the normal's direction is rounding
@@ -80,7 +75,7 @@ class GpuMatchesCpu : public testing::TestWithParam<Case> {};
 TEST_P(GpuMatchesCpu, EveryFrameOfEveryClip) {
   const Case& c = GetParam();
   if (!fs::exists(c.path)) GTEST_SKIP() << "test data not found: " << c.path;
-  std::unique_ptr<GpuContext> ctx = context_or_skip(c.backend);
+  std::unique_ptr<GpuContext> ctx = context_or_null(c.backend);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context with backend " << to_string(c.backend);
 
   const Asset asset = load_asset(c.path);
@@ -153,7 +148,7 @@ INSTANTIATE_TEST_SUITE_P(All, GpuMatchesCpu, testing::ValuesIn(cases()), [](cons
 
 TEST(GpuDeformer, TwoRunsAreByteIdentical) {
   const std::string path = std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf";
-  std::unique_ptr<GpuContext> ctx = context_or_skip(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(path);
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -171,7 +166,7 @@ TEST(GpuDeformer, TwoRunsAreByteIdentical) {
 
 TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {
   const std::string path = std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf";
-  std::unique_ptr<GpuContext> ctx = context_or_skip(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(path);
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -195,7 +190,7 @@ TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {
 }
 
 TEST(GpuDeformer, SinkRunsInOrderOnItsOwnThreadAndItsErrorsReachTheCaller) {
-  std::unique_ptr<GpuContext> ctx = context_or_skip(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -225,7 +220,7 @@ TEST(GpuDeformer, SinkRunsInOrderOnItsOwnThreadAndItsErrorsReachTheCaller) {
 }
 
 TEST(GpuDeformer, DibIsRefusedOnTheGpu) {
-  std::unique_ptr<GpuContext> ctx = context_or_skip(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
   EXPECT_THROW(GpuDeformer(*ctx, asset, mesh_instances(asset, 0), {BlendMode::kDib, 1 << 20}), InputError);

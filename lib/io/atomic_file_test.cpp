@@ -1,6 +1,7 @@
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/read_file.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -17,12 +18,7 @@ namespace fs = std::filesystem;
 class AtomicFileTest : public testing::Test {
 protected:
 
-  std::string read(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
+  std::string read(const fs::path& p) { return testing_support::read_file(p); }
   size_t entries() { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
 
   const testing_support::ScratchDir scratch_{"atomic"};

@@ -1,6 +1,7 @@
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/output_journal.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/read_file.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,10 +25,7 @@ std::map<std::string, std::string> tree(const fs::path& dir) {
       out.emplace(name, folder);
       continue;
     }
-    std::ifstream in(e.path(), std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    out[name] = s.str();
+    out[name] = testing_support::read_file(e.path());
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include "dqskin/load.hpp"
 #include "dqskin/texture_output.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/read_file.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -45,14 +46,9 @@ ExrFile read_exr(const fs::path& path) {
   return exr;
 }
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing_support::read_file;
 
-json read_json(const fs::path& path) { return json::parse(read_bytes(path)); }
+json read_json(const fs::path& path) { return json::parse(read_file(path)); }
 
 // Bitwise equality, so that -0 ≠ 0 and a NaN would be caught too.
 ::testing::AssertionResult same_bits(float actual, float expected) {
@@ -297,18 +293,18 @@ TEST_F(TextureOutputTest, VatOutputsAreByteIdenticalWhateverTheThreadCount) {
   sleep(1);  // a time stamp would now differ
   write_vat(d, dir_ / "c", 10);
   for (const char* name : {"clip.positions.exr", "clip.normals.exr", "clip.json"}) {
-    const std::string a = read_bytes(dir_ / "a" / name);
+    const std::string a = read_file(dir_ / "a" / name);
     EXPECT_FALSE(a.empty());
-    EXPECT_EQ(a, read_bytes(dir_ / "b" / name)) << name;
-    EXPECT_EQ(a, read_bytes(dir_ / "c" / name)) << name;
+    EXPECT_EQ(a, read_file(dir_ / "b" / name)) << name;
+    EXPECT_EQ(a, read_file(dir_ / "c" / name)) << name;
   }
 }
 
 TEST_F(TextureOutputTest, VatRefuseDifferentKeepsEqualFilesAndChangesNoneWhenOneDiffers) {
   const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf", 0, grid(3, 2));
   write_vat(d, dir_, kVatMaxWidth);
-  const std::string positions = read_bytes(dir_ / "clip.positions.exr");
-  const std::string json_text = read_bytes(dir_ / "clip.json");
+  const std::string positions = read_file(dir_ / "clip.positions.exr");
+  const std::string json_text = read_file(dir_ / "clip.json");
   EXPECT_EQ(write_vat(d, dir_, kVatMaxWidth, Overwrite::kRefuseDifferent),
             (std::vector<Committed>{Committed::kUnchanged, Committed::kUnchanged, Committed::kUnchanged}));
   // Same images, another fps: only the JSON differs, and nothing is renamed, the images included.
@@ -320,8 +316,8 @@ TEST_F(TextureOutputTest, VatRefuseDifferentKeepsEqualFilesAndChangesNoneWhenOne
     EXPECT_EQ(std::string(e.what()), (dir_ / "clip.json").string() + ": exists with different contents; not overwritten");
   }
   EXPECT_FALSE(fs::exists(dir_ / "clip.normals.exr")) << "refused before any rename";
-  EXPECT_EQ(read_bytes(dir_ / "clip.positions.exr"), positions);
-  EXPECT_EQ(read_bytes(dir_ / "clip.json"), json_text);
+  EXPECT_EQ(read_file(dir_ / "clip.positions.exr"), positions);
+  EXPECT_EQ(read_file(dir_ / "clip.json"), json_text);
   EXPECT_EQ(entries(), 2u);
 }
 
@@ -400,11 +396,11 @@ TEST_F(TextureOutputTest, BoneTextureIsTheRgbaBitForBit) {
     EXPECT_EQ(j["file"], exr.filename().string());
 
     // Written again: the same bytes, and under kRefuseDifferent nothing to do.
-    const std::string first = read_bytes(exr);
+    const std::string first = read_file(exr);
     EXPECT_EQ(write_bone_texture(exr.string(), side.string(), b.texture, b.asset, 0, b.times, 6,
                                  Overwrite::kRefuseDifferent),
               (std::vector<Committed>{Committed::kUnchanged, Committed::kUnchanged}));
-    EXPECT_EQ(read_bytes(exr), first);
+    EXPECT_EQ(read_file(exr), first);
   }
   EXPECT_EQ(entries(), 4u);
 }

@@ -6,6 +6,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/load.hpp"
+#include "../test_support/gpu_context.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,13 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<GpuContext> context_or_null(GpuBackend backend) {
-  try {
-    return create_gpu_context(backend);
-  } catch (const NoGpuContext&) {
-    return nullptr;
-  }
-}
+using testing_support::context_or_null;
 
 // Every frame of `clip` at `times`, deformed on the GPU (mode dqs), as one batch per deformer batch.
 std::vector<DeformedBatch> deform(GpuContext& context, const Asset& asset, const std::vector<MeshInstance>& instances,

@@ -7,6 +7,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/render.hpp"
 #include "dqskin/skinning.hpp"
+#include "../test_support/gpu_context.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -117,13 +118,7 @@ TEST(TextureImage, BadImagesAreNamedErrors) {
 // ---------------------------------------------------------------------------------------------------
 // Drawing: a square facing the camera, filling an orthographic view exactly.
 
-std::unique_ptr<GpuContext> context_or_skip() {
-  try {
-    return create_gpu_context(GpuBackend::kAuto);
-  } catch (const NoGpuContext& e) {
-    return nullptr;
-  }
-}
+using testing_support::context_or_null;
 
 // A square [−1, 1]² at z = 0 facing +z, two triangles, UV (0, 0) at its top-left corner (−1, 1), with
 // `material` and the given COLOR_0 (or none). Drawn by node 0.
@@ -181,7 +176,7 @@ glm::vec4 pixel(const Image& image, int x, int y) {
 }
 
 TEST(RenderMaterials, TextureTopLeftTexelIsTheSquaresTopLeftAndSrgbIsDecoded) {
-  const std::unique_ptr<GpuContext> context = context_or_skip();
+  const std::unique_ptr<GpuContext> context = context_or_null();
   if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
   Asset asset = square(Material{});
   // Top-left red, top-right green, bottom-left blue, bottom-right grey at sRGB 128.
@@ -201,7 +196,7 @@ TEST(RenderMaterials, TextureTopLeftTexelIsTheSquaresTopLeftAndSrgbIsDecoded) {
 }
 
 TEST(RenderMaterials, FactorTextureAndVertexColorMultiply) {
-  const std::unique_ptr<GpuContext> context = context_or_skip();
+  const std::unique_ptr<GpuContext> context = context_or_null();
   if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
   Material plain;
   const Image reference = draw(*context, square(plain));  // white: the light alone
@@ -219,7 +214,7 @@ TEST(RenderMaterials, FactorTextureAndVertexColorMultiply) {
 }
 
 TEST(RenderMaterials, MaskCutsOutAndBlendMixesWithTheBackground) {
-  const std::unique_ptr<GpuContext> context = context_or_skip();
+  const std::unique_ptr<GpuContext> context = context_or_null();
   if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
   const glm::vec4 background(0.0f, 0.0f, 1.0f, 1.0f);
   // Left column alpha 0.2 (51), right column alpha 0.8 (204); white texels.
@@ -252,7 +247,7 @@ TEST(RenderMaterials, MaskCutsOutAndBlendMixesWithTheBackground) {
 }
 
 TEST(RenderMaterials, UndecodableTextureIsAnInputErrorNamingTheImage) {
-  const std::unique_ptr<GpuContext> context = context_or_skip();
+  const std::unique_ptr<GpuContext> context = context_or_null();
   if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
   Asset asset = square(Material{});
   add_texture(asset, {});

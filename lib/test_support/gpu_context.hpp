@@ -1,0 +1,21 @@
+// A headless OpenGL context for a test that needs one (header-only, for the test executables).
+#pragma once
+
+#include "dqskin/gpu_context.hpp"
+
+#include <memory>
+#include <string>
+
+namespace dqskin::testing_support {
+
+// The context, or null when this machine offers none; the test then skips with GTEST_SKIP() (a macro, so
+// it stays in the test body), naming the backend.
+inline std::unique_ptr<GpuContext> context_or_null(GpuBackend backend = GpuBackend::kAuto) {
+  try {
+    return create_gpu_context(backend);
+  } catch (const NoGpuContext&) {
+    return nullptr;
+  }
+}
+
+}  // namespace dqskin::testing_support
