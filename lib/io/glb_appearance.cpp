@@ -3,11 +3,11 @@
 // them is checked, and a reference to something that was not copied is removed rather than left dangling.
 #include "glb_appearance.hpp"
 
-#include "accessor.hpp"
+#include "../gltf/accessor.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/version.hpp"
-#include "model_io.hpp"
+#include "../gltf/model_io.hpp"
 
 #include <algorithm>
 #include <bit>

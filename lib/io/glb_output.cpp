@@ -2,12 +2,12 @@
 // frame's time, one new mesh per instance with the deformed vertices in its node's local space, and the
 // fixed parts (glb_appearance.cpp) shared by every frame. Container layout: glTF 2.0 §4.4 "Binary glTF".
 #include "dqskin/glb_output.hpp"
+#include "dqskin/triangles.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "glb_appearance.hpp"
-#include "mesh.hpp"
-#include "model_io.hpp"
+#include "../gltf/model_io.hpp"
 
 #include <cmath>
 #include <limits>
@@ -159,7 +159,7 @@ json instance_mesh(const Asset& asset, const glb::Appearance& fixed, const MeshI
     int mode = int(prim.mode);
     const bool triangles = mode >= int(PrimitiveMode::kTriangles);
     if (space.flip_winding && triangles) {
-      std::vector<uint32_t> list = gltf::triangle_list(prim);
+      std::vector<uint32_t> list = triangle_list(prim);
       for (size_t t = 0; t + 2 < list.size(); t += 3) std::swap(list[t + 1], list[t + 2]);
       out["indices"] = bin.indices(list);
       mode = int(PrimitiveMode::kTriangles);

@@ -1,7 +1,7 @@
 #include "dqskin/mesh_output.hpp"
+#include "dqskin/triangles.hpp"
 
 #include "dqskin/version.hpp"
-#include "mesh.hpp"
 
 #include <bit>
 #include <charconv>
@@ -40,7 +40,7 @@ MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& inst
         out.uv0.push_back(prim.uv0.empty() ? glm::vec2(0) : prim.uv0[v]);
       }
       MergedMesh::Group group{asset.nodes[size_t(inst.node)].name, prim.material, out.triangles.size() / 3, 0};
-      for (uint32_t i : gltf::triangle_list(prim)) out.triangles.push_back(base + i);
+      for (uint32_t i : triangle_list(prim)) out.triangles.push_back(base + i);
       group.triangle_count = out.triangles.size() / 3 - group.first_triangle;
       out.groups.push_back(std::move(group));
     }

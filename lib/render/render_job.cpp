@@ -7,7 +7,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/deformer.hpp"
 #include "dqskin/output_journal.hpp"
-#include "ordered_worker.hpp"
+#include "../gpu/ordered_worker.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,11 +1,11 @@
 // The rasterizer of `dqskin render`: glsl/render.vert and glsl/render.frag drawing deformed frames into an
 // offscreen MSAA framebuffer of the borrowed headless context, resolved and read back as linear floats.
 #include "dqskin/render.hpp"
+#include "dqskin/triangles.hpp"
 
 #include "dqskin/error.hpp"
-#include "gl_functions.hpp"
-#include "mesh.hpp"
-#include "shader_program.hpp"
+#include "../gpu/gl_functions.hpp"
+#include "../gpu/shader_program.hpp"
 #include "texture_image.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -147,7 +147,7 @@ struct Renderer::Impl {
         gl.GenVertexArrays(1, &p.vao);
         gl.BindVertexArray(p.vao);
         if (triangles) {
-          const std::vector<uint32_t> list = gltf::triangle_list(src);
+          const std::vector<uint32_t> list = triangle_list(src);
           p.index_count = GLsizei(list.size());
           gl.GenBuffers(1, &p.indices);
           gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, p.indices);  // recorded in the VAO
