@@ -42,7 +42,7 @@ class Progress {
 public:
   Progress(const BakeSettings& s) : json_(s.json_progress), bar_(!s.quiet && !s.json_progress && ::isatty(2)) {}
 
-  void operator()(const BakeProgress& p) {
+  void operator()(const JobProgress& p) {
     const std::lock_guard<std::mutex> lock(mutex_);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rate = elapsed > 0 ? double(p.frames_done) / elapsed : 0;
@@ -104,7 +104,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
   }
   if (s.json_progress) {
     nlohmann::json failures = nlohmann::json::array();
-    for (const BakeInputResult& in : r.inputs)
+    for (const InputResult& in : r.inputs)
       if (!in.error.empty()) failures.push_back({{"input", in.path}, {"error", in.error}});
     const BakeStageTimes& t = r.times;
     std::cout << json_text(nlohmann::json{{"event", "summary"},
@@ -122,10 +122,10 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
               << std::endl;
   }
   print_input_messages(r.inputs, s.quiet);
-  const bool all_failed = std::all_of(r.inputs.begin(), r.inputs.end(), [](const BakeInputResult& in) { return !in.error.empty(); });
+  const bool all_failed = std::all_of(r.inputs.begin(), r.inputs.end(), [](const InputResult& in) { return !in.error.empty(); });
   if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
   const BakeStageTimes& t = r.times;
-  const size_t baked = size_t(std::count_if(r.inputs.begin(), r.inputs.end(), [](const BakeInputResult& in) { return in.error.empty(); }));
+  const size_t baked = size_t(std::count_if(r.inputs.begin(), r.inputs.end(), [](const InputResult& in) { return in.error.empty(); }));
   std::fprintf(stderr, "baked %zu of %zu input%s in %.2f s: %zu frames deformed (%.1f frames/s); %zu files written, %zu unchanged, %.1f MB\n",
                baked, r.inputs.size(), r.inputs.size() == 1 ? "" : "s", r.wall_seconds, r.frames_total,
                r.wall_seconds > 0 ? double(r.frames_total) / r.wall_seconds : 0.0, written, unchanged, double(bytes) / 1e6);
@@ -149,13 +149,13 @@ int run_bake(const BakeSettings& given) {
     options.cancel = catch_interrupts("bake");
     if (!options.dry_run) out_folder.make_folders(options.out_dir);
 
-    const BakeReport report = bake(settings.inputs, options, [&](const BakeProgress& p) { progress(p); });
+    const BakeReport report = bake(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
     if (options.dry_run) {
       for (const BakeOutput& o : report.outputs) std::cout << printable(options.out_dir + '/' + o.path) << '\n';
       print_input_messages(report.inputs, settings.quiet);
       const bool any_planned = std::any_of(report.inputs.begin(), report.inputs.end(),
-                                           [](const BakeInputResult& in) { return in.error.empty(); });
+                                           [](const InputResult& in) { return in.error.empty(); });
       if (!settings.quiet && any_planned)
         std::fprintf(stderr, "dry run: %zu frames to deform (%.4g vertex-frames), up to %s in %zu files; %s free on the output's file system\n",
                      report.frames_total, double(report.vertex_frames), byte_size(report.planned_bytes).c_str(),
@@ -164,13 +164,13 @@ int run_bake(const BakeSettings& given) {
       print_summary(settings, report);
     }
     const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
-                                               [](const BakeInputResult& r) { return !r.error.empty(); }));
+                                               [](const InputResult& r) { return !r.error.empty(); }));
     if (failed < report.inputs.size()) out_folder.keep();
     if (failed == 0) return kSuccess;
     if (!settings.quiet && failed < report.inputs.size())
       print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others baked");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
-  } catch (const BakeCancelled&) {
+  } catch (const JobCancelled&) {
     progress.done();
     out_folder.roll_back();  // removes the output folder this run made only if it is still empty
     return die_of_interrupt("bake");

@@ -27,8 +27,8 @@ void print_warning(std::string_view file, std::string_view message) {
   print_line("dqskin: " + printable(file) + ": warning: " + printable(message) + "\n");
 }
 
-void print_input_messages(const std::vector<BakeInputResult>& inputs, bool quiet) {
-  for (const BakeInputResult& in : inputs) {
+void print_input_messages(const std::vector<InputResult>& inputs, bool quiet) {
+  for (const InputResult& in : inputs) {
     if (!in.error.empty()) {
       print_error(in.path, in.error);
       continue;

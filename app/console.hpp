@@ -21,7 +21,7 @@ void print_warning(std::string_view file, std::string_view message);
 
 // One line per failed input ("dqskin: FILE: problem"), and unless `quiet`, one per loader warning of the
 // others ("dqskin: FILE: warning: ..."): parts of the file that were dropped or corrected.
-void print_input_messages(const std::vector<BakeInputResult>& inputs, bool quiet);
+void print_input_messages(const std::vector<InputResult>& inputs, bool quiet);
 
 // A JSON document as text; bytes that are not UTF-8 (in file names, or quoted by a library's message)
 // become U+FFFD instead of making the dump throw.

@@ -113,7 +113,7 @@ RenderOptions to_options(const RenderSettings& s) {
 }
 
 // One line per rendered frame: a JSON object, or a counter on a terminal.
-void report_progress(const RenderSettings& s, const BakeProgress& p, std::chrono::steady_clock::time_point start) {
+void report_progress(const RenderSettings& s, const JobProgress& p, std::chrono::steady_clock::time_point start) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (s.json_progress) {
     std::cout << json_text(nlohmann::json{{"event", "progress"},         {"frames_done", p.frames_done},
@@ -143,11 +143,11 @@ int run_render(const RenderSettings& given) {
     options.cancel = catch_interrupts("render");
     out_folder.make_folders(options.out_dir);
     const RenderReport report =
-        render(settings.inputs, options, [&](const BakeProgress& p) { report_progress(settings, p, start); });
+        render(settings.inputs, options, [&](const JobProgress& p) { report_progress(settings, p, start); });
     clear_bar();
     print_input_messages(report.inputs, settings.quiet);
     const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
-                                               [](const BakeInputResult& r) { return !r.error.empty(); }));
+                                               [](const InputResult& r) { return !r.error.empty(); }));
     if (failed < report.inputs.size()) out_folder.keep();
     // mode-diff: what the heat map's top color stands for, per animation.
     nlohmann::json scales = nlohmann::json::array();
@@ -165,7 +165,7 @@ int run_render(const RenderSettings& given) {
                 << std::endl;
     } else if (!settings.quiet && failed < report.inputs.size()) {
       size_t frames = 0;  // not report.outputs: --sheet and --gif add files that are not frames
-      for (const BakeInputResult& in : report.inputs) frames += in.frames;
+      for (const InputResult& in : report.inputs) frames += in.frames;
       std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\n", frames,
                    report.inputs.size() - failed, report.inputs.size() - failed == 1 ? "" : "s", report.wall_seconds,
                    printable(options.out_dir).c_str());
@@ -174,7 +174,7 @@ int run_render(const RenderSettings& given) {
     if (!settings.quiet && failed < report.inputs.size())
       print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others rendered");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
-  } catch (const BakeCancelled&) {
+  } catch (const JobCancelled&) {
     clear_bar();
     out_folder.roll_back();  // removes the output folder this run made only if it is still empty
     return die_of_interrupt("render");

@@ -36,7 +36,7 @@ bool has(unsigned formats, BakeFormat f) { return formats & unsigned(f); }
 // Thread-safe bookkeeping of one bake: outputs, stage times, progress.
 struct Ledger {
   const BakeOptions& options;
-  const std::function<void(const BakeProgress&)>& progress;
+  const std::function<void(const JobProgress&)>& progress;
   BakeReport& report;
   std::mutex mutex;
   size_t frames_done = 0;
@@ -44,7 +44,7 @@ struct Ledger {
   std::string absolute(const std::string& relative) const { return options.out_dir + "/" + relative; }
 
   void check_cancel() const {
-    if (options.cancel && options.cancel->load()) throw BakeCancelled();
+    if (options.cancel && options.cancel->load()) throw JobCancelled();
   }
 
   void add_time(double BakeStageTimes::*stage, double seconds) {
@@ -85,7 +85,7 @@ struct Ledger {
   }
 
   void frames_finished(size_t count, const InputPlan& input, const ClipPlan& clip) {
-    BakeProgress p;
+    JobProgress p;
     {
       const std::lock_guard<std::mutex> lock(mutex);
       frames_done += count;
@@ -258,11 +258,11 @@ void parse_shard(const std::string& text, BakeOptions& options) {
 }
 
 bool BakeReport::any_failed() const {
-  return std::any_of(inputs.begin(), inputs.end(), [](const BakeInputResult& r) { return !r.error.empty(); });
+  return std::any_of(inputs.begin(), inputs.end(), [](const InputResult& r) { return !r.error.empty(); });
 }
 
 BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
-                const std::function<void(const BakeProgress&)>& progress) {
+                const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
   BakeReport report;
   if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
@@ -322,7 +322,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   Ledger ledger{options, progress, report, {}, 0};
   for (size_t i = 0; i < plans.size(); ++i) {
     const InputPlan& plan = plans[i];
-    BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
+    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
       OutputJournal journal;  // what this input wrote, taken back when it fails
       try {
@@ -335,7 +335,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
           for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
         }
         journal.keep();
-      } catch (const BakeCancelled&) {
+      } catch (const JobCancelled&) {
         journal.keep();  // an interrupted bake keeps its complete files; a rerun finishes the job
         throw;
       } catch (const NoGpuContext&) {
@@ -353,7 +353,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     report.inputs.push_back(std::move(result));
   }
   std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
-  if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const BakeInputResult& r) { return r.error.empty(); })) {
+  if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
     report.wall_seconds = since(start);
     return report;  // nothing baked, nothing to record
   }

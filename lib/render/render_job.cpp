@@ -77,7 +77,7 @@ RendererOptions renderer_options(const InputPlan& input, const RenderOptions& op
 
 class InputRenderer {
 public:
-  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report, const std::function<void(const BakeProgress&)>& progress, OutputJournal& journal)
+  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report, const std::function<void(const JobProgress&)>& progress, OutputJournal& journal)
       : input_(input), options_(options), report_(report), progress_(progress), journal_(journal),
         camera_node_(options.camera_node.empty() ? -1 : find_camera_node(*input.asset, options.camera_node)),
         renderer_options_(renderer_options(input, options, camera_node_)),
@@ -177,7 +177,7 @@ public:
 
 private:
   void check_cancel() const {
-    if (options_.cancel && options_.cancel->load()) throw BakeCancelled();
+    if (options_.cancel && options_.cancel->load()) throw JobCancelled();
   }
 
   // Calls visit(frame index, frame, the other mode's frame or null) for `frames` of the clip, in order,
@@ -206,7 +206,7 @@ private:
   const InputPlan& input_;
   const RenderOptions& options_;
   RenderReport& report_;
-  const std::function<void(const BakeProgress&)>& progress_;
+  const std::function<void(const JobProgress&)>& progress_;
   OutputJournal& journal_;
   const int camera_node_;  // --camera: the node, or -1 for the automatic camera
   const RendererOptions renderer_options_;
@@ -220,11 +220,11 @@ private:
 }  // namespace
 
 bool RenderReport::any_failed() const {
-  return std::any_of(inputs.begin(), inputs.end(), [](const BakeInputResult& r) { return !r.error.empty(); });
+  return std::any_of(inputs.begin(), inputs.end(), [](const InputResult& r) { return !r.error.empty(); });
 }
 
 RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
-                    const std::function<void(const BakeProgress&)>& progress) {
+                    const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
   if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
   // The backend's context draws; where the deformation runs is deforms_on_cpu()'s decision.
@@ -250,7 +250,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
   std::unique_ptr<GpuContext> context;
   size_t done = 0;
   for (const InputPlan& plan : plans) {
-    BakeInputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
+    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
     if (plan.error.empty()) {
       OutputJournal journal;  // what this input wrote, taken back when it fails
       const size_t outputs_before = report.outputs.size(), mode_diff_before = report.mode_diff.size();
@@ -260,7 +260,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
           report.gpu = context->info();
         }
         // Progress counts over all inputs.
-        const std::function<void(const BakeProgress&)> counted = [&](const BakeProgress& p) {
+        const std::function<void(const JobProgress&)> counted = [&](const JobProgress& p) {
           if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
         };
         {
@@ -270,7 +270,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
         }
         journal.keep();
         done += result.frames;
-      } catch (const BakeCancelled&) {
+      } catch (const JobCancelled&) {
         journal.keep();  // an interrupted render keeps its complete images
         throw;
       } catch (const NoGpuContext&) {

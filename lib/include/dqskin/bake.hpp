@@ -6,6 +6,7 @@
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/deformer.hpp"
 #include "dqskin/gpu_context.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
 
@@ -53,15 +54,8 @@ struct BakeStageTimes {
   double load = 0, sample = 0, deform = 0, readback = 0, encode = 0, write = 0;
 };
 
-struct BakeInputResult {
-  std::string path;
-  std::string error;  // empty when the input baked
-  size_t frames = 0;  // frames this process deformed
-  std::vector<std::string> warnings;  // the loader's (Asset::warnings): what it dropped or corrected
-};
-
 struct BakeReport {
-  std::vector<BakeInputResult> inputs;
+  std::vector<InputResult> inputs;
   std::vector<BakeOutput> outputs;  // sorted by path; with dry_run, what would be written
   std::string manifest;             // path of the manifest written (empty for dry runs)
   GpuContextInfo gpu;               // backend "cpu" when the CPU reference deformed
@@ -75,24 +69,14 @@ struct BakeReport {
   bool any_failed() const;
 };
 
-struct BakeProgress {
-  size_t frames_done = 0, frames_total = 0;
-  std::string input, clip;  // what is being baked now
-};
-
 // Bakes `inputs` (each on its own: a failing input is reported in BakeReport::inputs and the rest go on;
 // the files it wrote are taken back). Throws NoGpuContext when a GPU backend is needed and none can be
-// made, BakeCancelled when options.cancel was set, InputError for options that cannot work (a bad
+// made, JobCancelled when options.cancel was set, InputError for options that cannot work (a bad
 // --shard, two inputs whose outputs would collide) and, before writing anything, when the planned files
 // cannot fit the free space of the output's file system. `progress` is called after every batch, from a
 // worker thread.
 BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
-                const std::function<void(const BakeProgress&)>& progress = {});
-
-class BakeCancelled : public std::runtime_error {
-public:
-  BakeCancelled() : std::runtime_error("bake cancelled") {}
-};
+                const std::function<void(const JobProgress&)>& progress = {});
 
 // Parses "I/N" (0 ≤ I < N) into shard_index and shard_count. Throws InputError.
 void parse_shard(const std::string& text, BakeOptions& options);

@@ -5,7 +5,9 @@
 
 #include "dqskin/animation.hpp"
 #include "dqskin/atomic_file.hpp"
-#include "dqskin/bake.hpp"
+#include "dqskin/deformer.hpp"
+#include "dqskin/job.hpp"
+#include "dqskin/load.hpp"
 #include "dqskin/frame_view.hpp"
 #include "dqskin/gpu_context.hpp"
 
@@ -214,7 +216,7 @@ struct ModeDiffScale {
 };
 
 struct RenderReport {
-  std::vector<BakeInputResult> inputs;  // error empty when the input rendered
+  std::vector<InputResult> inputs;  // error empty when the input rendered
   std::vector<ModeDiffScale> mode_diff;  // one per rendered clip with Shade::kModeDiff
   std::vector<std::string> outputs;     // files written or found equal, relative to out_dir, sorted
   GpuContextInfo gpu;
@@ -224,10 +226,10 @@ struct RenderReport {
 };
 
 // Renders every input (a failing input is reported and the rest go on). Throws NoGpuContext when no
-// context can be made, BakeCancelled when options.cancel was set, InputError for options that cannot
+// context can be made, JobCancelled when options.cancel was set, InputError for options that cannot
 // work. `progress` is called after each frame's image is written, from the thread that writes images
 // (one call at a time).
 RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
-                    const std::function<void(const BakeProgress&)>& progress = {});
+                    const std::function<void(const JobProgress&)>& progress = {});
 
 }  // namespace dqskin
