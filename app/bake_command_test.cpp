@@ -76,7 +76,7 @@ std::map<std::string, std::string> final_files(const fs::path& dir) {
 }
 
 // Keeps every core busy while it lives: a machine running other work, on which the last thread of a dying
-// process may wait to be scheduled (a thread at SCHED_IDLE freeing a gigabyte took seconds).
+// process may wait to be scheduled (Mesa's shader-cache thread, at nice 19, freeing a gigabyte took seconds).
 class BusyCores {
 public:
   BusyCores() {

@@ -1,6 +1,6 @@
 // The Deformer interface: the backend names, the one rule for dib, and both implementations handing out
-// every requested time once, in order, with the same vertices (GPU within the tolerance of
-// gpu_deformer_test.cpp: 1e-5 × the bounding-box diagonal, float against double).
+// every requested time once, in order, with the same vertices (GPU within 1e-4 scene units, float against
+// double; gpu_deformer_test.cpp holds every rig and model to the tighter 1e-5 × the bounding-box diagonal).
 #include "dqskin/deformer.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
@@ -97,7 +97,7 @@ TEST_F(DeformerTest, TheReferenceAndTheGpuHandOutTheSameFramesInOrder) {
   float worst = 0;
   for (size_t f = 0; f < times_.size(); ++f)
     for (size_t i = 0; i < values; ++i) worst = std::max(worst, std::abs(position(got, f, i) - position(expected, f, i)));
-  EXPECT_LT(worst, 1e-4f) << "the cylinder is about 4 units long: 1e-5 × its diagonal is about 5e-5";
+  EXPECT_LT(worst, 1e-4f) << "about 2.4e-5 of the rest pose's 4.24-unit diagonal";
 }
 
 TEST_F(DeformerTest, TheReferenceCallsBeforeBatchSoThatARunCanBeStopped) {
