@@ -88,7 +88,7 @@ BakeOptions to_options(const BakeSettings& s) {
   if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
   o.gpu_memory = s.gpu_memory_mb << 20;
   o.scene = s.scene;
-  if (!s.shard.empty()) parse_shard(s.shard, o);
+  if (!s.shard.empty()) o.shard = parse_shard(s.shard);
   o.jobs = s.jobs;
   o.dry_run = s.dry_run;
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;

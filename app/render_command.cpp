@@ -82,12 +82,7 @@ RenderOptions to_options(const RenderSettings& s) {
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
   o.scene = s.scene;
-  if (!s.shard.empty()) {
-    BakeOptions shard;
-    parse_shard(s.shard, shard);
-    o.shard_index = shard.shard_index;
-    o.shard_count = shard.shard_count;
-  }
+  if (!s.shard.empty()) o.shard = parse_shard(s.shard);
   parse_size(s.size.empty() ? "512x512" : s.size, o.renderer);
   o.size_from_camera = s.size.empty();
   o.renderer.samples = s.samples;

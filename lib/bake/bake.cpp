@@ -10,6 +10,7 @@
 #include "dqskin/glb_output.hpp"
 #include "dqskin/deformer.hpp"
 #include "dqskin/mesh_output.hpp"
+#include "dqskin/job_run.hpp"
 #include "dqskin/output_journal.hpp"
 #include "dqskin/sha256.hpp"
 #include "dqskin/texture_output.hpp"
@@ -32,6 +33,11 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 bool has(unsigned formats, BakeFormat f) { return formats & unsigned(f); }
+
+// The planner's view of a bake: which inputs, clips, frames and shard.
+PlanOptions plan_options(const BakeOptions& options) {
+  return {options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
+}
 
 // Thread-safe bookkeeping of one bake: outputs, stage times, progress.
 struct Ledger {
@@ -105,7 +111,7 @@ public:
         jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())), glb_(std::move(glb)) {
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
     const bool deforms = std::any_of(input.clips.begin(), input.clips.end(),
-                                     [&](const ClipPlan& c) { return !c.frames_to_deform(options.formats).empty(); });
+                                     [&](const ClipPlan& c) { return !frames_to_deform(c, options.formats).empty(); });
     if (deforms) {
       DeformerOptions o;
       o.mode = options.mode;
@@ -130,7 +136,7 @@ public:
     journal_.make_folders(ledger_.absolute(clip.folder));
     if (clip.clip_mine) write_clip_files(clip);
 
-    const std::vector<size_t> frames = clip.frames_to_deform(options_.formats);
+    const std::vector<size_t> frames = frames_to_deform(clip, options_.formats);
     if (frames.empty()) return 0;
     std::unique_ptr<VatWriter> vat;
     if (clip.clip_mine && has(options_.formats, BakeFormat::kVat))
@@ -243,20 +249,6 @@ unsigned parse_bake_formats(const std::string& list) {
   return formats;
 }
 
-void parse_shard(const std::string& text, BakeOptions& options) {
-  const size_t slash = text.find('/');
-  auto number = [&](const std::string& s) {
-    if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError("--shard '" + text + "' is not I/N (e.g. 0/4)");
-    return size_t(std::stoul(s));
-  };
-  if (slash == std::string::npos) throw InputError("--shard '" + text + "' is not I/N (e.g. 0/4)");
-  options.shard_index = number(text.substr(0, slash));
-  options.shard_count = number(text.substr(slash + 1));
-  if (options.shard_count == 0 || options.shard_index >= options.shard_count)
-    throw InputError("--shard '" + text + "': I must be at least 0 and less than N");
-}
-
 bool BakeReport::any_failed() const {
   return std::any_of(inputs.begin(), inputs.end(), [](const InputResult& r) { return !r.error.empty(); });
 }
@@ -265,15 +257,15 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
                 const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
   BakeReport report;
-  if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
+  if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
   const bool cpu = deforms_on_cpu(options.backend, options.mode);
   if (!has_gpu_path(options.mode) && options.backend != Backend::kAuto && options.backend != Backend::kCpu)
     throw InputError("--mode " + std::string(to_string(options.mode)) +
                      " runs on the CPU reference only; use --backend cpu (or auto)");
 
-  std::vector<InputPlan> plans = plan_bake(inputs, options, report.times.load);
+  std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
   for (const InputPlan& plan : plans)
-    for (const ClipPlan& clip : plan.clips) report.frames_total += clip.frames_to_deform(options.formats).size();
+    for (const ClipPlan& clip : plan.clips) report.frames_total += frames_to_deform(clip, options.formats).size();
 
   // The work in numbers, before anything is written. The glb writers made for it (they measure a frame's
   // size) are the ones that bake.
@@ -315,42 +307,20 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     return report;
   }
 
-  std::unique_ptr<GpuContext> context;
+  JobContext context(options.backend);
+  Ledger ledger{options, progress, report, {}, 0};
+  report.inputs = for_each_input(
+      plans,
+      [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {
+        const size_t i = size_t(&plan - plans.data());
+        InputBaker baker(plan, options, cpu ? nullptr : &context.get(), ledger, journal, std::move(glb_writers[i]));
+        for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
+      },
+      [&](const InputPlan& plan) { ledger.forget(plan); });
   if (cpu) {
     report.gpu = {"cpu", "", "dqskin CPU reference (double precision)"};
-  }
-  Ledger ledger{options, progress, report, {}, 0};
-  for (size_t i = 0; i < plans.size(); ++i) {
-    const InputPlan& plan = plans[i];
-    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
-    if (plan.error.empty()) {
-      OutputJournal journal;  // what this input wrote, taken back when it fails
-      try {
-        if (!cpu && !context) {
-          context = create_gpu_context(context_backend(options.backend));  // NoGpuContext: exit status 3
-          report.gpu = context->info();
-        }
-        {
-          InputBaker baker(plan, options, context.get(), ledger, journal, std::move(glb_writers[i]));
-          for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
-        }
-        journal.keep();
-      } catch (const JobCancelled&) {
-        journal.keep();  // an interrupted bake keeps its complete files; a rerun finishes the job
-        throw;
-      } catch (const NoGpuContext&) {
-        throw;
-      } catch (const std::bad_alloc&) {
-        result.error = kOutOfMemory;
-      } catch (const std::exception& e) {
-        result.error = e.what();
-      }
-      if (!result.error.empty()) {
-        journal.roll_back();
-        ledger.forget(plan);
-      }
-    }
-    report.inputs.push_back(std::move(result));
+  } else if (context.info()) {
+    report.gpu = *context.info();
   }
   std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
   if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {

@@ -227,8 +227,7 @@ TEST_F(BakeTest, ShardsTogetherEqualTheWholeBake) {
   std::set<std::string> listed;
   for (size_t i = 0; i < 3; ++i) {
     BakeOptions o = options("sharded");
-    o.shard_index = i;
-    o.shard_count = 3;
+    o.shard = {i, 3};
     const BakeReport r = bake(inputs, o);
     ASSERT_FALSE(r.any_failed());
     EXPECT_TRUE(fs::exists(root_ / "sharded" / ("manifest.shard-" + std::to_string(i) + "-of-3.json")));
@@ -305,14 +304,6 @@ TEST_F(BakeTest, DibBakesOnTheCpuReference) {
   EXPECT_EQ(r.gpu.backend, "cpu");
   o.backend = Backend::kEgl;
   EXPECT_THROW(bake({rig("twisted_cylinder.gltf")}, o), InputError);
-}
-
-TEST(ParseShard, AcceptsIOfNAndRejectsTheRest) {
-  BakeOptions o;
-  parse_shard("2/5", o);
-  EXPECT_EQ(o.shard_index, 2u);
-  EXPECT_EQ(o.shard_count, 5u);
-  for (const char* bad : {"5/5", "1/0", "1", "a/2", "-1/2", "1/2/3", ""}) EXPECT_THROW(parse_shard(bad, o), InputError) << bad;
 }
 
 TEST(ParseBakeFormats, KnowsTheFiveFormats) {

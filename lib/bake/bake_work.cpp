@@ -71,7 +71,7 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
   BakeWork work;
   for (const ClipPlan& clip : input.clips) {
     const uint64_t frames = clip.times.size();
-    work.vertex_frames = add(work.vertex_frames, mul(vertices, clip.frames_to_deform(options.formats).size()));
+    work.vertex_frames = add(work.vertex_frames, mul(vertices, frames_to_deform(clip, options.formats).size()));
     for (const std::string& file : planned_files(input, clip, options.formats)) {
       uint64_t size = 0;
       if (ends_with(file, ".glb")) size = glb_frame;

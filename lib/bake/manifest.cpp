@@ -49,12 +49,12 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
       {"backend", {{"name", report.gpu.backend}, {"renderer", report.gpu.renderer}, {"gl_version", report.gpu.version}}},
       {"mode", to_string(options.mode)},
       {"formats", formats},
-      {"shard", {{"index", options.shard_index}, {"count", options.shard_count}}},
+      {"shard", {{"index", options.shard.index}, {"count", options.shard.count}}},
       {"inputs", inputs},
       {"outputs", outputs},
   };
-  const std::string name = options.shard_count > 1 ? "manifest.shard-" + std::to_string(options.shard_index) + "-of-" +
-                                                         std::to_string(options.shard_count) + ".json"
+  const std::string name = options.shard.count > 1 ? "manifest.shard-" + std::to_string(options.shard.index) + "-of-" +
+                                                         std::to_string(options.shard.count) + ".json"
                                                    : "manifest.json";
   const std::string path = options.out_dir + "/" + name;
   AtomicFile file(path);

@@ -1,11 +1,11 @@
-// `dqskin render` as a library call: inputs planned as bake plans them, each clip deformed (on the GPU, or
+// `dqskin render` as a library call: inputs planned by the job layer, each clip deformed (on the GPU, or
 // on the CPU reference for dib and --backend cpu) once for its bounding box (unless a glTF camera needs
 // none) and once more, a chunk of frames at a time, to render this shard's frames.
 #include "dqskin/render.hpp"
 
-#include "../bake/bake_plan.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/deformer.hpp"
+#include "dqskin/job_run.hpp"
 #include "dqskin/output_journal.hpp"
 #include "../gpu/ordered_worker.hpp"
 
@@ -16,8 +16,6 @@
 #include <optional>
 
 namespace dqskin {
-
-using namespace bake_detail;
 
 namespace {
 
@@ -93,9 +91,7 @@ public:
 
   void render_clip(const ClipPlan& clip) {
     check_cancel();
-    std::vector<size_t> mine;
-    for (size_t f = 0; f < clip.times.size(); ++f)
-      if (clip.frame_mine[f]) mine.push_back(f);
+    const std::vector<size_t> mine = clip.my_frames();
     if (mine.empty()) return;
     journal_.make_folders(options_.out_dir + "/" + clip.folder);
 
@@ -131,9 +127,9 @@ public:
     if (options_.sheet) sheet.emplace(options_.sheet_cell);
     std::unique_ptr<GifWriter> gif;
     // Shards write into one folder, each with its own frames: their sheets and GIFs get the shard's name.
-    const std::string suffix = options_.shard_count > 1
-                                   ? "_shard" + std::to_string(options_.shard_index) + "of" + std::to_string(options_.shard_count)
-                                   : "";
+    const std::string suffix = options_.shard.whole()
+                                   ? ""
+                                   : "_shard" + std::to_string(options_.shard.index) + "of" + std::to_string(options_.shard.count);
     const std::string gif_file = clip.folder + "/animation" + suffix + ".gif";
     if (options_.gif) gif = std::make_unique<GifWriter>(options_.out_dir + "/" + gif_file, clip.fps > 0 ? clip.fps : options_.frames.fps);
 
@@ -225,69 +221,41 @@ bool RenderReport::any_failed() const {
 RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
                     const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
-  if (options.shard_count == 0 || options.shard_index >= options.shard_count) throw InputError("bad shard");
+  if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
   // The backend's context draws; where the deformation runs is deforms_on_cpu()'s decision.
   if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
     throw InputError("--sheet-cell must be 1 to 4096 pixels");
 
-  BakeOptions plan_options;  // the planner's view of a render: which frames, clips and names
-  plan_options.out_dir = options.out_dir;
-  plan_options.load = options.load;
+  PlanOptions plan_options{options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
   plan_options.load.decoded_images = true;  // the renderer decodes the textures
-  plan_options.clips = options.clips;
-  plan_options.frames = options.frames;
-  plan_options.scene = options.scene;
-  plan_options.shard_index = options.shard_index;
-  plan_options.shard_count = options.shard_count;
   double load_seconds = 0;
-  const std::vector<InputPlan> plans = plan_bake(inputs, plan_options, load_seconds);
+  const std::vector<InputPlan> plans = plan_inputs(inputs, plan_options, load_seconds);
 
   RenderReport report;
   for (const InputPlan& plan : plans)
-    for (const ClipPlan& clip : plan.clips) report.frames_total += size_t(std::count(clip.frame_mine.begin(), clip.frame_mine.end(), true));
+    for (const ClipPlan& clip : plan.clips) report.frames_total += clip.my_frames().size();
 
-  std::unique_ptr<GpuContext> context;
-  size_t done = 0;
-  for (const InputPlan& plan : plans) {
-    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
-    if (plan.error.empty()) {
-      OutputJournal journal;  // what this input wrote, taken back when it fails
-      const size_t outputs_before = report.outputs.size(), mode_diff_before = report.mode_diff.size();
-      try {
-        if (!context) {
-          context = create_gpu_context(context_backend(options.backend));  // NoGpuContext: exit status 3
-          report.gpu = context->info();
-        }
-        // Progress counts over all inputs.
+  JobContext context(options.backend);
+  size_t done = 0;  // frames of the inputs rendered before this one: progress counts over all inputs
+  size_t outputs_before = 0, mode_diff_before = 0;
+  report.inputs = for_each_input(
+      plans,
+      [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {
+        outputs_before = report.outputs.size(), mode_diff_before = report.mode_diff.size();
+        GpuContext& gpu = context.get();
         const std::function<void(const JobProgress&)> counted = [&](const JobProgress& p) {
           if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
         };
-        {
-          InputRenderer renderer(plan, options, *context, report, counted, journal);
-          for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
-          result.frames = renderer.frames_done();
-        }
-        journal.keep();
+        InputRenderer renderer(plan, options, gpu, report, counted, journal);
+        for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
+        result.frames = renderer.frames_done();
         done += result.frames;
-      } catch (const JobCancelled&) {
-        journal.keep();  // an interrupted render keeps its complete images
-        throw;
-      } catch (const NoGpuContext&) {
-        throw;
-      } catch (const std::bad_alloc&) {
-        result.error = kOutOfMemory;
-      } catch (const std::exception& e) {
-        result.error = e.what();
-      }
-      if (!result.error.empty()) {
-        journal.roll_back();
+      },
+      [&](const InputPlan&) {
         report.outputs.resize(outputs_before);
         report.mode_diff.resize(mode_diff_before);
-        result.frames = 0;
-      }
-    }
-    report.inputs.push_back(std::move(result));
-  }
+      });
+  if (context.info()) report.gpu = *context.info();
   std::sort(report.outputs.begin(), report.outputs.end());
   report.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;

@@ -33,7 +33,7 @@ struct BakeOptions {
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   int scene = -1;  // choose_scene
-  size_t shard_index = 0, shard_count = 1;  // this process bakes the units u with u mod count == index
+  Shard shard;  // this process bakes the shard's units of the plan (dqskin/job_plan.hpp)
   unsigned jobs = 0;  // encoder threads; 0: one per core
   bool dry_run = false;  // plan and list, write nothing, start no GPU
   Overwrite overwrite = Overwrite::kRefuseDifferent;
@@ -77,8 +77,5 @@ struct BakeReport {
 // worker thread.
 BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
                 const std::function<void(const JobProgress&)>& progress = {});
-
-// Parses "I/N" (0 ≤ I < N) into shard_index and shard_count. Throws InputError.
-void parse_shard(const std::string& text, BakeOptions& options);
 
 }  // namespace dqskin

@@ -23,6 +23,17 @@ struct JobProgress {
   std::string input, clip;  // what is being worked on now
 };
 
+// Which part of a job this process does: the units of work u with u mod count == index (shared/DESIGN.md
+// "Job"), so that N processes started with 0/N … N-1/N together do the whole job once.
+struct Shard {
+  size_t index = 0, count = 1;
+  bool owns(size_t unit) const { return unit % count == index; }
+  bool whole() const { return count == 1; }
+};
+
+// Parses "I/N" (0 ≤ I < N), the --shard flag. Throws InputError.
+Shard parse_shard(const std::string& text);
+
 // Thrown out of a job whose cancel flag was set (the command line sets it on SIGINT and SIGTERM).
 class JobCancelled : public std::runtime_error {
 public:

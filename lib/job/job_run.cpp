@@ -1,0 +1,42 @@
+#include "dqskin/job_run.hpp"
+
+#include "dqskin/error.hpp"
+
+namespace dqskin {
+
+GpuContext& JobContext::get() {
+  if (!context_) context_ = create_gpu_context(context_backend(backend_));
+  return *context_;
+}
+
+std::vector<InputResult> for_each_input(const std::vector<InputPlan>& plans, const InputWork& work,
+                                        const ForgetInput& forget) {
+  std::vector<InputResult> results;
+  for (const InputPlan& plan : plans) {
+    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
+    if (plan.error.empty()) {
+      OutputJournal journal;  // what this input wrote, taken back when it fails
+      try {
+        work(plan, journal, result);
+        journal.keep();
+      } catch (const JobCancelled&) {
+        journal.keep();  // an interrupted job keeps its complete files; a rerun finishes it
+        throw;
+      } catch (const NoGpuContext&) {
+        throw;
+      } catch (const std::bad_alloc&) {
+        result.error = kOutOfMemory;
+      } catch (const std::exception& e) {
+        result.error = e.what();
+      }
+      if (!result.error.empty()) {
+        journal.roll_back();
+        forget(plan);
+      }
+    }
+    results.push_back(std::move(result));
+  }
+  return results;
+}
+
+}  // namespace dqskin
