@@ -6,7 +6,7 @@ Usage: python3 scripts/make_big_rig.py OUT.glb [--vertices N] [--joints J] [--se
 
 The character is one long open tube along +y, skinned to a chain of J joints, with one LINEAR clip of S
 seconds that bends and twists the chain (each joint turns about an axis that sweeps around the chain).
-Python 3 standard library only; about a million vertices take a few seconds.
+Python 3 standard library only (and scripts/gltf_builder.py); about a million vertices take a few seconds.
 
 The output is deterministic: the same bytes on every run (sorted JSON keys, every float rounded to float32
 before it is written or bounded, no timestamps). It follows the conventions of scripts/make_rigs.py:
@@ -21,18 +21,13 @@ The tube has a seam: the first and last vertex of every ring coincide, with text
 """
 
 import argparse
-import json
 import math
-import os
-import struct
 import sys
 import time
 from array import array
 
-FLOAT, UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT = 5126, 5121, 5123, 5125
-ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
-_COMPONENTS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
-_TYPECODE = {FLOAT: "f", UNSIGNED_BYTE: "B", UNSIGNED_SHORT: "H", UNSIGNED_INT: "I"}
+from gltf_builder import (ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, UNSIGNED_BYTE, UNSIGNED_INT, UNSIGNED_SHORT,
+                          Builder, f32)
 
 SEGMENT = 0.25  # rest length of every bone (dyadic: joint positions are exact in float32)
 RADIUS = 0.375  # tube radius
@@ -40,72 +35,9 @@ KEYS_PER_SECOND = 10
 WEIGHT_UNITS = 4096  # weights are multiples of 1/WEIGHT_UNITS
 
 
-def f32(x):
-    """x rounded to the nearest float32, as a Python float (the value the file will hold)."""
-    return struct.unpack("<f", struct.pack("<f", x))[0]
-
-
 def snap(x):
     """Removes the rounding noise of trigonometry at exact angles (cos 90° = 6e-17 becomes 0)."""
     return 0.0 if abs(x) < 1e-12 else x
-
-
-class Glb:
-    """One glTF document and its single binary buffer, written as a .glb."""
-
-    def __init__(self):
-        self.bin = bytearray()
-        self.doc = {
-            "asset": {"version": "2.0", "generator": "dqskin scripts/make_big_rig.py"},
-            "accessors": [],
-            "bufferViews": [],
-        }
-
-    def accessor(self, data, element_type, component_type, target=None, with_bounds=False):
-        """Appends `data` (an array of the component type's typecode, flat) as one accessor in its own
-        bufferView; returns the accessor's index."""
-        assert data.typecode == _TYPECODE[component_type], (data.typecode, component_type)
-        n = _COMPONENTS[element_type]
-        assert len(data) % n == 0 and len(data) > 0, (element_type, len(data))
-        if sys.byteorder != "little":
-            data = array(data.typecode, data)
-            data.byteswap()
-        while len(self.bin) % 4:
-            self.bin.append(0)
-        offset = len(self.bin)
-        self.bin += data.tobytes()
-        view = {"buffer": 0, "byteOffset": offset, "byteLength": len(self.bin) - offset}
-        if target is not None:
-            view["target"] = target
-        self.doc["bufferViews"].append(view)
-        acc = {
-            "bufferView": len(self.doc["bufferViews"]) - 1,
-            "componentType": component_type,
-            "count": len(data) // n,
-            "type": element_type,
-        }
-        if with_bounds:  # the array already holds float32 values: its min/max are the file's
-            acc["min"] = [min(data[i::n]) for i in range(n)]
-            acc["max"] = [max(data[i::n]) for i in range(n)]
-        self.doc["accessors"].append(acc)
-        return len(self.doc["accessors"]) - 1
-
-    def write(self, path):
-        while len(self.bin) % 4:
-            self.bin.append(0)
-        self.doc["buffers"] = [{"byteLength": len(self.bin)}]
-        text = json.dumps(self.doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True).encode("ascii")
-        text += b" " * (-len(text) % 4)  # the JSON chunk is padded with spaces
-        total = 12 + 8 + len(text) + 8 + len(self.bin)
-        tmp = path + ".tmp"
-        with open(tmp, "wb") as f:
-            f.write(struct.pack("<4sII", b"glTF", 2, total))
-            f.write(struct.pack("<I4s", len(text), b"JSON"))
-            f.write(text)
-            f.write(struct.pack("<I4s", len(self.bin), b"BIN\0"))
-            f.write(self.bin)
-        os.replace(tmp, path)
-        return total
 
 
 def tube_layout(vertices):
@@ -146,7 +78,7 @@ def build(vertices, joints, seconds):
     around, rings = tube_layout(vertices)
     columns = around + 1  # the seam column repeats the first one, with u = 1
     length = joints * SEGMENT
-    g = Glb()
+    g = Builder("dqskin scripts/make_big_rig.py")
 
     # Ring templates: xz and normals of one ring; y and v per ring.
     ring_xyz, ring_normal, ring_u = array("f"), array("f"), array("f")
@@ -273,7 +205,7 @@ def main(argv):
         parser.error("--seconds must be positive")
     start = time.monotonic()
     g, stats = build(args.vertices, args.joints, args.seconds)
-    size = g.write(args.out)
+    size = g.write_glb(args.out)
     print(
         "%s: %d vertices (%d rings of %d+1), %d triangles, %d joints, %g s clip, %.1f MB in %.1f s"
         % (args.out, stats["vertices"], stats["rings"], stats["around"], stats["triangles"], args.joints,

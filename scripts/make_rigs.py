@@ -4,8 +4,8 @@
 Usage: python3 scripts/make_rigs.py [OUTPUT_DIR]     (default: the repository's testdata/)
 
 Every rig is one .gltf file with its buffer embedded as a base64 data: URI. The output is deterministic:
-the same bytes on every run (sorted JSON keys, every float rounded to float32 through struct packing
-before it is written, no timestamps).
+the same bytes on every run (sorted JSON keys, every float rounded to float32 before it is written, no
+timestamps; scripts/gltf_builder.py writes the container).
 
 Conventions every rig follows, so that tests can rely on them:
   * the rest pose of every joint is a pure translation by dyadic numbers, and the inverse bind matrix of
@@ -18,23 +18,13 @@ Conventions every rig follows, so that tests can rely on them:
 The table in testdata/README.md describes each rig.
 """
 
-import base64
-import json
 import math
 import os
 import struct
 import sys
 import zlib
 
-FLOAT, UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT = 5126, 5121, 5123, 5125
-ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
-_FORMAT = {FLOAT: "f", UNSIGNED_BYTE: "B", UNSIGNED_SHORT: "H", UNSIGNED_INT: "I"}
-_COMPONENTS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
-
-
-def f32(x):
-    """x rounded to the nearest float32, as a Python float (the value the file will hold)."""
-    return struct.unpack("<f", struct.pack("<f", x))[0]
+from gltf_builder import ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, UNSIGNED_BYTE, UNSIGNED_SHORT, Builder, f32
 
 
 def snap(x):
@@ -49,63 +39,13 @@ def quat_axis_angle(axis, degrees):
     return [snap(axis[0] * s), snap(axis[1] * s), snap(axis[2] * s), snap(math.cos(half))]
 
 
-class Gltf:
-    """Collects one glTF document and its single buffer."""
+class Gltf(Builder):
+    """One rig's glTF document and its single buffer, with the parts rigs are made of. The JSON is indented
+    (one space) so that a change to a rig reads as a diff."""
 
     def __init__(self):
-        self.buffer = bytearray()
-        self.doc = {
-            "asset": {"version": "2.0", "generator": "dqskin scripts/make_rigs.py"},
-            "scene": 0,
-            "scenes": [],
-            "nodes": [],
-            "meshes": [],
-            "skins": [],
-            "animations": [],
-            "accessors": [],
-            "bufferViews": [],
-            "buffers": [],
-        }
-
-    # -- buffer data ----------------------------------------------------------------------------------
-
-    def accessor(self, values, element_type, component_type=FLOAT, target=None, with_bounds=False, normalized=False):
-        """Appends `values` (a list of numbers, or of tuples of numbers) as one accessor in its own
-        bufferView; returns the accessor's index. Floats are rounded to float32."""
-        flat = []
-        for v in values:
-            if isinstance(v, (list, tuple)):
-                flat.extend(v)
-            else:
-                flat.append(v)
-        n = _COMPONENTS[element_type]
-        assert len(flat) % n == 0, (element_type, len(flat))
-        count = len(flat) // n
-        if component_type == FLOAT:
-            flat = [f32(float(x)) for x in flat]
-        else:
-            flat = [int(x) for x in flat]
-        while len(self.buffer) % 4:
-            self.buffer.append(0)
-        offset = len(self.buffer)
-        self.buffer.extend(struct.pack("<%d%s" % (len(flat), _FORMAT[component_type]), *flat))
-        view = {"buffer": 0, "byteOffset": offset, "byteLength": len(self.buffer) - offset}
-        if target is not None:
-            view["target"] = target
-        self.doc["bufferViews"].append(view)
-        acc = {
-            "bufferView": len(self.doc["bufferViews"]) - 1,
-            "componentType": component_type,
-            "count": count,
-            "type": element_type,
-        }
-        if normalized:
-            acc["normalized"] = True
-        if with_bounds:
-            acc["min"] = [min(flat[i::n]) for i in range(n)]
-            acc["max"] = [max(flat[i::n]) for i in range(n)]
-        self.doc["accessors"].append(acc)
-        return len(self.doc["accessors"]) - 1
+        super().__init__("dqskin scripts/make_rigs.py", indent=1)
+        self.doc["scene"] = 0
 
     # -- document parts -------------------------------------------------------------------------------
 
@@ -123,8 +63,7 @@ class Gltf:
             n["mesh"] = mesh
         if skin is not None:
             n["skin"] = skin
-        self.doc["nodes"].append(n)
-        return len(self.doc["nodes"]) - 1
+        return self.add("nodes", n)
 
     def skinned_mesh(self, name, geometry, influence_sets, targets=None, default_weights=None, extra=None,
                      material=None):
@@ -158,8 +97,7 @@ class Gltf:
                 for dp, dn in targets
             ]
             mesh["weights"] = [f32(w) for w in default_weights]
-        self.doc["meshes"].append(mesh)
-        return len(self.doc["meshes"]) - 1
+        return self.add("meshes", mesh)
 
     def skin(self, name, joints, rest_world_translations):
         """A skin whose inverse bind matrices invert the joints' rest world matrices, which are the pure
@@ -169,15 +107,15 @@ class Gltf:
             # Column-major 4x4: translation by -t.
             ibms.append([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -t[0], -t[1], -t[2], 1])
             assert all(f32(x) == x for x in t), "rest translations must be exact in float32"
-        self.doc["skins"].append(
+        return self.add(
+            "skins",
             {
                 "name": name,
                 "joints": list(joints),
                 "skeleton": joints[0],
                 "inverseBindMatrices": self.accessor(ibms, "MAT4"),
-            }
+            },
         )
-        return len(self.doc["skins"]) - 1
 
     def animation(self, name, channels):
         """channels: list of (node, path, interpolation, times, values); values per key (a number or a
@@ -193,21 +131,12 @@ class Gltf:
                 }
             )
             chans.append({"sampler": len(samplers) - 1, "target": {"node": node, "path": path}})
-        self.doc["animations"].append({"name": name, "channels": chans, "samplers": samplers})
+        self.add("animations", {"name": name, "channels": chans, "samplers": samplers})
 
     def png_texture(self, name, png, sampler):
         """An embedded PNG (its own bufferView) as image, sampler and texture; returns the texture index."""
-        offset = len(self.buffer)
-        self.buffer.extend(png)
-        self.doc["bufferViews"].append({"buffer": 0, "byteOffset": offset, "byteLength": len(png)})
-        while len(self.buffer) % 4:
-            self.buffer.append(0)
-        self.doc.setdefault("images", []).append(
-            {"name": name, "bufferView": len(self.doc["bufferViews"]) - 1, "mimeType": "image/png"})
-        self.doc.setdefault("samplers", []).append(sampler)
-        self.doc.setdefault("textures", []).append(
-            {"source": len(self.doc["images"]) - 1, "sampler": len(self.doc["samplers"]) - 1})
-        return len(self.doc["textures"]) - 1
+        image = self.add("images", {"name": name, "bufferView": self.view(png), "mimeType": "image/png"})
+        return self.add("textures", {"source": image, "sampler": self.add("samplers", sampler)})
 
     def material(self, name, base_color_factor=None, base_color_texture=None):
         pbr = {"metallicFactor": 0.0}
@@ -215,36 +144,15 @@ class Gltf:
             pbr["baseColorFactor"] = [f32(x) for x in base_color_factor]
         if base_color_texture is not None:
             pbr["baseColorTexture"] = {"index": base_color_texture}
-        self.doc.setdefault("materials", []).append({"name": name, "pbrMetallicRoughness": pbr})
-        return len(self.doc["materials"]) - 1
+        return self.add("materials", {"name": name, "pbrMetallicRoughness": pbr})
 
     def camera(self, name, projection):
         """projection: {"perspective": {...}} or {"orthographic": {...}}; returns the camera index."""
         (kind, values), = projection.items()
-        self.doc.setdefault("cameras", []).append(
-            {"name": name, "type": kind, kind: {k: f32(v) for k, v in values.items()}})
-        return len(self.doc["cameras"]) - 1
+        return self.add("cameras", {"name": name, "type": kind, kind: {k: f32(v) for k, v in values.items()}})
 
     def scene(self, name, roots):
-        self.doc["scenes"].append({"name": name, "nodes": list(roots)})
-
-    def write(self, path):
-        while len(self.buffer) % 4:
-            self.buffer.append(0)
-        self.doc["buffers"] = [
-            {
-                "byteLength": len(self.buffer),
-                "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(self.buffer)).decode("ascii"),
-            }
-        ]
-        for key in [k for k, v in self.doc.items() if v == []]:
-            del self.doc[key]
-        text = json.dumps(self.doc, indent=1, sort_keys=True, ensure_ascii=True) + "\n"
-        tmp = path + ".tmp"
-        with open(tmp, "w", encoding="ascii", newline="\n") as f:
-            f.write(text)
-        os.replace(tmp, path)
-        return len(text)
+        self.add("scenes", {"name": name, "nodes": list(roots)})
 
 
 # -- geometry -----------------------------------------------------------------------------------------
@@ -654,7 +562,7 @@ def main(argv):
     out = argv[1] if len(argv) == 2 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "testdata")
     os.makedirs(out, exist_ok=True)
     for name, make in RIGS.items():
-        size = make().write(os.path.join(out, name))
+        size = make().write_gltf(os.path.join(out, name))
         print("%-26s %7d bytes" % (name, size))
     return 0
 

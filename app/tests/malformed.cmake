@@ -14,7 +14,7 @@ if(NOT _status STREQUAL "0")
   message(FATAL_ERROR "scripts/make_malformed.py failed (${_status}):\n${_output}")
 endif()
 # Re-run configure (and so the generator) when the generator changes.
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_generator})
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_generator} ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py)
 
 set(_checker ${CMAKE_CURRENT_LIST_DIR}/expect_error.cmake)
 # Every case runs in malformed/cwd (one case checks that a buffer there is not found) under a 4 GiB
