@@ -1,6 +1,8 @@
 // Packing JointTransforms into the BoneTexture layout of shared/DESIGN.md.
 #include "dqskin/bone_texture.hpp"
 
+#include <map>
+
 namespace dqskin {
 
 BoneTexture pack_bone_texture(std::span<const JointTransforms> frames) {
@@ -26,6 +28,25 @@ BoneTexture pack_bone_texture(std::span<const JointTransforms> frames) {
     }
   }
   return tex;
+}
+
+std::vector<BoneTexture> pack_instance_textures(const Asset& asset, std::span<const MeshInstance> instances,
+                                                std::span<const Pose> poses) {
+  std::vector<BoneTexture> out(instances.size());
+  std::map<int, size_t> packed;  // skin → the instance whose texture holds it
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const MeshInstance& instance = instances[i];
+    if (const auto it = packed.find(instance.skin); instance.skin >= 0 && it != packed.end()) {
+      out[i] = out[it->second];
+      continue;
+    }
+    std::vector<JointTransforms> frames;
+    frames.reserve(poses.size());
+    for (const Pose& pose : poses) frames.push_back(instance_joint_transforms(asset, instance, pose));
+    out[i] = pack_bone_texture(frames);
+    if (instance.skin >= 0) packed.emplace(instance.skin, i);
+  }
+  return out;
 }
 
 }  // namespace dqskin

@@ -22,6 +22,13 @@ JointTransforms joint_transforms(const Skin& skin, const Pose& pose) {
   return out;
 }
 
+JointTransforms instance_joint_transforms(const Asset& asset, const MeshInstance& instance, const Pose& pose) {
+  if (instance.skin >= 0) return joint_transforms(asset.skins[size_t(instance.skin)], pose);
+  const Mat4<double>& world = pose.world[size_t(instance.node)];
+  const JointSplit<double> split = split_joint_matrix(world);
+  return {{world}, {split.rigid}, {split.scale}, !split.is_rigid};
+}
+
 const char* to_string(BlendMode mode) {
   switch (mode) {
     case BlendMode::kLbs: return "lbs";

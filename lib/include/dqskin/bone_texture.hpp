@@ -25,4 +25,9 @@ struct BoneTexture {
 // Packs one skin's JointTransforms, one per frame.
 BoneTexture pack_bone_texture(std::span<const JointTransforms> frames);
 
+// "palette" then "pack" for a batch of poses: the BoneTexture of every mesh instance, one row per pose.
+// Instances drawn with one skin share its texture (packed once, copied).
+std::vector<BoneTexture> pack_instance_textures(const Asset& asset, std::span<const MeshInstance> instances,
+                                                std::span<const Pose> poses);
+
 }  // namespace dqskin

@@ -35,6 +35,10 @@ struct MeshInstance {
 };
 std::vector<MeshInstance> mesh_instances(const Asset& asset, int scene);
 
+// The "palette" of one mesh instance at `pose`: its skin's joint transforms, or for a rigid instance
+// those of a one-joint skin whose joint matrix is the node's world matrix (DESIGN.md "Asset vocabulary").
+JointTransforms instance_joint_transforms(const Asset& asset, const MeshInstance& instance, const Pose& pose);
+
 // The scene a command works on: `requested` when ≥ 0, else the file's default scene, else scene 0;
 // -1 when the file has no scenes (then every root node counts). Throws InputError for a bad request.
 int choose_scene(const Asset& asset, int requested);
