@@ -36,7 +36,9 @@ bool has(unsigned formats, BakeFormat f) { return formats & unsigned(f); }
 
 // The planner's view of a bake: which inputs, clips, frames and shard.
 PlanOptions plan_options(const BakeOptions& options) {
-  return {options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
+  PlanOptions plan{options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
+  plan.load.keep_source = has(options.formats, BakeFormat::kGlb);  // what the glb writer copies from the file
+  return plan;
 }
 
 // Thread-safe bookkeeping of one bake: outputs, stage times, progress.
@@ -276,7 +278,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     if (!plan.error.empty()) continue;
     try {
       if (has(options.formats, BakeFormat::kGlb))
-        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene, options.load);
+        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene);
       work += estimate_work(plan, options, glb_writers[i].get());
     } catch (const std::bad_alloc&) {
       plan.error = kOutOfMemory;

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,10 @@ struct ParsedModel {
 // options.resource_roots), only when they are regular files of at most options.max_file_bytes. Images are
 // kept encoded, not decoded. Throws InputError.
 ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& base_dir, const LoadOptions& options);
+
+// What the .glb writer copies from the file (source_document.hpp), out of `parsed` (its JSON is moved)
+// and the asset made of it. Attributes are read under `options`' limits.
+std::shared_ptr<const SourceDocument> keep_source(ParsedModel& parsed, const Asset& asset, const LoadOptions& options);
 
 // The folder a model's relative URIs start from: "dir" for "dir/model.gltf", "/" for "/model.gltf", "."
 // for "model.gltf".

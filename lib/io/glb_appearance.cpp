@@ -3,16 +3,15 @@
 // them is checked, and a reference to something that was not copied is removed rather than left dangling.
 #include "glb_appearance.hpp"
 
-#include "../gltf/accessor.hpp"
+#include "../gltf/source_document.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/load.hpp"
 #include "dqskin/version.hpp"
-#include "../gltf/model_io.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
 #include <map>
+#include <stdexcept>
 
 namespace dqskin::glb {
 namespace {
@@ -44,7 +43,7 @@ bool is_index(const json& value, size_t size) {
 }
 
 // The image format by its signature: what §3.8.2 ("Images") and the image extensions allow.
-std::string sniff_mime_type(const std::vector<unsigned char>& b) {
+std::string sniff_mime_type(const std::vector<uint8_t>& b) {
   auto starts = [&](std::initializer_list<unsigned char> magic, size_t at = 0) {
     return b.size() >= at + magic.size() && std::equal(magic.begin(), magic.end(), b.begin() + std::ptrdiff_t(at));
   };
@@ -55,17 +54,17 @@ std::string sniff_mime_type(const std::vector<unsigned char>& b) {
   return "";
 }
 
-// Images: bytes from a bufferView, a data URI or an external file (tinygltf read them through
-// gltf::read_regular_file, from the source's folder only) go into the BIN chunk, as a .glb has no folder
+// Images: bytes from a bufferView, a data URI or an external file (the loader read them, from inside the
+// resource root only, into Asset::images) go into the BIN chunk, as a .glb has no folder
 // beside it and the validator discourages data URIs in a GLB (DATA_URI_GLB). An image that could not be read, or whose format is unknown, is dropped.
-std::vector<int> copy_images(const json& src, const tinygltf::Model& model, Appearance& out) {
+std::vector<int> copy_images(const json& src, const std::vector<EncodedImage>& loaded, Appearance& out) {
   const json images = array_of(src, "images");
   std::vector<int> map(images.size(), -1);
   json copied = json::array();
   for (size_t i = 0; i < images.size(); ++i) {
     json image = images[i].is_object() ? images[i] : json::object();
-    const std::vector<unsigned char> empty;
-    const std::vector<unsigned char>& bytes = i < model.images.size() ? model.images[i].image : empty;
+    const std::vector<uint8_t> empty;
+    const std::vector<uint8_t>& bytes = i < loaded.size() ? loaded[i].bytes : empty;
     std::string mime = sniff_mime_type(bytes);
     if (mime.empty() && member(image, "mimeType").is_string()) mime = image["mimeType"].get<std::string>();
     if (bytes.empty() || mime.empty()) continue;
@@ -135,43 +134,16 @@ void remap_texture_infos(json& object, const std::vector<int>& texture_map) {
 // Node extensions whose properties index data that the frame does not copy (accessors, other nodes).
 bool copies_node_extension(const std::string& name) { return name != "EXT_mesh_gpu_instancing" && name != "MSFT_lod"; }
 
-// A fixed attribute (TEXCOORD_n, COLOR_n) decoded to float into the BIN chunk; returns its accessor.
-int fixed_attribute(const gltf::AccessorReader& reader, int accessor, const std::string& name, bool quantized,
-                    size_t vertices, const std::string& what, BinWriter& bin) {
-  const bool color = name.rfind("COLOR_", 0) == 0;
-  // §3.7.2.1's attribute table; KHR_mesh_quantization adds signed and unnormalized texture coordinates.
-  const gltf::AccessorShape shape =
-      color       ? gltf::AccessorShape{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
-                                        {kFloat, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kUnsignedShort}, true}
-      : quantized ? gltf::AccessorShape{{TINYGLTF_TYPE_VEC2},
-                                        {kFloat, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                         TINYGLTF_COMPONENT_TYPE_SHORT, kUnsignedShort},
-                                        false}
-                  : gltf::AccessorShape{{TINYGLTF_TYPE_VEC2}, {kFloat, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kUnsignedShort}, true};
-  const std::string full = what + " " + name;
-  const size_t count = reader.count(accessor, full);
-  if (count != vertices)
-    throw InputError(what + ": " + name + " has " + std::to_string(count) + " elements, POSITION has " +
-                     std::to_string(vertices));
-  const int components = reader.components(accessor, full);
-  std::vector<float> values = reader.floats(accessor, shape, full);
-  if (color)  // float colours outside [0, 1] are invalid (§3.7.2.1); keep the file valid
-    for (float& v : values) v = std::clamp(v, 0.0f, 1.0f);
-  return bin.floats(values, count, components == 2 ? "VEC2" : components == 3 ? "VEC3" : "VEC4");
-}
-
-std::vector<FixedPrimitive> fixed_primitives(const Asset& asset, const tinygltf::Model& model, const json& src_mesh,
-                                             const gltf::AccessorReader& reader, bool quantized, size_t m,
-                                             size_t materials, BinWriter& bin) {
+std::vector<FixedPrimitive> fixed_primitives(const Asset& asset, const std::vector<SourcePrimitive>& source,
+                                             const json& src_mesh, size_t m, size_t materials, BinWriter& bin) {
   std::vector<FixedPrimitive> out;
   const json src_prims = member(src_mesh, "primitives");
   for (size_t p = 0; p < asset.meshes[m].primitives.size(); ++p) {
     const Primitive& prim = asset.meshes[m].primitives[p];
-    const std::string what = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+    if (!source.at(p).error.empty()) throw InputError(source[p].error);
     FixedPrimitive fixed;
-    for (const auto& [name, accessor] : model.meshes[m].primitives[p].attributes)  // std::map: sorted
-      if (name.rfind("TEXCOORD_", 0) == 0 || name.rfind("COLOR_", 0) == 0)
-        fixed.attributes[name] = fixed_attribute(reader, accessor, name, quantized, prim.vertex_count(), what, bin);
+    for (const SourceAttribute& a : source[p].attributes)
+      fixed.attributes[a.name] = bin.floats(a.values, a.count, a.components == 2 ? "VEC2" : a.components == 3 ? "VEC3" : "VEC4");
     if (!prim.indices.empty()) fixed.indices = bin.indices(prim.indices);
     if (prim.material >= 0 && size_t(prim.material) < materials) fixed.material = prim.material;
     const json src_prim = src_prims.is_array() && p < src_prims.size() ? src_prims[p] : json();
@@ -216,14 +188,10 @@ int BinWriter::indices(std::span<const uint32_t> indices) {
   return int(accessors.size()) - 1;
 }
 
-Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
-                           std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load) {
+Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene) {
+  if (!asset.source) throw std::invalid_argument("GlbWriter: the asset was loaded without LoadOptions::keep_source");
   // The JSON as the loader checked it: appearance values it refused are gone here too.
-  const gltf::ParsedModel parsed = gltf::parse_model(source, base_dir, load);
-  const json& src = parsed.doc;
-  const tinygltf::Model& model = parsed.model;
-  if (model.meshes.size() != asset.meshes.size() || model.nodes.size() != asset.nodes.size())
-    throw InputError("the file changed since it was loaded");
+  const json& src = asset.source->json;
 
   Appearance out;
   json asset_info = {{"version", "2.0"}, {"generator", std::string("dqskin ") + kVersion}};
@@ -236,7 +204,7 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
   out.doc["samplers"] = array_of(src, "samplers");
   out.doc["cameras"] = array_of(src, "cameras");
 
-  const std::vector<int> image_map = copy_images(src, model, out);
+  const std::vector<int> image_map = copy_images(src, asset.images, out);
   const std::vector<int> texture_map = copy_textures(src, image_map, out.doc["samplers"].size(), out);
   json materials = array_of(src, "materials");
   for (json& material : materials) {
@@ -271,9 +239,6 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
   }
 
   // The fixed attributes of each mesh that an instance draws, in the order instances first draw them.
-  bool quantized = false;
-  for (const std::string& e : model.extensionsUsed) quantized = quantized || e == "KHR_mesh_quantization";
-  const gltf::AccessorReader reader{model, load.max_unbacked_elements};
   const json src_meshes = array_of(src, "meshes");
   out.meshes.resize(asset.meshes.size());
   out.mesh_extras.resize(asset.meshes.size());
@@ -281,7 +246,7 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
     const size_t m = size_t(inst.mesh);
     if (!out.meshes[m].empty()) continue;
     const json src_mesh = m < src_meshes.size() ? src_meshes[m] : json();
-    out.meshes[m] = fixed_primitives(asset, model, src_mesh, reader, quantized, m, out.doc["materials"].size(), out.bin);
+    out.meshes[m] = fixed_primitives(asset, asset.source->meshes.at(m), src_mesh, m, out.doc["materials"].size(), out.bin);
     out.mesh_extras[m] = member(src_mesh, "extras");
   }
   return out;

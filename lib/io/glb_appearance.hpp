@@ -3,7 +3,7 @@
 // not move (texture coordinates, colours, indices), written once into the start of the BIN chunk.
 #pragma once
 
-#include "dqskin/load.hpp"
+#include "dqskin/asset.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <nlohmann/json.hpp>
@@ -66,10 +66,9 @@ struct Appearance {
   std::vector<std::string> source_extensions_required;
 };
 
-// Reads the source again (bytes of a .gltf or .glb, base_dir for its external files, `load` the options it
-// was loaded with) and prepares what every frame shares for the meshes that `instances` draw. Throws
-// InputError.
-Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
-                           std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load);
+// Prepares what every frame shares for the meshes that `instances` draw, from the asset and what its loader
+// kept of the file (Asset::source; std::invalid_argument without it). Throws InputError when an attribute
+// the frames copy (TEXCOORD_n, COLOR_n) could not be decoded.
+Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene);
 
 }  // namespace dqskin::glb

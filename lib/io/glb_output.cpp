@@ -7,7 +7,6 @@
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "glb_appearance.hpp"
-#include "../gltf/model_io.hpp"
 
 #include <cmath>
 #include <limits>
@@ -33,14 +32,6 @@ namespace {
 
 using DVec3 = Vec3<double>;
 using DVec4 = glm::vec<4, double, glm::defaultp>;
-
-std::vector<uint8_t> read_source(const std::string& path, const LoadOptions& load) {
-  try {
-    return gltf::read_regular_file(path, load.max_file_bytes);
-  } catch (const InputError& e) {
-    throw InputError(path + ": " + e.what());
-  }
-}
 
 // Where an instance's vertices go: its node's local space (to_local = inverse(world)) or, detached, world
 // space under an identity root node.
@@ -254,16 +245,12 @@ std::string glb_container(const json& doc, std::string bin) {
 
 }  // namespace
 
-GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, const LoadOptions& load)
-    : GlbWriter(asset, std::move(instances), scene, read_source(asset.path, load), gltf::folder_of(asset.path), load) {}
-
-GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene,
-                     std::span<const uint8_t> source, const std::string& base_dir, const LoadOptions& load) {
+GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene) {
   auto w = std::make_unique<Impl>();
   w->asset = &asset;
   w->instances = std::move(instances);
   if (scene >= int(asset.scenes.size())) throw std::invalid_argument("GlbWriter: scene does not exist");
-  w->fixed = glb::read_appearance(asset, w->instances, scene, source, base_dir, load);
+  w->fixed = glb::read_appearance(asset, w->instances, scene);
 
   // The nodes the scene reaches (§3.5.3); with no scene, every tree.
   std::vector<int> roots;

@@ -29,6 +29,13 @@ using nlohmann::json;
 using DMat4 = Mat4<double>;
 using DVec3 = Vec3<double>;
 
+// The writer copies what the loader kept of the file.
+const LoadOptions kKeepSource = [] {
+  LoadOptions o;
+  o.keep_source = true;
+  return o;
+}();
+
 // ---------------------------------------------------------------------------------------------------
 // Reading a .glb back.
 
@@ -299,7 +306,7 @@ void expect_frame(const Asset& asset, const json& source, const Frame& f, const 
 // Encodes the middle frame of the asset at `path` twice and from several threads; all must be equal.
 void check_model(const std::string& path, const std::string& sample_name) {
   SCOPED_TRACE(path);
-  const Asset asset = load_asset(path);
+  const Asset asset = load_asset(path, kKeepSource);
   const Frame f = mid_frame(asset);
   const GlbWriter writer(asset, f.instances, f.scene);
   const std::string bytes = writer.encode(f.view, f.clip, f.time);
@@ -342,7 +349,7 @@ TEST(GlbOutput, SharedModelsRoundTrip) {
 
 // Bad normals and tangents from the GPU (zero, NaN, not unit) become unit vectors: the file stays valid.
 TEST(GlbOutput, NonUnitNormalsAreReplaced) {
-  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
+  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf", kKeepSource);
   Frame f = mid_frame(asset);
   std::vector<float>& normals = f.batch.primitives[0].normals;
   normals[0] = normals[1] = normals[2] = 0;
@@ -358,7 +365,7 @@ TEST(GlbOutput, NonUnitNormalsAreReplaced) {
 // A skinned mesh ignores its node's transform (§3.7.3.1); once the node carries it, a mirroring node
 // would turn its faces inside out (§3.7.4), so the triangles' winding is reversed.
 TEST(GlbOutput, MirroredSkinnedNodeReversesWinding) {
-  Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
+  Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf", kKeepSource);
   const Frame plain = mid_frame(asset);
   const int node = plain.instances.at(0).node;
   asset.nodes[size_t(node)].local.scale = DVec3(-1, 1, 1);
@@ -486,7 +493,7 @@ TEST(GlbOutput, AppearanceIsCopiedWithItsReferencesChecked) {
   const fs::path path = dir.path / "appearance.gltf";
   std::ofstream(path) << doc.dump();
 
-  const Asset asset = load_asset(path.string());
+  const Asset asset = load_asset(path.string(), kKeepSource);
   const Frame f = rest_frame(asset);
   const std::string bytes = GlbWriter(asset, f.instances, f.scene).encode(f.view, nullptr, 0);
   keep_sample("appearance", bytes);
@@ -537,9 +544,9 @@ TEST(GlbOutput, SingularNodeMeshMovesToANewRoot) {
   doc["scenes"] = json::array({{{"nodes", {0}}}});
   const std::string text = doc.dump();
   const std::span<const uint8_t> bytes(reinterpret_cast<const uint8_t*>(text.data()), text.size());
-  const Asset asset = load_asset_from_memory(bytes, "memory", dir.path.string());
+  const Asset asset = load_asset_from_memory(bytes, "memory", dir.path.string(), kKeepSource);
   const Frame f = rest_frame(asset);
-  const std::string glb_bytes = GlbWriter(asset, f.instances, f.scene, bytes, dir.path.string()).encode(f.view, nullptr, 0);
+  const std::string glb_bytes = GlbWriter(asset, f.instances, f.scene).encode(f.view, nullptr, 0);
   keep_sample("singular_node", glb_bytes);
   const Glb glb = parse_glb(glb_bytes);
   expect_frame(asset, doc, f, glb);
@@ -555,7 +562,7 @@ TEST(GlbOutput, SingularNodeMeshMovesToANewRoot) {
 }
 
 TEST(GlbOutput, FrameThatDoesNotMatchTheInstancesIsRejected) {
-  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf");
+  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf", kKeepSource);
   const Frame f = mid_frame(asset);
   const GlbWriter writer(asset, f.instances, f.scene);
   FrameView fewer = f.view;
@@ -563,10 +570,24 @@ TEST(GlbOutput, FrameThatDoesNotMatchTheInstancesIsRejected) {
   EXPECT_THROW(writer.encode(fewer, f.clip, f.time), std::invalid_argument);
 }
 
-TEST(GlbOutput, UnreadableSourceIsAnInputError) {
-  Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf");
-  asset.path = "/nonexistent-dqskin-dir/two_skins.gltf";
-  EXPECT_THROW(GlbWriter(asset, mesh_instances(asset, 0), 0), InputError);
+// The writer reads nothing of the file: what it copies comes with the asset, which must have kept it.
+TEST(GlbOutput, WriterNeedsTheSourceTheLoaderKept) {
+  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/textured_cylinder.gltf");
+  EXPECT_EQ(asset.source, nullptr);
+  EXPECT_THROW(GlbWriter(asset, mesh_instances(asset, 0), 0), std::invalid_argument);
+}
+
+TEST(GlbOutput, WriterDoesNotReadTheFileAgain) {
+  const TempDir dir("moved");
+  const fs::path copy = dir.path / "textured_cylinder.gltf";
+  fs::copy_file(std::string(DQSKIN_TESTDATA_DIR) + "/textured_cylinder.gltf", copy);
+  const Asset asset = load_asset(copy.string(), kKeepSource);
+  const Frame f = rest_frame(asset);
+  fs::remove(copy);  // gone before the writer is made
+  const Glb glb = parse_glb(GlbWriter(asset, f.instances, f.scene).encode(f.view, nullptr, 0));
+  EXPECT_EQ(glb.doc["images"].size(), 1u);  // the checker PNG, from the asset
+  EXPECT_TRUE(glb.doc["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0"));
+  EXPECT_TRUE(glb.doc["meshes"][0]["primitives"][0]["attributes"].contains("COLOR_0"));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "dqskin/dual_quat.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -160,6 +161,10 @@ struct Scene {
   std::vector<int> roots;
 };
 
+// What the .glb writer copies from the file besides the Asset (lib/gltf/source_document.hpp: the checked
+// JSON, TEXCOORD_n and COLOR_n); opaque here, so that no JSON type appears in the Asset.
+struct SourceDocument;
+
 struct Asset {
   std::string path;  // as given to the loader, for messages
   std::vector<Node> nodes;
@@ -173,6 +178,7 @@ struct Asset {
   std::vector<SceneCamera> cameras;
   int default_scene = -1;
   std::vector<std::string> warnings;  // things that are allowed but worth telling the user
+  std::shared_ptr<const SourceDocument> source;  // with LoadOptions::keep_source, else null
 };
 
 }  // namespace dqskin

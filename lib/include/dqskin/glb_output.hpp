@@ -27,17 +27,12 @@ namespace dqskin {
 // "<name> (deformed)" with the identity transform draws the world-space vertices.
 class GlbWriter {
 public:
-  // `asset` must outlive the writer; the source file asset.path is read again (appearance objects and
-  // attributes that Asset does not keep). `instances` = mesh_instances(asset, scene), the order of the
-  // FrameView primitives; `scene` = choose_scene(...), -1 when the file has no scenes (then one scene of
-  // every root node is written). Throws InputError when the file cannot be read again or an attribute
-  // that Asset does not keep (TEXCOORD_n, COLOR_n) is malformed. `load`: the options the asset was loaded
-  // with (resource roots, limits), which the second reading obeys too.
-  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, const LoadOptions& load = {});
-  // The same for an asset loaded from memory (load_asset_from_memory): its bytes and the folder of its
-  // external files.
-  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, std::span<const uint8_t> source,
-            const std::string& base_dir, const LoadOptions& load = {});
+  // `asset` must outlive the writer and be loaded with LoadOptions::keep_source (Asset::source holds the
+  // appearance objects and attributes that the rest of the Asset does not keep; std::invalid_argument
+  // without it). `instances` = mesh_instances(asset, scene), the order of the FrameView primitives;
+  // `scene` = choose_scene(...), -1 when the file has no scenes (then one scene of every root node is
+  // written). Throws InputError when an attribute the frames copy (TEXCOORD_n, COLOR_n) is malformed.
+  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene);
   ~GlbWriter();
   GlbWriter(GlbWriter&&) noexcept;
   GlbWriter& operator=(GlbWriter&&) noexcept;

@@ -28,6 +28,9 @@ struct LoadOptions {
   // The caller decodes the images (the renderer): their declared sizes (RGBA, 8 bits) count toward
   // max_memory too.
   bool decoded_images = false;
+  // Keep what a .glb frame writer copies from the file (Asset::source), so that it never reads the file
+  // again: the checked JSON and every TEXCOORD_n and COLOR_n attribute. Off, the JSON is freed after loading.
+  bool keep_source = false;
   // Folders besides the model's own that its external buffers and images may come from (--resource-root).
   // A URI that resolves anywhere else, by "..", an absolute path or a symbolic link, is refused.
   std::vector<std::string> resource_roots;
