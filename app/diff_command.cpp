@@ -5,6 +5,7 @@
 #include "exit_codes.hpp"
 
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/diff_report.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/image_diff.hpp"
 

@@ -1,12 +1,13 @@
-// `dqskin diff`: images compared by OpenImageIO's ImageBufAlgo::compare with idiff's thresholds, heat maps
-// of failing pairs, and text, JSON and JUnit XML reports (include/dqskin/image_diff.hpp).
+// `dqskin diff`'s measuring: arguments paired (folders by relative path), images compared by OpenImageIO's
+// ImageBufAlgo::compare with idiff's thresholds, and heat maps of failing pairs
+// (include/dqskin/image_diff.hpp). The reports are diff_report.cpp's.
 #include "dqskin/image_diff.hpp"
+#include "diff_numbers.hpp"
 #include "../io/file_kind.hpp"
 #include "../io/oiio_message.hpp"
 #include "../io/image_file.hpp"
 #include "../io/srgb.hpp"
 #include "../io/stderr_capture.hpp"
-#include "../io/utf8.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
@@ -14,14 +15,12 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -33,27 +32,12 @@ namespace dqskin {
 namespace {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;  // keys in the order written
+using diff_detail::number;
+using diff_detail::percent;
 
 // Images larger than this (as float pixels) are refused rather than allocated: a corrupt header may claim
 // any size. 16 GiB holds a 32k × 32k RGBA float image.
 constexpr uint64_t kMaxImageBytes = uint64_t(16) << 30;
-
-// %g, with "inf", "-inf" and "nan" spelled the same on every platform.
-std::string number(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-// idiff's percentage: 3 significant digits.
-std::string percent(uint64_t count, uint64_t pixels) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * double(count) / double(std::max<uint64_t>(pixels, 1)));
-  return text;
-}
 
 std::string pixels_text(uint64_t count) { return std::to_string(count) + (count == 1 ? " pixel" : " pixels"); }
 
@@ -109,7 +93,9 @@ std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
 
 std::string window_text(const OIIO::ImageSpec& s) {
   std::string text = std::to_string(s.width) + "x" + std::to_string(s.height);
-  if (s.depth != 1) text += "x" + std::to_string(s.depth);
+  // append, not "x" + std::to_string(…): GCC 12 at -O3 warns a false -Wrestrict for that (its
+  // char_traits::copy inlined), depending on what else this file holds.
+  if (s.depth != 1) text.append("x").append(std::to_string(s.depth));
   if (s.x != 0 || s.y != 0 || s.z != 0)
     text += " at (" + std::to_string(s.x) + ", " + std::to_string(s.y) + (s.z ? ", " + std::to_string(s.z) : "") + ")";
   return text;
@@ -191,70 +177,6 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
                                          ", white not finite");
   io::write_image_file(file, "png", out_spec, OIIO::TypeDesc::UINT8, rgb.data());
   file.commit(Overwrite::kReplace);
-}
-
-// XML text or attribute value: markup escaped, invalid UTF-8 and the control characters XML 1.0 cannot hold
-// replaced by U+FFFD, line breaks kept (as character references in attributes).
-std::string xml(const std::string& text, bool attribute) {
-  std::string out;
-  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
-  const size_t n = text.size();
-  for (size_t i = 0; i < n;) {
-    const unsigned char c = s[i];
-    if (c < 0x80) {
-      switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += attribute ? "&quot;" : "\""; break;
-        case '\'': out += attribute ? "&apos;" : "'"; break;
-        case '\n': out += attribute ? "&#10;" : "\n"; break;
-        case '\r': out += "&#13;"; break;
-        case '\t': out += attribute ? "&#9;" : "\t"; break;
-        default: out += c < 0x20 || c == 0x7f ? "\xEF\xBF\xBD" : std::string(1, char(c));
-      }
-      ++i;
-      continue;
-    }
-    uint32_t code = 0;
-    const size_t length = utf8_sequence(text, i, code);
-    const bool valid = length > 0 && code != 0xFFFE && code != 0xFFFF;  // XML 1.0 Char excludes both
-    if (valid) {
-      out.append(text, i, length);
-      i += length;
-    } else {
-      out += "\xEF\xBF\xBD";
-      ++i;
-    }
-  }
-  return out;
-}
-
-Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
-std::string max_text(const ImageDiff& d) {
-  std::string text = number(d.max_error);
-  if (d.max_error != 0)
-    text += " at (" + std::to_string(d.max_x) + ", " + std::to_string(d.max_y) + ", " + d.max_channel + ")";
-  return text;
-}
-
-// The metrics of a compared pair, one per line, for JUnit's failure text.
-std::string metrics_lines(const ImageDiff& d) {
-  std::string text = "A: " + (d.a.empty() ? "(missing)" : d.a) + "\nB: " + (d.b.empty() ? "(missing)" : d.b) + "\n";
-  if (!d.compared) return text + d.problem + "\n";
-  text += "max error: " + max_text(d) + "\nmean error: " + number(d.mean_error) + "\nRMS error: " +
-          number(d.rms_error) + "\nPSNR: " + number(d.psnr) + " dB\npixels over --warn: " + std::to_string(d.over_warn) +
-          " (" + percent(d.over_warn, d.pixels) + ")\npixels over --fail: " + std::to_string(d.over_fail) + " (" +
-          percent(d.over_fail, d.pixels) + ")\npixels: " + std::to_string(d.pixels) + "\n";
-  if (!d.heat_map.empty()) text += "heat map: " + d.heat_map + "\n";
-  return text;
-}
-
-std::string summary_counts(const DiffReport& r) {
-  const size_t n = r.pairs.size();
-  return std::to_string(n) + (n == 1 ? " pair: " : " pairs: ") + std::to_string(r.count(DiffStatus::kPass)) + " pass, " +
-         std::to_string(r.count(DiffStatus::kWarn)) + " warn, " + std::to_string(r.count(DiffStatus::kFail)) + " fail";
 }
 
 }  // namespace
@@ -424,104 +346,6 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   report.thresholds = options.thresholds;
   for (const DiffPair& pair : pair_inputs(a, b)) report.pairs.push_back(diff_pair(pair, options));
   return report;
-}
-
-std::string diff_text(const DiffReport& report) {
-  std::string text;
-  for (const ImageDiff& d : report.pairs) {
-    text += std::string(status_name(d.status)) + "  " + printable(d.name) + "  ";
-    if (!d.compared) {
-      text += printable(d.problem) + "\n";
-      continue;
-    }
-    text += "max " + max_text(d) + "  mean " + number(d.mean_error) + "  RMS " + number(d.rms_error) + "  PSNR " +
-            number(d.psnr) + " dB  over warn " + std::to_string(d.over_warn) + " (" + percent(d.over_warn, d.pixels) +
-            ")  over fail " + std::to_string(d.over_fail) + " (" + percent(d.over_fail, d.pixels) + ")";
-    if (!d.heat_map.empty()) text += "  heat map " + printable(d.heat_map);
-    text += "\n";
-  }
-  text += "summary: " + std::string(status_name(report.status())) + " (" + summary_counts(report) + ")\n";
-  return text;
-}
-
-std::string diff_json(const DiffReport& report) {
-  const DiffThresholds& t = report.thresholds;
-  Json pairs = Json::array();
-  for (const ImageDiff& d : report.pairs) {
-    Json p;
-    p["name"] = d.name;
-    p["a"] = d.a.empty() ? Json(nullptr) : Json(d.a);
-    p["b"] = d.b.empty() ? Json(nullptr) : Json(d.b);
-    p["status"] = status_name(d.status);
-    if (!d.compared) {
-      p["problem"] = d.problem;
-    } else {
-      p["reason"] = d.reason.empty() ? Json(nullptr) : Json(d.reason);
-      p["max_error"] = finite_or_null(d.max_error);
-      p["max_at"] = {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}};
-      p["mean_error"] = finite_or_null(d.mean_error);
-      p["rms_error"] = finite_or_null(d.rms_error);
-      p["psnr"] = finite_or_null(d.psnr);
-      p["pixels"] = d.pixels;
-      p["pixels_over_warn"] = d.over_warn;
-      p["pixels_over_fail"] = d.over_fail;
-      p["heat_map"] = d.heat_map.empty() ? Json(nullptr) : Json(d.heat_map);
-    }
-    pairs.push_back(std::move(p));
-  }
-  Json doc;
-  doc["a"] = report.a;
-  doc["b"] = report.b;
-  doc["thresholds"] = {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
-                       {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
-                       {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)}};
-  doc["pairs"] = std::move(pairs);
-  doc["summary"] = {{"status", status_name(report.status())},
-                    {"pairs", report.pairs.size()},
-                    {"pass", report.count(DiffStatus::kPass)},
-                    {"warn", report.count(DiffStatus::kWarn)},
-                    {"fail", report.count(DiffStatus::kFail)}};
-  // File names come from the file system: invalid UTF-8 is replaced rather than refused.
-  return doc.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
-}
-
-std::string diff_junit(const DiffReport& report) {
-  const DiffThresholds& t = report.thresholds;
-  const std::string tests = std::to_string(report.pairs.size());
-  const std::string failures = std::to_string(report.count(DiffStatus::kFail));
-  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x += "<testsuites name=\"dqskin diff\" tests=\"" + tests + "\" failures=\"" + failures + "\" errors=\"0\">\n";
-  x += "  <testsuite name=\"" + xml("dqskin diff " + report.a + " " + report.b, true) + "\" tests=\"" + tests +
-       "\" failures=\"" + failures + "\" errors=\"0\" skipped=\"0\">\n";
-  x += "    <properties>\n";
-  const std::pair<const char*, std::string> properties[] = {
-      {"a", report.a},
-      {"b", report.b},
-      {"fail", number(t.fail)},
-      {"failpercent", number(t.fail_percent)},
-      {"hardfail", number(t.hard_fail)},
-      {"warn", number(t.warn)},
-      {"warnpercent", number(t.warn_percent)},
-      {"hardwarn", number(t.hard_warn)}};
-  for (const auto& [name, value] : properties)
-    x += "      <property name=\"" + std::string(name) + "\" value=\"" + xml(value, true) + "\"/>\n";
-  x += "    </properties>\n";
-  for (const ImageDiff& d : report.pairs) {
-    x += "    <testcase classname=\"dqskin.diff\" name=\"" + xml(d.name, true) + "\"";
-    if (d.status == DiffStatus::kPass) {
-      x += "/>\n";
-      continue;
-    }
-    x += ">\n";
-    if (d.status == DiffStatus::kFail)
-      x += "      <failure type=\"FAIL\" message=\"" + xml(d.reason, true) + "\">" + xml(metrics_lines(d), false) +
-           "</failure>\n";
-    else
-      x += "      <system-out>" + xml("WARN: " + d.reason + "\n" + metrics_lines(d), false) + "</system-out>\n";
-    x += "    </testcase>\n";
-  }
-  x += "  </testsuite>\n</testsuites>\n";
-  return x;
 }
 
 }  // namespace dqskin

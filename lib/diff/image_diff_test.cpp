@@ -1,3 +1,4 @@
+#include "dqskin/diff_report.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/image_diff.hpp"
 #include "../test_support/scratch_dir.hpp"

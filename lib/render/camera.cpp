@@ -1,7 +1,7 @@
 // The automatic camera of `dqskin render`: looks at the center of the animation's bounding box from a
 // yaw/pitch direction and fits the box's eight corners into the view, so every frame of an animation is
 // seen through the same camera.
-#include "dqskin/render.hpp"
+#include "dqskin/camera.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -128,15 +128,6 @@ Camera scene_camera(const SceneCamera& sc, const Mat4<double>& world, double asp
 
 const SceneCamera& camera_of_node(const Asset& asset, int node) {
   return asset.cameras[size_t(asset.nodes[size_t(node)].camera)];
-}
-
-bool parse_shade(const std::string& text, Shade& shade) {
-  if (text == "lit") shade = Shade::kLit;
-  else if (text == "normals") shade = Shade::kNormals;
-  else if (text == "weights") shade = Shade::kWeights;
-  else if (text == "mode-diff") shade = Shade::kModeDiff;
-  else return false;
-  return true;
 }
 
 }  // namespace dqskin

@@ -1,6 +1,6 @@
 // Whole-animation review images: contact sheets (a grid of resized frames with their numbers drawn in a
 // built-in digit font) and animated GIFs, both through OpenImageIO and written atomically.
-#include "dqskin/render.hpp"
+#include "dqskin/image_output.hpp"
 #include "../io/oiio_message.hpp"
 #include "../io/image_file.hpp"
 #include "../io/srgb.hpp"

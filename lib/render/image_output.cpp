@@ -1,6 +1,6 @@
 // Rendered images as files through OpenImageIO: PNG (8-bit sRGB) or OpenEXR (32-bit linear float), written
 // to an AtomicFile's temporary and renamed when complete.
-#include "dqskin/render.hpp"
+#include "dqskin/image_output.hpp"
 #include "../io/image_file.hpp"
 #include "../io/srgb.hpp"
 

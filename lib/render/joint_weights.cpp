@@ -1,5 +1,5 @@
 // The per-vertex influence of one joint, for `dqskin render --shade weights`.
-#include "dqskin/render.hpp"
+#include "dqskin/renderer.hpp"
 
 #include "dqskin/error.hpp"
 

@@ -1,7 +1,9 @@
 // Rendering: equal inputs give equal images, EGL and OSMesa agree, the automatic camera frames the model,
 // normals shading shows known normals, PNGs are sRGB-encoded. Tests that need a backend the machine lacks
 // skip with the reason.
-#include "dqskin/render.hpp"
+#include "dqskin/camera.hpp"
+#include "dqskin/image_output.hpp"
+#include "dqskin/renderer.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/gpu_deform.hpp"

@@ -1,6 +1,6 @@
 // The rasterizer of `dqskin render`: glsl/render.vert and glsl/render.frag drawing deformed frames into an
 // offscreen MSAA framebuffer of the borrowed headless context, resolved and read back as linear floats.
-#include "dqskin/render.hpp"
+#include "dqskin/renderer.hpp"
 #include "dqskin/triangles.hpp"
 
 #include "dqskin/error.hpp"
@@ -329,6 +329,15 @@ Renderer::~Renderer() = default;
 
 Image Renderer::render(const FrameView& frame, const Camera& camera, std::span<const std::vector<float>> scalars) {
   return impl_->render(frame, camera, scalars);
+}
+
+bool parse_shade(const std::string& text, Shade& shade) {
+  if (text == "lit") shade = Shade::kLit;
+  else if (text == "normals") shade = Shade::kNormals;
+  else if (text == "weights") shade = Shade::kWeights;
+  else if (text == "mode-diff") shade = Shade::kModeDiff;
+  else return false;
+  return true;
 }
 
 }  // namespace dqskin

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "dqskin/asset.hpp"
-#include "dqskin/render.hpp"
+#include "dqskin/image_output.hpp"
 
 namespace dqskin {
 

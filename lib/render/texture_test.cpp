@@ -4,8 +4,10 @@
 // OpenGL context skip with the reason when the machine has none.
 #include "texture_image.hpp"
 
+#include "dqskin/camera.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/render.hpp"
+#include "dqskin/image_output.hpp"
+#include "dqskin/renderer.hpp"
 #include "dqskin/skinning.hpp"
 #include "../test_support/gpu_context.hpp"
 

@@ -1,7 +1,8 @@
 // Comparing images the way OpenImageIO's idiff does, for renders checked in CI: two images, or two folders
 // paired by relative path. The numbers are ImageBufAlgo::compare's (max, mean and RMS error, PSNR, pixels
 // over the warn and fail thresholds); the verdict applies idiff's thresholds to them. Also writes heat maps
-// of failing pairs and the reports (text, JSON, JUnit XML). OpenImageIO stays out of this header.
+// of failing pairs. The reports of the result (text, JSON, JUnit XML) are dqskin/diff_report.hpp's.
+// OpenImageIO stays out of this header.
 #pragma once
 
 #include <cstdint>
@@ -112,24 +113,5 @@ ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options);
 
 // pair_inputs, then diff_pair for every pair, in order. Throws as they do.
 DiffReport diff_images(const std::string& a, const std::string& b, const DiffOptions& options);
-
-// The reports. Numbers are printed with 6 significant digits (%g) in text and JUnit, shortest round-trip
-// in JSON; the same report gives the same bytes.
-//
-// Text: one line per pair, "STATUS  name  max M at (x, y, C)  mean M  RMS R  PSNR P dB  over warn N (p%)
-// over fail N (p%)" or "STATUS  name  problem", with "  heat map FILE" when one was written, then
-// "summary: STATUS (N pairs: P pass, W warn, F fail)".
-std::string diff_text(const DiffReport& report);
-
-// One JSON document: {"a", "b", "thresholds", "pairs": [...], "summary"}; each pair has name, a, b (null
-// when missing), status, and either problem or the metrics, reason and heat_map. Values that are not
-// finite (PSNR of identical images, an infinite hard_fail) are null.
-std::string diff_json(const DiffReport& report);
-
-// JUnit XML: one testsuite, its thresholds as properties, one testcase per pair (classname "dqskin.diff",
-// name the pair's name); a failing pair has a <failure> whose message is the reason and whose text holds
-// the files and metrics; a warning is reported in <system-out> (JUnit has no warning state). No times or
-// host names, so the same inputs give the same file.
-std::string diff_junit(const DiffReport& report);
 
 }  // namespace dqskin

@@ -1,0 +1,30 @@
+// Numbers as `dqskin diff` prints them, in verdict reasons, heat-map descriptions and every report format
+// (internal to lib/diff): one spelling, so that a threshold reads the same in the text, the JSON reason
+// and the JUnit properties.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace dqskin::diff_detail {
+
+// %g, with "inf", "-inf" and "nan" spelled the same on every platform.
+inline std::string number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// idiff's percentage: 3 significant digits.
+inline std::string percent(uint64_t count, uint64_t pixels) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * double(count) / double(std::max<uint64_t>(pixels, 1)));
+  return text;
+}
+
+}  // namespace dqskin::diff_detail
