@@ -112,8 +112,8 @@ void print_row(const Measurement& m) {
 }  // namespace
 
 int run_bench(const BenchSettings& settings) {
-  GpuBackend backend = GpuBackend::kAuto;
-  if (!parse_gpu_backend(settings.backend, backend)) {
+  Backend backend = Backend::kAuto;
+  if (!parse_backend(settings.backend, backend) || backend == Backend::kCpu) {  // bench measures the reference anyway
     print_error("--backend must be auto, egl or osmesa, not '" + settings.backend + "'");
     return kUsageOrInputError;
   }

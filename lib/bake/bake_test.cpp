@@ -125,7 +125,7 @@ void check_bake_of(const std::string& input, const fs::path& out) {
   EXPECT_EQ(manifest["backend"]["name"].get<std::string>(), report.gpu.backend);
 
   // The deformer run again on the same times gives the same floats as the PLY and VAT files.
-  auto context = create_gpu_context(GpuBackend::kAuto);
+  auto context = create_gpu_context(Backend::kAuto);
   const int scene = choose_scene(asset, -1);
   GpuDeformer deformer(*context, asset, mesh_instances(asset, scene), {});
   for (const auto& clip_entry : manifest["inputs"][0]["animations"]) {

@@ -5,17 +5,18 @@
 
 namespace dqskin {
 
-const char* to_string(GpuBackend backend) {
+const char* to_string(Backend backend) {
   switch (backend) {
-    case GpuBackend::kAuto: return "auto";
-    case GpuBackend::kEgl: return "egl";
-    case GpuBackend::kOsMesa: return "osmesa";
+    case Backend::kAuto: return "auto";
+    case Backend::kEgl: return "egl";
+    case Backend::kOsMesa: return "osmesa";
+    case Backend::kCpu: return "cpu";
   }
   return "?";
 }
 
-bool parse_gpu_backend(const std::string& text, GpuBackend& backend) {
-  for (GpuBackend b : {GpuBackend::kAuto, GpuBackend::kEgl, GpuBackend::kOsMesa}) {
+bool parse_backend(const std::string& text, Backend& backend) {
+  for (Backend b : {Backend::kAuto, Backend::kEgl, Backend::kOsMesa, Backend::kCpu}) {
     if (text == to_string(b)) {
       backend = b;
       return true;
@@ -24,11 +25,16 @@ bool parse_gpu_backend(const std::string& text, GpuBackend& backend) {
   return false;
 }
 
-std::unique_ptr<GpuContext> create_gpu_context(GpuBackend backend) {
+std::string unknown_backend(const std::string& text) {
+  return "--backend '" + text + "' is not one of auto, egl, osmesa, cpu";
+}
+
+std::unique_ptr<GpuContext> create_gpu_context(Backend backend) {
   std::string report;
-  if (backend == GpuBackend::kAuto || backend == GpuBackend::kEgl)
+  const bool any = backend == Backend::kAuto || backend == Backend::kCpu;
+  if (any || backend == Backend::kEgl)
     if (auto ctx = gpu::create_egl_context(report)) return ctx;
-  if (backend == GpuBackend::kAuto || backend == GpuBackend::kOsMesa) {
+  if (any || backend == Backend::kOsMesa) {
 #ifdef DQSKIN_HAVE_OSMESA
     if (auto ctx = gpu::create_osmesa_context(report)) return ctx;
 #else

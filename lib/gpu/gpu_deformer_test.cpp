@@ -53,7 +53,7 @@ bool well_conditioned_normal(const Asset& asset, const std::vector<MeshInstance>
 struct Case {
   std::string path;
   BlendMode mode;
-  GpuBackend backend;
+  Backend backend;
 };
 
 std::vector<std::string> model_paths() {
@@ -135,7 +135,7 @@ std::vector<Case> cases() {
   std::vector<Case> out;
   for (const std::string& path : model_paths())
     for (BlendMode mode : {BlendMode::kLbs, BlendMode::kDqs})
-      for (GpuBackend backend : {GpuBackend::kEgl, GpuBackend::kOsMesa}) out.push_back({path, mode, backend});
+      for (Backend backend : {Backend::kEgl, Backend::kOsMesa}) out.push_back({path, mode, backend});
   return out;
 }
 
@@ -148,7 +148,7 @@ INSTANTIATE_TEST_SUITE_P(All, GpuMatchesCpu, testing::ValuesIn(cases()), [](cons
 
 TEST(GpuDeformer, TwoRunsAreByteIdentical) {
   const std::string path = std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf";
-  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(Backend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(path);
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -166,7 +166,7 @@ TEST(GpuDeformer, TwoRunsAreByteIdentical) {
 
 TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {
   const std::string path = std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf";
-  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(Backend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(path);
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -190,7 +190,7 @@ TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {
 }
 
 TEST(GpuDeformer, SinkRunsInOrderOnItsOwnThreadAndItsErrorsReachTheCaller) {
-  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(Backend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -220,7 +220,7 @@ TEST(GpuDeformer, SinkRunsInOrderOnItsOwnThreadAndItsErrorsReachTheCaller) {
 }
 
 TEST(GpuDeformer, DibIsRefusedOnTheGpu) {
-  std::unique_ptr<GpuContext> ctx = context_or_null(GpuBackend::kAuto);
+  std::unique_ptr<GpuContext> ctx = context_or_null(Backend::kAuto);
   if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf");
   EXPECT_THROW(GpuDeformer(*ctx, asset, mesh_instances(asset, 0), {BlendMode::kDib, 1 << 20}), InputError);

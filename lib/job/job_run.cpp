@@ -5,7 +5,7 @@
 namespace dqskin {
 
 GpuContext& JobContext::get() {
-  if (!context_) context_ = create_gpu_context(context_backend(backend_));
+  if (!context_) context_ = create_gpu_context(backend_);
   return *context_;
 }
 

@@ -58,7 +58,7 @@ bool is_background(const Image& image, size_t pixel, const glm::vec4& background
 }
 
 TEST(Render, TwoRendersOfARigAreByteIdentical) {
-  const auto context = context_or_null(GpuBackend::kAuto);
+  const auto context = context_or_null(Backend::kAuto);
   if (!context) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Image a = render_rig(*context, kArm, 0.5);
   const Image b = render_rig(*context, kArm, 0.5);
@@ -69,10 +69,10 @@ TEST(Render, TwoRendersOfARigAreByteIdentical) {
 // Both backends are Mesa's llvmpipe here; another driver may round differently. Threshold: every channel
 // within 2/255 of the other backend's, and at most 0.5 % of the pixels differ at all.
 TEST(Render, EglAndOsMesaAgree) {
-  const auto egl = context_or_null(GpuBackend::kEgl);
+  const auto egl = context_or_null(Backend::kEgl);
   if (!egl) GTEST_SKIP() << "no EGL context";
   const Image a = render_rig(*egl, kArm, 0.5);
-  const auto osmesa = context_or_null(GpuBackend::kOsMesa);
+  const auto osmesa = context_or_null(Backend::kOsMesa);
   if (!osmesa) GTEST_SKIP() << "no OSMesa context";
   const Image b = render_rig(*osmesa, kArm, 0.5);
   ASSERT_EQ(a.rgba.size(), b.rgba.size());
@@ -92,7 +92,7 @@ TEST(Render, EglAndOsMesaAgree) {
 }
 
 TEST(Render, AutomaticCameraCentersAndFillsTheView) {
-  const auto context = context_or_null(GpuBackend::kAuto);
+  const auto context = context_or_null(Backend::kAuto);
   if (!context) GTEST_SKIP() << "no OpenGL 4.3 context";
   RendererOptions options;
   options.width = 320;
@@ -139,7 +139,7 @@ Asset square_asset() {
 }
 
 TEST(Render, NormalsShadingShowsTheNormalAsAColor) {
-  const auto context = context_or_null(GpuBackend::kAuto);
+  const auto context = context_or_null(Backend::kAuto);
   if (!context) GTEST_SKIP() << "no OpenGL 4.3 context";
   const Asset asset = square_asset();
   const std::vector<MeshInstance> instances = mesh_instances(asset, 0);

@@ -10,7 +10,7 @@ namespace dqskin::testing_support {
 
 // The context, or null when this machine offers none; the test then skips with GTEST_SKIP() (a macro, so
 // it stays in the test body), naming the backend.
-inline std::unique_ptr<GpuContext> context_or_null(GpuBackend backend = GpuBackend::kAuto) {
+inline std::unique_ptr<GpuContext> context_or_null(Backend backend = Backend::kAuto) {
   try {
     return create_gpu_context(backend);
   } catch (const NoGpuContext&) {

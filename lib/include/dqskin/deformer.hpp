@@ -17,19 +17,10 @@
 
 namespace dqskin {
 
-// --backend: a headless OpenGL context (auto: EGL, then OSMesa) or the CPU reference.
-enum class Backend { kAuto, kEgl, kOsMesa, kCpu };
-const char* to_string(Backend backend);
-bool parse_backend(const std::string& text, Backend& backend);
-// The one-line refusal of a --backend value that parse_backend does not know.
-std::string unknown_backend(const std::string& text);
-
 // Whether a blend mode has a GPU path: dib exists only on the CPU reference.
 bool has_gpu_path(BlendMode mode);
 // Where a deformation runs: on the CPU reference for --backend cpu and for a mode without a GPU path.
 bool deforms_on_cpu(Backend backend, BlendMode mode);
-// The GL context to ask for: the backend's own, or auto for cpu (render still draws on a context).
-GpuBackend context_backend(Backend backend);
 
 // Where a deformer's time went, accumulated over runs, in seconds of the calling thread.
 struct DeformStats {

@@ -8,9 +8,13 @@
 
 namespace dqskin {
 
-enum class GpuBackend { kAuto, kEgl, kOsMesa };
-const char* to_string(GpuBackend backend);
-bool parse_gpu_backend(const std::string& text, GpuBackend& backend);
+// --backend, the one backend enum: a headless OpenGL context (auto: EGL, then OSMesa), or cpu, the
+// double-precision CPU reference (deforms_on_cpu in deformer.hpp decides where a deformation runs).
+enum class Backend { kAuto, kEgl, kOsMesa, kCpu };
+const char* to_string(Backend backend);
+bool parse_backend(const std::string& text, Backend& backend);
+// The one-line refusal of a --backend value that parse_backend does not know.
+std::string unknown_backend(const std::string& text);
 
 // What was created, for --verbose and bake manifests.
 struct GpuContextInfo {
@@ -45,7 +49,8 @@ public:
 };
 
 // kAuto tries EGL (the device platform, hardware devices first, then Mesa's surfaceless platform), then
-// OSMesa when it was built in.
-std::unique_ptr<GpuContext> create_gpu_context(GpuBackend backend);
+// OSMesa when it was built in. kCpu asks for a context as kAuto does: with the CPU reference deforming,
+// render still draws on whichever context there is.
+std::unique_ptr<GpuContext> create_gpu_context(Backend backend);
 
 }  // namespace dqskin
