@@ -4,6 +4,7 @@
 #include "console.hpp"
 #include "default_input.hpp"
 #include "exit_codes.hpp"
+#include "guarded_run.hpp"
 #include "interrupt.hpp"
 
 #include "dqskin/bake.hpp"
@@ -24,10 +25,26 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <mutex>
 
 namespace dqskin::cli {
 namespace {
+
+struct BakeSettings {
+  std::vector<std::string> inputs;  // empty: the bundled default input
+  std::string out_dir;
+  LoadSettings load;
+  FrameSelection selection;
+  std::string shard;
+  std::string mode = "dqs";
+  std::string formats = "glb";
+  std::string backend = "auto";
+  int scene = -1;
+  unsigned jobs = 0;
+  size_t gpu_memory_mb = 512;
+  bool dry_run = false, quiet = false, json_progress = false, force = false, verbose = false;
+};
 
 std::string clock_text(double seconds) {
   const long s = long(seconds + 0.5);
@@ -136,13 +153,12 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
   std::fprintf(stderr, "manifest: %s\n", printable(r.manifest).c_str());
 }
 
-}  // namespace
-
+// Bakes every input's animations into the asked formats. Returns an ExitCode.
 int run_bake(const BakeSettings& given) {
   BakeSettings settings = given;
   Progress progress(settings);
   OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing baked
-  try {
+  return guarded_run("bake", [&] {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     BakeOptions options = to_options(settings);
@@ -170,23 +186,62 @@ int run_bake(const BakeSettings& given) {
     if (!settings.quiet && failed < report.inputs.size())
       print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others baked");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
-  } catch (const JobCancelled&) {
-    progress.done();
-    out_folder.roll_back();  // removes the output folder this run made only if it is still empty
-    return die_of_interrupt("bake");
-  } catch (const NoGpuContext& e) {
-    progress.done();
-    print_error(e.what());
-    return kNoGlContext;
-  } catch (const std::filesystem::filesystem_error& e) {
-    progress.done();
-    print_error(e.path1().string(), e.code().message());
-    return kUsageOrInputError;
-  } catch (const std::exception& e) {
-    progress.done();
-    print_error(e.what());
-    return kUsageOrInputError;
-  }
+  }, [&] { progress.done(); }, &out_folder);
+}
+
+}  // namespace
+
+Command add_bake_command(CLI::App& app) {
+  auto settings = std::make_shared<BakeSettings>();
+  BakeSettings& bake = *settings;
+  CLI::App* bake_cmd = app.add_subcommand(
+      "bake", "Deform whole animations and write per-frame meshes (glb, ply, obj), vertex-animation textures "
+              "(vat) and bone textures (bones), with a manifest of every file's SHA-256");
+  bake_cmd->add_option("INPUT", bake.inputs,
+                       ".gltf or .glb files. Without any, the bundled textured_cylinder rig is baked into a new "
+                       "temporary folder, which is printed");
+  bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
+  add_frame_selection(*bake_cmd, bake.selection, "bake");
+  add_load_settings(*bake_cmd, bake.load);
+  bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
+      ->type_name("lbs|dqs|dib")
+      ->capture_default_str();
+  bake_cmd->add_option("--format", bake.formats, "Outputs, any of glb,ply,obj,vat,bones (comma-separated)")
+      ->type_name("LIST")
+      ->capture_default_str();
+  bake_cmd->add_option("--backend", bake.backend,
+                       "Deformer: auto (EGL, then OSMesa), egl, osmesa, or cpu (the double-precision reference)")
+      ->type_name("NAME")
+      ->capture_default_str();
+  bake_cmd->add_option("--scene", bake.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
+  bake_cmd->add_option("--shard", bake.shard,
+                       "Bake only shard I of N of the (input, animation, frame) work; the N shards' outputs "
+                       "together equal the whole bake")
+      ->type_name("I/N");
+  bake_cmd->add_option("-j,--jobs", bake.jobs, "Encoder threads (default: one per core)")
+      ->type_name("N")
+      ->check(CLI::Range(1u, 1024u));
+  bake_cmd->add_option("--gpu-memory", bake.gpu_memory_mb, "GPU output buffer budget, in MiB")
+      ->type_name("MIB")
+      ->capture_default_str()
+      ->check(CLI::Range(size_t(1), size_t(1) << 20));
+  bake_cmd->add_flag("-n,--dry-run", bake.dry_run, "List the files that would be written; write nothing");
+  bake_cmd->add_flag("-q,--quiet", bake.quiet, "Print nothing but errors");
+  bake_cmd->add_flag("--json-progress", bake.json_progress,
+                     "Print progress and the final summary as JSON lines on standard output");
+  bake_cmd->add_flag("-f,--force", bake.force,
+                     "Overwrite existing outputs that differ (without it they are an error; equal ones are kept)");
+  bake_cmd->add_flag("-v,--verbose", bake.verbose, "Also print the OpenGL backend and renderer");
+  bake_cmd->footer(
+      "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{glb,ply,obj} (frame numbers zero-padded, so name order is\n"
+      "frame order), materials.mtl, vat_positions.exr, vat_normals.exr, vat.json, bones_skinK.{exr,json}, and\n"
+      "OUTDIR/manifest.json (manifest.shard-I-of-N.json for a shard). Files appear complete or not at all.\n"
+      "Exit status: 0 success, 1 some inputs failed (the others baked), 2 usage or input error, 3 no OpenGL context.\n"
+      "Examples:\n"
+      "  dqskin bake Fox.glb -o out --format glb,vat\n"
+      "  dqskin bake *.glb -o out --fps 24 --frames 0:47 --mode lbs\n"
+      "  dqskin bake *.glb -o out --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT");
+  return {bake_cmd, [settings] { return run_bake(*settings); }};
 }
 
 }  // namespace dqskin::cli

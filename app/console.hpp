@@ -2,7 +2,7 @@
 // names and messages may carry any bytes a file or a library put there (internal to the CLI).
 #pragma once
 
-#include "dqskin/bake.hpp"
+#include "dqskin/job.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -12,9 +12,16 @@
 
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 namespace dqskin::cli {
 namespace {
+
+struct InfoSettings {
+  std::vector<std::string> inputs;
+  LoadSettings load;
+  bool json = false;
+};
 
 std::string seconds(double s) {
   char buf[32];
@@ -91,8 +98,7 @@ nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
   return j;
 }
 
-}  // namespace
-
+// Prints facts about each input. Returns an ExitCode.
 int run_info(const InfoSettings& settings) {
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   size_t failed = 0;
@@ -121,6 +127,19 @@ int run_info(const InfoSettings& settings) {
   if (settings.json) std::cout << json_text(nlohmann::ordered_json{{"files", files}}, 2) << '\n';
   if (failed == 0) return kSuccess;
   return failed == settings.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
+}
+
+}  // namespace
+
+Command add_info_command(CLI::App& app) {
+  auto settings = std::make_shared<InfoSettings>();
+  InfoSettings& info = *settings;
+  CLI::App* info_cmd = app.add_subcommand(
+      "info", "Print scenes, skinned meshes, skins, animations, morph targets and warnings of glTF files");
+  info_cmd->add_option("FILE", info.inputs, ".gltf or .glb files")->required();
+  info_cmd->add_flag("--json", info.json, "Print one JSON document instead of text");
+  add_load_settings(*info_cmd, info.load);
+  return {info_cmd, [settings] { return run_info(*settings); }};
 }
 
 }  // namespace dqskin::cli

@@ -4,6 +4,7 @@
 #include "console.hpp"
 #include "default_input.hpp"
 #include "exit_codes.hpp"
+#include "guarded_run.hpp"
 #include "interrupt.hpp"
 
 #include "dqskin/error.hpp"
@@ -22,10 +23,34 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace dqskin::cli {
 namespace {
+
+struct RenderSettings {
+  std::vector<std::string> inputs;
+  std::string out_dir;
+  LoadSettings load;
+  FrameSelection selection;
+  std::string shard;
+  std::string mode = "dqs";
+  std::string backend = "auto";
+  int scene = -1;
+  std::string size;  // WxH; empty: 512x512, or 512 high in a --camera's aspect ratio
+  std::string background = "0.2,0.2,0.2";  // sRGB
+  int samples = 4;
+  std::string shade = "lit";
+  std::string joint;  // --shade weights
+  std::optional<double> yaw, pitch, distance, fov;
+  bool ortho = false;
+  std::string camera;  // a node with a glTF camera
+  std::string format = "png";
+  bool sheet = false, gif = false;
+  int sheet_cell = 256;
+  bool quiet = false, json_progress = false, force = false;
+};
 
 // "WxH", each side 1 to 16384.
 void parse_size(const std::string& text, RendererOptions& o) {
@@ -121,8 +146,7 @@ void report_progress(const RenderSettings& s, const JobProgress& p, std::chrono:
   }
 }
 
-}  // namespace
-
+// Renders every frame of every input's animations into images. Returns an ExitCode.
 int run_render(const RenderSettings& given) {
   RenderSettings settings = given;
   const auto start = std::chrono::steady_clock::now();
@@ -131,7 +155,7 @@ int run_render(const RenderSettings& given) {
     if (bar) std::fputs("\r\033[K", stderr);
   };
   OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing rendered
-  try {
+  return guarded_run("render", [&] {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     RenderOptions options = to_options(settings);
@@ -169,23 +193,99 @@ int run_render(const RenderSettings& given) {
     if (!settings.quiet && failed < report.inputs.size())
       print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others rendered");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
-  } catch (const JobCancelled&) {
-    clear_bar();
-    out_folder.roll_back();  // removes the output folder this run made only if it is still empty
-    return die_of_interrupt("render");
-  } catch (const NoGpuContext& e) {
-    clear_bar();
-    print_error(e.what());
-    return kNoGlContext;
-  } catch (const std::filesystem::filesystem_error& e) {
-    clear_bar();
-    print_error(e.path1().string(), e.code().message());
-    return kUsageOrInputError;
-  } catch (const std::exception& e) {
-    clear_bar();
-    print_error(e.what());
-    return kUsageOrInputError;
-  }
+  }, clear_bar, &out_folder);
+}
+
+}  // namespace
+
+Command add_render_command(CLI::App& app) {
+  auto settings = std::make_shared<RenderSettings>();
+  RenderSettings& render = *settings;
+  CLI::App* render_cmd = app.add_subcommand(
+      "render", "Draw the deformed meshes of every frame offscreen into PNG (8-bit sRGB) or EXR (linear) images, "
+                "through the same headless OpenGL context as bake");
+  render_cmd->add_option("INPUT", render.inputs,
+                         ".gltf or .glb files. Without any, the bundled textured_cylinder rig is rendered into a new "
+                         "temporary folder (printed)");
+  render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
+  add_frame_selection(*render_cmd, render.selection, "render");
+  add_load_settings(*render_cmd, render.load);
+  render_cmd->add_option("--mode", render.mode,
+                         "Blending: lbs (linear), dqs (dual quaternion DLB) or dib (iterative, deformed on the CPU)")
+      ->type_name("lbs|dqs|dib")
+      ->capture_default_str();
+  render_cmd->add_option("--backend", render.backend,
+                         "Headless OpenGL backend that draws (and deforms): auto (EGL, then OSMesa), egl, osmesa, or "
+                         "cpu (deform with the double-precision CPU reference, draw with auto)")
+      ->type_name("NAME")
+      ->capture_default_str();
+  render_cmd->add_option("--scene", render.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
+  render_cmd->add_option("--shard", render.shard, "Render only shard I of N of the (input, animation, frame) work")
+      ->type_name("I/N");
+  render_cmd->add_option("--size", render.size,
+                         "Image size in pixels (default 512x512; with --camera, 512 high in the camera's aspect ratio)")
+      ->type_name("WxH");
+  render_cmd->add_option("--background", render.background, "Background color: R,G,B[,A] (0 to 1, sRGB) or #RRGGBB[AA]")
+      ->type_name("COLOR")
+      ->capture_default_str();
+  render_cmd->add_option("--samples", render.samples, "Multisample anti-aliasing samples per pixel")
+      ->type_name("N")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  render_cmd->add_option("--shade", render.shade,
+                         "lit (material base color factor, texture and COLOR_0; key light and ambient), normals (world normal as color), "
+                         "weights (influence of --joint as a heat map), mode-diff (distance between the lbs positions and "
+                         "those of --mode, dqs by default, as a heat map, its scale printed)")
+      ->type_name("lit|normals|weights|mode-diff")
+      ->capture_default_str();
+  render_cmd->add_option("--joint", render.joint, "Joint node shown by --shade weights")->type_name("NAME");
+  render_cmd->add_option("--yaw", render.yaw, "Camera turn about +Y from the front (+Z), degrees (default 35)")
+      ->type_name("DEG");
+  render_cmd->add_option("--pitch", render.pitch, "Camera elevation, degrees (default 20)")
+      ->type_name("DEG")
+      ->check(CLI::Range(-90.0, 90.0));
+  render_cmd->add_option("--distance", render.distance,
+                         "Camera distance from the center of the animation's bounding box (default: fit the box)")
+      ->type_name("UNITS")
+      ->check(CLI::PositiveNumber);
+  render_cmd->add_option("--fov", render.fov, "Vertical field of view, degrees (default 35)")
+      ->type_name("DEG")
+      ->check(CLI::Range(1.0, 170.0));
+  render_cmd->add_flag("--ortho", render.ortho, "Orthographic projection fitted to the bounding box");
+  render_cmd->add_option("--camera", render.camera,
+                         "See the frames through the glTF camera of the node named NODE, following its animation, instead "
+                         "of the automatic camera (not with --yaw/--pitch/--distance/--fov/--ortho)")
+      ->type_name("NODE");
+  render_cmd->add_option("--format", render.format, "Image format: png (8-bit sRGB) or exr (32-bit linear float)")
+      ->type_name("png|exr")
+      ->capture_default_str();
+  render_cmd->add_flag("--sheet", render.sheet,
+                       "Also write a contact sheet per animation: OUTDIR/<input name>/<animation>/sheet.png");
+  render_cmd->add_option("--sheet-cell", render.sheet_cell, "Width of a contact sheet cell in pixels (aspect kept)")
+      ->type_name("PIXELS")
+      ->capture_default_str();
+  render_cmd->add_flag("--gif", render.gif,
+                       "Also write an animated GIF per animation: OUTDIR/<input name>/<animation>/animation.gif");
+  render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+  render_cmd->add_flag("--json-progress", render.json_progress,
+                       "Print progress and the final summary as JSON lines on standard output");
+  render_cmd->add_flag("-f,--force", render.force,
+                       "Overwrite existing images that differ (without it they are an error; equal ones are kept)");
+  render_cmd->footer(
+      "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{png,exr}, frame numbers as bake names them. The\n"
+      "automatic camera is framed once on the bounding box of the whole animation, so the frames of an animation\n"
+      "are comparable; --camera follows its node's animation, and the image keeps the camera's yfov (ymag) in the\n"
+      "image's aspect ratio, never stretched.\n"
+      "Surfaces are drawn from both sides (open meshes and mirrored instances stay visible); alphaMode MASK cuts\n"
+      "out, BLEND is blended after the opaque surfaces in file order.\n"
+      "--sheet and --gif show the frames this run renders; with --shard I/N only the shard's own frames, in\n"
+      "sheet_shardIofN.png and animation_shardIofN.gif.\n"
+      "Exit status: 0 success, 1 some inputs failed (the others rendered), 2 usage or input error, 3 no OpenGL context.\n"
+      "Examples:\n"
+      "  dqskin render Fox.glb -o frames\n"
+      "  dqskin render arm.gltf -o frames --mode lbs --shade normals --size 256x256 --yaw 90 --ortho\n"
+      "  dqskin render shot.glb -o frames --camera ShotCam --anim Walk --sheet");
+  return {render_cmd, [settings] { return run_render(*settings); }};
 }
 
 }  // namespace dqskin::cli

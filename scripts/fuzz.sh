@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
-# Fuzzes the loader for SECONDS seconds: configures and builds the "fuzz" preset (clang, libFuzzer,
-# ASan + UBSan), makes a seed corpus under build/fuzz/, checks every truncated prefix of the seeds, then
-# runs dqskin_fuzz_load with the glTF dictionary. Exits non-zero on any finding: crash, sanitizer report,
-# uncaught exception, hang (-timeout), leak, or out-of-memory (-rss_limit_mb / -malloc_limit_mb).
+# Fuzzes for SECONDS seconds in all: configures and builds the "fuzz" preset (clang, libFuzzer, ASan +
+# UBSan), makes a seed corpus under build/fuzz/, checks every truncated prefix of the seeds, then runs,
+# with the glTF dictionary, dqskin_fuzz_load (the loader, two thirds of the time) and dqskin_fuzz_cli (the
+# command line's info and bake on the fuzzed file, the rest). Exits non-zero on any finding: crash,
+# sanitizer report, uncaught exception, hang (-timeout), leak, or out-of-memory (-rss_limit_mb /
+# -malloc_limit_mb).
 #
 #   scripts/fuzz.sh SECONDS            (from the repository root or anywhere)
 #
 # Environment: FUZZ_JOBS (build parallelism, default 1), FUZZ_MAX_LEN (largest generated input, default
 # 262144: room for 20,000 levels of nesting or thousands of primitives), FUZZ_ARTIFACTS (where crashing inputs are written, default build/fuzz/artifacts), FUZZ_ARGS
-# (more libFuzzer flags). The corpus (build/fuzz/corpus) grows across runs; seeds are re-added each run.
+# (more libFuzzer flags). The corpora (build/fuzz/corpus, build/fuzz/corpus-cli) grow across runs; seeds
+# are re-added each run.
 set -euo pipefail
 
 if [ $# -ne 1 ] || ! [[ $1 =~ ^[0-9]+$ ]]; then
@@ -28,7 +31,7 @@ fuzzer=$build/fuzz/dqskin_fuzz_load
 seeds=$build/seeds
 corpus=$build/corpus
 artifacts=${FUZZ_ARTIFACTS:-$build/artifacts}
-mkdir -p "$corpus" "$artifacts"
+mkdir -p "$corpus" "$build/corpus-cli" "$artifacts"
 rm -rf "$seeds"
 python3 scripts/make_malformed.py "$build/malformed" >/dev/null
 mkdir -p "$seeds"
@@ -55,21 +58,38 @@ cd "$workdir"
 prefix_list=$(printf '%s:' "$seeds"/*)
 DQSKIN_FUZZ_PREFIXES=${prefix_list%:} "$fuzzer" 2>&1 | tail -n 20
 
-log=$build/fuzz-$(date +%Y%m%d-%H%M%S).log
-status=0
-# -rss_limit_mb also sets -malloc_limit_mb: one allocation of more than 2 GiB is an out-of-memory finding.
-# shellcheck disable=SC2086
-"$fuzzer" "$corpus" "$seeds" \
-  -dict="$root/fuzz/glTF.dict" \
-  -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
-  -max_len="${FUZZ_MAX_LEN:-262144}" -print_final_stats=1 \
-  -artifact_prefix="$artifacts/" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
+# Runs one target: NAME CORPUS SECONDS [libFuzzer flags]; prints its findings and returns libFuzzer's status.
+run_target() {
+  local name=$1 target_corpus=$2 target_seconds=$3
+  shift 3
+  local log
+  log=$build/fuzz-$name-$(date +%Y%m%d-%H%M%S).log
+  local status=0
+  # -rss_limit_mb also sets -malloc_limit_mb: one allocation of more than 2 GiB is an out-of-memory finding.
+  # shellcheck disable=SC2086
+  "$build/fuzz/dqskin_fuzz_$name" "$target_corpus" "$seeds" \
+    -dict="$root/fuzz/glTF.dict" \
+    -max_total_time="$target_seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
+    -max_len="${FUZZ_MAX_LEN:-262144}" -print_final_stats=1 \
+    -artifact_prefix="$artifacts/$name-" "$@" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
+  grep -E "^(==[0-9]+==|SUMMARY|artifact_prefix|Test unit written|INFO: seed|Done|fuzz_cli:)" "$log" | tail -n 20 || true
+  local executions
+  executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+  echo "fuzz $name: ${executions:-unknown} executions in ${target_seconds} s; log: $log"
+  if [ "$status" -ne 0 ]; then
+    echo "fuzz $name: FINDING (libFuzzer exit status $status); reproduce with:" \
+      "$build/fuzz/dqskin_fuzz_$name <the input written above>" >&2
+  fi
+  return "$status"
+}
 
-grep -E "^(==[0-9]+==|SUMMARY|artifact_prefix|Test unit written|INFO: seed|Done)" "$log" | tail -n 20 || true
-executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
-echo "fuzz: ${executions:-unknown} executions in ${seconds} s; log: $log"
-if [ "$status" -ne 0 ]; then
-  echo "fuzz: FINDING (libFuzzer exit status $status); reproduce with: $fuzzer <the input written above>" >&2
-  exit "$status"
+load_seconds=$(( (seconds * 2 + 2) / 3 ))
+status=0
+run_target load "$corpus" "$load_seconds" || status=$?
+# The commands print; -close_fd_mask=3 silences them (sanitizer reports still reach the log).
+cli_seconds=$(( seconds - load_seconds ))  # 0 would mean no limit to libFuzzer
+if [ "$status" -eq 0 ] && [ "$cli_seconds" -gt 0 ]; then
+  run_target cli "$build/corpus-cli" "$cli_seconds" -close_fd_mask=3 || status=$?
 fi
+[ "$status" -ne 0 ] && exit "$status"
 echo "fuzz: no finding"

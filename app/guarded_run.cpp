@@ -1,0 +1,45 @@
+#include "guarded_run.hpp"
+
+#include "console.hpp"
+#include "exit_codes.hpp"
+#include "interrupt.hpp"
+
+#include "dqskin/gpu_context.hpp"
+#include "dqskin/job.hpp"
+
+#include <filesystem>
+#include <new>
+
+namespace dqskin::cli {
+
+int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy,
+                OutputJournal* out_folder) {
+  auto tidy_up = [&] {
+    if (tidy) tidy();
+  };
+  try {
+    return body();
+  } catch (const JobCancelled&) {
+    tidy_up();
+    if (out_folder) out_folder->roll_back();  // removes the output folder this run made only if it is still empty
+    return die_of_interrupt(command);
+  } catch (const NoGpuContext& e) {
+    tidy_up();
+    print_error(e.what());
+    return kNoGlContext;
+  } catch (const std::filesystem::filesystem_error& e) {
+    tidy_up();
+    print_error(e.path1().string(), e.code().message());
+    return kUsageOrInputError;
+  } catch (const std::bad_alloc&) {
+    tidy_up();
+    print_error("ran out of memory");
+    return kUsageOrInputError;
+  } catch (const std::exception& e) {
+    tidy_up();
+    print_error(e.what());
+    return kUsageOrInputError;
+  }
+}
+
+}  // namespace dqskin::cli

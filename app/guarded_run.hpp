@@ -1,0 +1,22 @@
+// Every command's last line of defence (README "Exit status"): what escapes a command's body ends in one
+// line on stderr and an exit status, never in an abort or an uncaught exception.
+#pragma once
+
+#include "dqskin/output_journal.hpp"
+
+#include <functional>
+
+namespace dqskin::cli {
+
+// Runs `body` and returns its status, or maps what escapes it, after `tidy` (clearing a progress bar):
+//   JobCancelled        the process dies of the signal that cancelled it (die_of_interrupt), after
+//                       `out_folder` (the output folder this run made) is removed if it is still empty
+//   NoGpuContext        3 (kNoGlContext) and its message
+//   filesystem_error    2 and the path with the system's message
+//   std::bad_alloc      2 and "ran out of memory"
+//   other exceptions    2 and their message
+// `command` names the command in the interrupt's message ("bake: interrupted").
+int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy = {},
+                OutputJournal* out_folder = nullptr);
+
+}  // namespace dqskin::cli
