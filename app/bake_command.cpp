@@ -6,27 +6,23 @@
 #include "exit_codes.hpp"
 #include "guarded_run.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 
 #include "dqskin/bake.hpp"
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/output_journal.hpp"
-#include "dqskin/stderr_lock.hpp"
 #include "dqskin/version.hpp"
 
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <mutex>
 
 namespace dqskin::cli {
 namespace {
@@ -44,54 +40,6 @@ struct BakeSettings {
   unsigned jobs = 0;
   size_t gpu_memory_mb = 512;
   bool dry_run = false, quiet = false, json_progress = false, force = false, verbose = false;
-};
-
-std::string clock_text(double seconds) {
-  const long s = long(seconds + 0.5);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
-  return buf;
-}
-
-// The progress display: a bar redrawn at most ten times a second on a terminal, or one JSON line per
-// batch. Called from the bake's worker threads.
-class Progress {
-public:
-  Progress(const BakeSettings& s) : json_(s.json_progress), bar_(!s.quiet && !s.json_progress && ::isatty(2)) {}
-
-  void operator()(const JobProgress& p) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double rate = elapsed > 0 ? double(p.frames_done) / elapsed : 0;
-    const double left = rate > 0 ? double(p.frames_total - p.frames_done) / rate : 0;
-    if (json_) {
-      std::cout << json_text(nlohmann::json{{"event", "progress"},   {"frames_done", p.frames_done},
-                                            {"frames_total", p.frames_total}, {"input", p.input},
-                                            {"animation", p.clip},    {"elapsed_s", elapsed},
-                                            {"frames_per_s", rate},   {"eta_s", left}})
-                << std::endl;
-    } else if (bar_ && (elapsed - last_draw_ > 0.1 || p.frames_done == p.frames_total)) {
-      const std::lock_guard<std::mutex> stderr_lock(stderr_mutex());
-      last_draw_ = elapsed;
-      const int width = 30;
-      const int filled = p.frames_total ? int(double(width) * double(p.frames_done) / double(p.frames_total)) : width;
-      std::fprintf(stderr, "\r\033[K[%s%s] %zu/%zu frames  %.1f frames/s  %s left  %s", std::string(size_t(filled), '#').c_str(),
-                   std::string(size_t(width - filled), '.').c_str(), p.frames_done, p.frames_total, rate,
-                   clock_text(left).c_str(), printable(p.clip).c_str());
-      drawn_ = true;
-    }
-  }
-
-  void done() {
-    const std::lock_guard<std::mutex> stderr_lock(stderr_mutex());
-    if (drawn_) std::fputs("\r\033[K", stderr);
-  }
-
-private:
-  bool json_, bar_, drawn_ = false;
-  double last_draw_ = -1;
-  std::mutex mutex_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 BakeOptions to_options(const BakeSettings& s) {
@@ -156,7 +104,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
 // Bakes every input's animations into the asked formats. Returns an ExitCode.
 int run_bake(const BakeSettings& given) {
   BakeSettings settings = given;
-  Progress progress(settings);
+  ProgressPrinter progress(settings.json_progress, settings.quiet);
   OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing baked
   return guarded_run("bake", [&] {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));

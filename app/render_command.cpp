@@ -6,18 +6,16 @@
 #include "exit_codes.hpp"
 #include "guarded_run.hpp"
 #include "interrupt.hpp"
+#include "progress.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/output_journal.hpp"
-#include "dqskin/stderr_lock.hpp"
 #include "dqskin/render.hpp"
 
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -132,28 +130,10 @@ RenderOptions to_options(const RenderSettings& s) {
   return o;
 }
 
-// One line per rendered frame: a JSON object, or a counter on a terminal.
-void report_progress(const RenderSettings& s, const JobProgress& p, std::chrono::steady_clock::time_point start) {
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (s.json_progress) {
-    std::cout << json_text(nlohmann::json{{"event", "progress"},         {"frames_done", p.frames_done},
-                                          {"frames_total", p.frames_total}, {"input", p.input},
-                                          {"animation", p.clip},          {"elapsed_s", elapsed}})
-              << std::endl;
-  } else if (!s.quiet && ::isatty(2)) {
-    const std::lock_guard<std::mutex> lock(stderr_mutex());
-    std::fprintf(stderr, "\r\033[K%zu/%zu frames  %s", p.frames_done, p.frames_total, printable(p.clip).c_str());
-  }
-}
-
 // Renders every frame of every input's animations into images. Returns an ExitCode.
 int run_render(const RenderSettings& given) {
   RenderSettings settings = given;
-  const auto start = std::chrono::steady_clock::now();
-  const bool bar = !settings.quiet && !settings.json_progress && ::isatty(2);
-  auto clear_bar = [&]() {
-    if (bar) std::fputs("\r\033[K", stderr);
-  };
+  ProgressPrinter progress(settings.json_progress, settings.quiet);
   OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing rendered
   return guarded_run("render", [&] {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
@@ -162,8 +142,8 @@ int run_render(const RenderSettings& given) {
     options.cancel = catch_interrupts("render");
     out_folder.make_folders(options.out_dir);
     const RenderReport report =
-        render(settings.inputs, options, [&](const JobProgress& p) { report_progress(settings, p, start); });
-    clear_bar();
+        render(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
+    progress.done();
     print_input_messages(report.inputs, settings.quiet);
     const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
                                                [](const InputResult& r) { return !r.error.empty(); }));
@@ -193,7 +173,7 @@ int run_render(const RenderSettings& given) {
     if (!settings.quiet && failed < report.inputs.size())
       print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others rendered");
     return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
-  }, clear_bar, &out_folder);
+  }, [&] { progress.done(); }, &out_folder);
 }
 
 }  // namespace
