@@ -15,7 +15,7 @@
 #include "dqskin/sha256.hpp"
 #include "dqskin/texture_output.hpp"
 #include "manifest.hpp"
-#include "parallel_for.hpp"
+#include "../concurrency/parallel_for.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -184,7 +184,7 @@ private:
   void encode_batch(const DeformedBatch& batch, const ClipPlan& clip, const std::vector<size_t>& frames, VatWriter* vat) {
     ledger_.check_cancel();
     const size_t tasks = batch.frame_count + (vat ? 1 : 0);
-    parallel_for(tasks, jobs_, [&](size_t task) {
+    concurrency::parallel_for(tasks, jobs_, [&](size_t task) {
       ledger_.check_cancel();
       if (task == batch.frame_count) {
         const Clock::time_point start = Clock::now();

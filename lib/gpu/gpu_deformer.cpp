@@ -3,7 +3,7 @@
 // batches in flight and the sink on a thread of its own.
 #include "dqskin/gpu_deform.hpp"
 
-#include "ordered_worker.hpp"
+#include "../concurrency/ordered_worker.hpp"
 #include "skin_kernel.hpp"
 
 #include <algorithm>
@@ -45,7 +45,7 @@ struct GpuDeformer::Impl {
     gpu::KernelTimes t;
     // The sink runs on its own thread: while it writes batch b − 2, batch b − 1 is read back and batch b
     // is computed.
-    gpu::OrderedWorker<DeformedBatch> worker(sink);
+    concurrency::OrderedWorker<DeformedBatch> worker(sink);
     struct InFlight {
       gpu::SkinKernel::Submitted submitted;
       size_t first = 0;

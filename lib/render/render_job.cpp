@@ -7,7 +7,7 @@
 #include "dqskin/deformer.hpp"
 #include "dqskin/job_run.hpp"
 #include "dqskin/output_journal.hpp"
-#include "../gpu/ordered_worker.hpp"
+#include "../concurrency/ordered_worker.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -136,7 +136,7 @@ public:
     // Encoding and writing a frame (PNG compression, the sheet's resize, the GIF's palette) runs on a
     // thread of its own, in frame order, while this one renders the next frame: GL stays on this thread.
     {
-      gpu::OrderedWorker<std::pair<size_t, Image>> writer([&](const std::pair<size_t, Image>& item) {
+      concurrency::OrderedWorker<std::pair<size_t, Image>> writer([&](const std::pair<size_t, Image>& item) {
         const auto& [f, image] = item;
         const std::string relative = clip.frame_file(f, extension(options_.format));
         write_image(options_.out_dir + "/" + relative, image, options_.format, {options_.overwrite, &journal_});

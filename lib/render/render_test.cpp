@@ -6,7 +6,7 @@
 #include "dqskin/renderer.hpp"
 
 #include "dqskin/error.hpp"
-#include "dqskin/gpu_deform.hpp"
+#include "dqskin/deformer.hpp"
 #include "dqskin/load.hpp"
 #include "../test_support/gpu_context.hpp"
 
@@ -30,9 +30,9 @@ using testing_support::context_or_null;
 // Every frame of `clip` at `times`, deformed on the GPU (mode dqs), as one batch per deformer batch.
 std::vector<DeformedBatch> deform(GpuContext& context, const Asset& asset, const std::vector<MeshInstance>& instances,
                                   const Clip* clip, const std::vector<double>& times) {
-  GpuDeformer deformer(context, asset, instances, {});
+  const std::unique_ptr<Deformer> deformer = make_deformer(&context, asset, instances, DeformerOptions{});
   std::vector<DeformedBatch> out;
-  deformer.run(clip, times, [&](const DeformedBatch& b) { out.push_back(b); });
+  deformer->run(clip, times, [&](const DeformedBatch& b) { out.push_back(b); });
   return out;
 }
 

@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-namespace dqskin::bake_detail {
+namespace dqskin::concurrency {
 
 template <class Fn>
 void parallel_for(size_t n, unsigned threads, const Fn& fn) {
@@ -36,4 +36,4 @@ void parallel_for(size_t n, unsigned threads, const Fn& fn) {
   if (error) std::rethrow_exception(error);
 }
 
-}  // namespace dqskin::bake_detail
+}  // namespace dqskin::concurrency

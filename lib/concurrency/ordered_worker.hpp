@@ -1,7 +1,7 @@
 // One worker thread that consumes items in the order they are pushed, with at most one item waiting:
-// the producer makes item n + 1 while the worker handles item n (internal; the GPU deformer hands read-back
-// batches to the caller's sink this way, so writing outputs overlaps the next dispatch, and render writes
-// each image while the next one is drawn).
+// the producer makes item n + 1 while the worker handles item n (internal to the library). The GPU
+// deformer hands read-back batches to the caller's sink this way, so that writing outputs overlaps the
+// next dispatch, and render writes each image while the next one is drawn.
 #pragma once
 
 #include <condition_variable>
@@ -11,7 +11,7 @@
 #include <optional>
 #include <thread>
 
-namespace dqskin::gpu {
+namespace dqskin::concurrency {
 
 template <typename T>
 class OrderedWorker {
@@ -87,4 +87,4 @@ private:
   std::thread thread_;  // last: starts after every other member exists
 };
 
-}  // namespace dqskin::gpu
+}  // namespace dqskin::concurrency
