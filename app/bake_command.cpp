@@ -127,13 +127,8 @@ int run_bake(const BakeSettings& given) {
     } else {
       print_summary(settings, report);
     }
-    const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
-                                               [](const InputResult& r) { return !r.error.empty(); }));
-    if (failed < report.inputs.size()) out_folder.keep();
-    if (failed == 0) return kSuccess;
-    if (!settings.quiet && failed < report.inputs.size())
-      print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others baked");
-    return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
+    if (failed_inputs(report.inputs) < report.inputs.size()) out_folder.keep();
+    return job_exit_status(report.inputs, settings.quiet, "baked");
   }, [&] { progress.done(); }, &out_folder);
 }
 

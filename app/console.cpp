@@ -1,8 +1,11 @@
 #include "console.hpp"
 
+#include "exit_codes.hpp"
+
 #include "dqskin/error.hpp"
 #include "dqskin/stderr_lock.hpp"
 
+#include <algorithm>
 #include <iostream>
 
 namespace dqskin::cli {
@@ -36,6 +39,19 @@ void print_input_messages(const std::vector<InputResult>& inputs, bool quiet) {
     if (!quiet)
       for (const std::string& w : in.warnings) print_warning(in.path, w);
   }
+}
+
+size_t failed_inputs(const std::vector<InputResult>& inputs) {
+  return size_t(std::count_if(inputs.begin(), inputs.end(), [](const InputResult& r) { return !r.error.empty(); }));
+}
+
+int job_exit_status(const std::vector<InputResult>& inputs, bool quiet, const char* done) {
+  const size_t failed = failed_inputs(inputs);
+  if (failed == 0) return kSuccess;
+  if (failed == inputs.size()) return kUsageOrInputError;
+  if (!quiet)
+    print_error(std::to_string(failed) + " of " + std::to_string(inputs.size()) + " inputs failed; the others " + done);
+  return kSomeInputsFailed;
 }
 
 }  // namespace dqskin::cli

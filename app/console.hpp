@@ -23,6 +23,13 @@ void print_warning(std::string_view file, std::string_view message);
 // others ("dqskin: FILE: warning: ..."): parts of the file that were dropped or corrected.
 void print_input_messages(const std::vector<InputResult>& inputs, bool quiet);
 
+// How many inputs failed.
+size_t failed_inputs(const std::vector<InputResult>& inputs);
+
+// A job's exit status (README "Exit status"): 0 when every input succeeded; 1 when some failed, saying so
+// unless `quiet` ("2 of 5 inputs failed; the others baked", `done` = "baked"); 2 when all failed.
+int job_exit_status(const std::vector<InputResult>& inputs, bool quiet, const char* done);
+
 // A JSON document as text; bytes that are not UTF-8 (in file names, or quoted by a library's message)
 // become U+FFFD instead of making the dump throw.
 template <typename Json>

@@ -145,8 +145,7 @@ int run_render(const RenderSettings& given) {
         render(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
     print_input_messages(report.inputs, settings.quiet);
-    const size_t failed = size_t(std::count_if(report.inputs.begin(), report.inputs.end(),
-                                               [](const InputResult& r) { return !r.error.empty(); }));
+    const size_t failed = failed_inputs(report.inputs);
     if (failed < report.inputs.size()) out_folder.keep();
     // mode-diff: what the heat map's top color stands for, per animation.
     nlohmann::json scales = nlohmann::json::array();
@@ -169,10 +168,7 @@ int run_render(const RenderSettings& given) {
                    report.inputs.size() - failed, report.inputs.size() - failed == 1 ? "" : "s", report.wall_seconds,
                    printable(options.out_dir).c_str());
     }
-    if (failed == 0) return kSuccess;
-    if (!settings.quiet && failed < report.inputs.size())
-      print_error(std::to_string(failed) + " of " + std::to_string(report.inputs.size()) + " inputs failed; the others rendered");
-    return failed == report.inputs.size() ? kUsageOrInputError : kSomeInputsFailed;
+    return job_exit_status(report.inputs, settings.quiet, "rendered");
   }, [&] { progress.done(); }, &out_folder);
 }
 
