@@ -44,16 +44,13 @@ PlanOptions plan_options(const BakeOptions& options) {
 // Thread-safe bookkeeping of one bake: outputs, stage times, progress.
 struct Ledger {
   const BakeOptions& options;
-  const std::function<void(const JobProgress&)>& progress;
+  ProgressCounter& progress;
   BakeReport& report;
   std::mutex mutex;
-  size_t frames_done = 0;
 
   std::string absolute(const std::string& relative) const { return options.out_dir + "/" + relative; }
 
-  void check_cancel() const {
-    if (options.cancel && options.cancel->load()) throw JobCancelled();
-  }
+  void check_cancel() const { check_cancelled(options.cancel); }
 
   void add_time(double BakeStageTimes::*stage, double seconds) {
     const std::lock_guard<std::mutex> lock(mutex);
@@ -90,16 +87,6 @@ struct Ledger {
     const std::lock_guard<std::mutex> lock(mutex);
     const std::string prefix = input.stem + "/";
     std::erase_if(report.outputs, [&](const BakeOutput& o) { return o.path.rfind(prefix, 0) == 0; });
-  }
-
-  void frames_finished(size_t count, const InputPlan& input, const ClipPlan& clip) {
-    JobProgress p;
-    {
-      const std::lock_guard<std::mutex> lock(mutex);
-      frames_done += count;
-      p = {frames_done, report.frames_total, input.path, clip.name};
-    }
-    if (progress) progress(p);
   }
 };
 
@@ -196,7 +183,7 @@ private:
       if (!clip.frame_mine[f]) return;
       encode_frame(frame_view(batch, task), clip, f);
     });
-    ledger_.frames_finished(batch.frame_count, input_, clip);
+    ledger_.progress.add(batch.frame_count, input_.path, clip.name);
   }
 
   void encode_frame(const FrameView& view, const ClipPlan& clip, size_t f) {
@@ -310,7 +297,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   }
 
   JobContext context(options.backend);
-  Ledger ledger{options, progress, report, {}, 0};
+  ProgressCounter counter(report.frames_total, progress);
+  Ledger ledger{options, counter, report, {}};
   report.inputs = for_each_input(
       plans,
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {

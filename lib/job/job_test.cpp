@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <thread>
 
 namespace dqskin {
 namespace {
@@ -136,6 +138,34 @@ TEST(JobRun, ACancelLeavesTheLoopAndKeepsTheFiles) {
                JobCancelled);
   EXPECT_EQ(started, 1u);
   EXPECT_TRUE(fs::exists(out.path() / "bending_arm" / "file.txt"));
+}
+
+// Writers on several threads report frames at once: every frame is counted once, the total is the job's.
+TEST(ProgressCounter, CountsEveryFrameOnceAcrossThreads) {
+  std::mutex mutex;
+  std::vector<size_t> seen;
+  ProgressCounter counter(1000, [&](const JobProgress& p) {
+    EXPECT_EQ(p.frames_total, 1000u);
+    const std::lock_guard<std::mutex> lock(mutex);
+    seen.push_back(p.frames_done);
+  });
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&] {
+      for (int i = 0; i < 250; ++i) counter.add(1, "in.gltf", "walk");
+    });
+  for (std::thread& t : threads) t.join();
+  ASSERT_EQ(seen.size(), 1000u);
+  std::sort(seen.begin(), seen.end());
+  for (size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], i + 1);  // each count reported exactly once
+}
+
+TEST(CheckCancelled, ThrowsOnceTheFlagIsSet) {
+  std::atomic<bool> cancel{false};
+  EXPECT_NO_THROW(check_cancelled(nullptr));
+  EXPECT_NO_THROW(check_cancelled(&cancel));
+  cancel = true;
+  EXPECT_THROW(check_cancelled(&cancel), JobCancelled);
 }
 
 }  // namespace

@@ -74,7 +74,8 @@ RendererOptions renderer_options(const InputPlan& input, const RenderOptions& op
 
 class InputRenderer {
 public:
-  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report, const std::function<void(const JobProgress&)>& progress, OutputJournal& journal)
+  InputRenderer(const InputPlan& input, const RenderOptions& options, GpuContext& context, RenderReport& report,
+                ProgressCounter& progress, OutputJournal& journal)
       : input_(input), options_(options), report_(report), progress_(progress), journal_(journal),
         camera_node_(options.camera_node.empty() ? -1 : find_camera_node(*input.asset, options.camera_node)),
         renderer_options_(renderer_options(input, options, camera_node_)),
@@ -143,7 +144,8 @@ public:
         report_.outputs.push_back(relative);
         if (sheet) sheet->add(image, clip.numbers[f]);
         if (gif) gif->add(image);
-        if (progress_) progress_({++frames_done_, report_.frames_total, input_.path, clip.name});
+        ++frames_done_;
+        progress_.add(1, input_.path, clip.name);
       });
       for_each_frame(clip, mine, [&](size_t f, const FrameView& frame, const FrameView* other) {
         check_cancel();
@@ -171,9 +173,7 @@ public:
   size_t frames_done() const { return frames_done_; }
 
 private:
-  void check_cancel() const {
-    if (options_.cancel && options_.cancel->load()) throw JobCancelled();
-  }
+  void check_cancel() const { check_cancelled(options_.cancel); }
 
   // Calls visit(frame index, frame, the other mode's frame or null) for `frames` of the clip, in order,
   // a chunk at a time on this thread.
@@ -201,7 +201,7 @@ private:
   const InputPlan& input_;
   const RenderOptions& options_;
   RenderReport& report_;
-  const std::function<void(const JobProgress&)>& progress_;
+  ProgressCounter& progress_;
   OutputJournal& journal_;
   const int camera_node_;  // --camera: the node, or -1 for the automatic camera
   const RendererOptions renderer_options_;
@@ -236,20 +236,15 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
     for (const ClipPlan& clip : plan.clips) report.frames_total += clip.my_frames().size();
 
   JobContext context(options.backend);
-  size_t done = 0;  // frames of the inputs rendered before this one: progress counts over all inputs
+  ProgressCounter counter(report.frames_total, progress);
   size_t outputs_before = 0, mode_diff_before = 0;
   report.inputs = for_each_input(
       plans,
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {
         outputs_before = report.outputs.size(), mode_diff_before = report.mode_diff.size();
-        GpuContext& gpu = context.get();
-        const std::function<void(const JobProgress&)> counted = [&](const JobProgress& p) {
-          if (progress) progress({done + p.frames_done, p.frames_total, p.input, p.clip});
-        };
-        InputRenderer renderer(plan, options, gpu, report, counted, journal);
+        InputRenderer renderer(plan, options, context.get(), report, counter, journal);
         for (const ClipPlan& clip : plan.clips) renderer.render_clip(clip);
         result.frames = renderer.frames_done();
-        done += result.frames;
       },
       [&](const InputPlan&) {
         report.outputs.resize(outputs_before);

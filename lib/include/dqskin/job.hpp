@@ -2,7 +2,10 @@
 // (bake, render, and the commands to come) reports per input, how it reports progress, and how it stops.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <functional>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,10 +37,39 @@ struct Shard {
 // Parses "I/N" (0 ≤ I < N), the --shard flag. Throws InputError.
 Shard parse_shard(const std::string& text);
 
+// Counts a job's finished frames over all its inputs and reports each step; safe to call from several
+// threads. Frames of an input that fails later stay counted: progress shows work done, not work kept.
+class ProgressCounter {
+public:
+  ProgressCounter(size_t frames_total, std::function<void(const JobProgress&)> report)
+      : total_(frames_total), report_(std::move(report)) {}
+
+  void add(size_t frames, const std::string& input, const std::string& clip) {
+    JobProgress p;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      done_ += frames;
+      p = {done_, total_, input, clip};
+    }
+    if (report_) report_(p);  // outside the lock: the printer has its own
+  }
+
+private:
+  const size_t total_;
+  const std::function<void(const JobProgress&)> report_;
+  std::mutex mutex_;
+  size_t done_ = 0;
+};
+
 // Thrown out of a job whose cancel flag was set (the command line sets it on SIGINT and SIGTERM).
 class JobCancelled : public std::runtime_error {
 public:
   JobCancelled() : std::runtime_error("cancelled") {}
 };
+
+// The cancellation point of every job: throws JobCancelled once `cancel` (may be null) is set.
+inline void check_cancelled(const std::atomic<bool>* cancel) {
+  if (cancel && cancel->load()) throw JobCancelled();
+}
 
 }  // namespace dqskin
