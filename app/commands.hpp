@@ -1,5 +1,6 @@
 // The dqskin commands. Each command file (<name>_command.cpp) holds its settings, declares its flags and
-// runs; main.cpp only assembles them. A new command is a new file and one line in main.cpp.
+// runs; main.cpp only assembles them. A new command is a new file (listed in app/CMakeLists.txt's
+// dqskin_commands) and one line in main.cpp.
 #pragma once
 
 #include "dqskin/animation.hpp"

@@ -5,9 +5,13 @@
 // GL context: libFuzzer needs a process that stays fast and deterministic) under --max-memory 32M, which
 // bounds the work an input may ask for. A finding is a crash, a sanitizer report, an exception escaping
 // run_cli, a hang, a leak, or an exit status other than 0, 1 (some inputs failed) and 2 (input error).
+// What it cannot see: an unexpected std::exception inside one input becomes that input's error, as it
+// does for users (fuzz_load, which calls the loader directly, treats anything but InputError as a finding).
 #include "commands.hpp"
 
+#include <fcntl.h>
 #include <stdlib.h>  // mkdtemp
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -39,14 +43,22 @@ int run(std::vector<std::string> args) {
   return dqskin::cli::run_cli(int(args.size()), argv.data());
 }
 
+// A copy of stderr made before libFuzzer's -close_fd_mask=3 closes it, for this target's own diagnosis.
+int g_stderr = 2;
+
 void expect_status(int status) {
   if (status < 0 || status > 2) {
-    std::fprintf(stderr, "fuzz_cli: exit status %d\n", status);
+    dprintf(g_stderr, "fuzz_cli: exit status %d\n", status);
     std::abort();
   }
 }
 
 }  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  if (const int fd = ::fcntl(2, F_DUPFD_CLOEXEC, 3); fd >= 0) g_stderr = fd;
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool glb = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';

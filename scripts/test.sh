@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what dqskin needs, builds it with warnings as errors and runs every test: the Release build,
-# 60 s of fuzzing the loader (clang, libFuzzer), and the ASan+UBSan build. Exit status 0 when all passed.
+# 60 s of fuzzing the loader and the command line (clang, libFuzzer), and the ASan+UBSan build. Exit
+# status 0 when all passed.
 #
 #   scripts/test.sh            everything, as CI runs it
 #   FUZZ_SECONDS=0 scripts/test.sh   without the fuzzing step

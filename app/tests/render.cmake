@@ -19,7 +19,7 @@ dqskin_render_test(help 0 ARGS render --help
 dqskin_render_test(writes_frames_named_like_bake 0 ARGS render ${render_rig} -o ${render_scratch}/frames --frames 0:2 --size 64x48
   STDERR "^rendered 3 frames of 1 input in [0-9.]+ s into [^\n]*/frames\n$")
 dqskin_render_test(json_progress 0 ARGS render ${render_rig} -o ${render_scratch}/json --times 0,0.5 --size 32x32 --format exr --json-progress
-  STDOUT "^{[^\n]*\"event\":\"progress\"[^\n]*\"frames_done\":1[^\n]*\n{[^\n]*\"frames_done\":2[^\n]*\n{[^\n]*\"event\":\"summary\"[^\n]*\"files\":2")
+  STDOUT "^{[^\n]*\"event\":\"progress\"[^\n]*\"frames_done\":1[^\n]*\"frames_per_s\":[^\n]*\n{[^\n]*\"eta_s\":0\.0,[^\n]*\"frames_done\":2[^\n]*\n{[^\n]*\"event\":\"summary\"[^\n]*\"files\":2")
 dqskin_render_test(quiet_prints_nothing 0 ARGS render ${render_rig} -o ${render_scratch}/quiet --times 0 --size 32x32 --quiet
   STDOUT "^$" STDERR "^$")
 dqskin_render_test(missing_input_exits_2 2 ARGS render ${render_scratch}/missing.gltf -o ${render_scratch}/missing

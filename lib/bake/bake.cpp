@@ -264,8 +264,10 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     InputPlan& plan = plans[i];
     if (!plan.error.empty()) continue;
     try {
-      if (has(options.formats, BakeFormat::kGlb))
+      if (has(options.formats, BakeFormat::kGlb)) {
         glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene);
+        plan.asset->source.reset();  // the writer has copied what it needs: the JSON is not kept through the bake
+      }
       work += estimate_work(plan, options, glb_writers[i].get());
     } catch (const std::bad_alloc&) {
       plan.error = kOutOfMemory;

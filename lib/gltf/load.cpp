@@ -277,7 +277,7 @@ void add_warnings(const tinygltf::Model& m, Asset& asset) {
 // Refuses a file whose decoding would take more than options.max_memory, before anything is decoded.
 // `json_bytes`: what parsing its JSON took (still held: the checked document and the model).
 void check_memory(const tinygltf::Model& m, uint64_t json_bytes, const LoadOptions& options) {
-  gltf::MemoryEstimate need = gltf::estimate_memory(m, options.decoded_images);
+  gltf::MemoryEstimate need = gltf::estimate_memory(m, options.decoded_images, options.keep_source);
   need.json = json_bytes;
   if (need.total() > options.max_memory)
     fail("loading it needs about " + byte_size(need.total()) + " (" + byte_size(need.asset) + " decoded by " +

@@ -39,7 +39,7 @@ public:
     return n;
   }
 
-  void primitive(const tinygltf::Primitive& p) {
+  void primitive(const tinygltf::Primitive& p, bool kept_source) {
     const int position = find(p.attributes, "POSITION");
     const uint64_t vertices = position >= 0 && size_t(position) < model_.accessors.size() ? model_.accessors[size_t(position)].count : 0;
     read(position, 4);
@@ -61,6 +61,9 @@ public:
     for (const auto& target : p.targets)
       for (const auto& [name, accessor] : target)
         if (name == "POSITION" || name == "NORMAL" || name == "TANGENT") read(accessor, 4);
+    if (kept_source)  // keep_source: every TEXCOORD_n and COLOR_n decoded once more, as float
+      for (const auto& [name, accessor] : p.attributes)
+        if (name.rfind("TEXCOORD_", 0) == 0 || name.rfind("COLOR_", 0) == 0) read(accessor, 4);
   }
 
   MemoryEstimate finish() {
@@ -83,10 +86,10 @@ private:
 
 uint64_t MemoryEstimate::total() const { return add(add(add(add(file, json), asset), transient), images); }
 
-MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images) {
+MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images, bool kept_source) {
   Tally tally(model);
   for (const tinygltf::Mesh& mesh : model.meshes)
-    for (const tinygltf::Primitive& p : mesh.primitives) tally.primitive(p);
+    for (const tinygltf::Primitive& p : mesh.primitives) tally.primitive(p, kept_source);
   for (const tinygltf::Skin& skin : model.skins) {
     if (skin.inverseBindMatrices >= 0) tally.read(skin.inverseBindMatrices, 0);
     tally.e.asset = add(tally.e.asset, mul(skin.joints.size(), sizeof(Mat4<double>) + sizeof(int)));

@@ -23,6 +23,7 @@ struct MemoryEstimate {
 // Estimates from the model's declared counts (no accessor is read, no image decoded). `decoded_images`:
 // the caller will decode the images (the renderer), so their declared sizes count too. Saturates instead of
 // overflowing.
-MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images = false);
+// `kept_source`: LoadOptions::keep_source, which decodes every TEXCOORD_n and COLOR_n once more.
+MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images = false, bool kept_source = false);
 
 }  // namespace dqskin::gltf

@@ -27,8 +27,8 @@ struct GpuDeformer::Impl {
   DeformStats stats;
 
   Impl(GpuContext& context, const Asset& a, std::vector<MeshInstance> inst, const GpuDeformOptions& options)
-      : asset(a), instances(inst), read_back(options.read_back),
-        kernel(context, a, std::move(inst), options.mode, options.memory_budget) {}
+      : asset(a), instances(std::move(inst)), read_back(options.read_back),
+        kernel(context, a, instances, options.mode, options.memory_budget) {}
 
   // sample → palette → pack → dispatch for frames [first, first + count).
   gpu::SkinKernel::Submitted dispatch(const Clip* clip, std::span<const double> times, int set, gpu::KernelTimes& t) {

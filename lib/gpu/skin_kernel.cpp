@@ -75,7 +75,7 @@ struct SkinKernel::Impl {
   std::vector<GLuint> textures;  // one per instance
   size_t batch = 1;
 
-  GLint max_texture_width = 0;  // GL_MAX_TEXTURE_SIZE, asked by make_current()
+  GLint max_texture_width = 0;  // GL_MAX_TEXTURE_SIZE, asked once by the constructor
 
   Impl(GpuContext& c, const Asset& a, std::vector<MeshInstance> inst, BlendMode m, size_t budget)
       : context(c), asset(a), instances(std::move(inst)), mode(m), memory_budget(budget) {
@@ -106,15 +106,14 @@ struct SkinKernel::Impl {
   // A skin's bone texture is at least 2 texels a joint wide (DESIGN.md "BoneTexture layout"): one wider than
   // the GPU's largest texture is refused now, before the caller has written anything, not at the first batch.
   void check_texture_width() {
-    GLint max_width = 0;
-    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_width);
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_width);
     for (const MeshInstance& inst : instances) {
       if (inst.skin < 0) continue;
       const size_t joints = asset.skins[size_t(inst.skin)].joints.size();
-      if (joints * 2 > size_t(max_width))
+      if (joints * 2 > size_t(max_texture_width))
         throw InputError("skin " + std::to_string(inst.skin) + " has " + std::to_string(joints) +
                          " joints: its bone texture needs at least " + std::to_string(joints * 2) +
-                         " texels a row, and this GPU allows " + std::to_string(max_width));
+                         " texels a row, and this GPU allows " + std::to_string(max_texture_width));
     }
   }
 
@@ -312,10 +311,7 @@ SkinKernel::SkinKernel(GpuContext& context, const Asset& asset, std::vector<Mesh
 SkinKernel::~SkinKernel() = default;
 size_t SkinKernel::frames_per_batch() const { return impl_->batch; }
 
-void SkinKernel::make_current() {
-  impl_->context.make_current();
-  impl_->gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &impl_->max_texture_width);
-}
+void SkinKernel::make_current() { impl_->context.make_current(); }
 
 SkinKernel::Submitted SkinKernel::dispatch(std::span<const BoneTexture> bones, std::span<const Pose> poses, int set,
                                            KernelTimes& times) {

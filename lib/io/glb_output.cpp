@@ -5,7 +5,6 @@
 #include "dqskin/triangles.hpp"
 
 #include "dqskin/error.hpp"
-#include "dqskin/load.hpp"
 #include "glb_appearance.hpp"
 
 #include <cmath>

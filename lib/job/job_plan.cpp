@@ -108,7 +108,7 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
     plan.stem = stem_of(path);
     if (const auto [it, fresh] = stems.emplace(plan.stem, path); !fresh)
       throw InputError("inputs " + it->second + " and " + path + " would both write to " + options.out_dir + "/" +
-                       plan.stem + "; bake them into different folders");
+                       plan.stem + "; give them different output folders");
     try {
       const auto start = std::chrono::steady_clock::now();
       plan.asset = std::make_unique<Asset>(load_asset(path, options.load));

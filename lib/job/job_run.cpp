@@ -32,6 +32,7 @@ std::vector<InputResult> for_each_input(const std::vector<InputPlan>& plans, con
       if (!result.error.empty()) {
         journal.roll_back();
         forget(plan);
+        result.frames = 0;  // its outputs are gone: it deformed nothing that stays
       }
     }
     results.push_back(std::move(result));

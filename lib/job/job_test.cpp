@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <new>
 #include <thread>
 
 namespace dqskin {
@@ -116,6 +117,7 @@ TEST(JobRun, AFailingInputIsTakenBackAndTheOthersGoOn) {
   ASSERT_EQ(results.size(), 3u);
   EXPECT_NE(results[0].error, "");                  // the plan's own error; work never ran
   EXPECT_EQ(results[1].error, "disk full");
+  EXPECT_EQ(results[1].frames, 0u);  // its outputs were taken back
   EXPECT_EQ(results[2].error, "");
   EXPECT_EQ(results[2].frames, 7u);
   EXPECT_EQ(forgotten, std::vector<std::string>{"bending_arm"});
@@ -138,6 +140,30 @@ TEST(JobRun, ACancelLeavesTheLoopAndKeepsTheFiles) {
                JobCancelled);
   EXPECT_EQ(started, 1u);
   EXPECT_TRUE(fs::exists(out.path() / "bending_arm" / "file.txt"));
+}
+
+TEST(JobRun, OutOfMemoryFailsTheInputAndNoContextStopsTheJob) {
+  ScratchDir out("job");
+  const std::vector<InputPlan> plans = plan({rig("bending_arm.gltf"), rig("two_skins.gltf")}, {}, out.path());
+  const std::vector<InputResult> results = for_each_input(
+      plans,
+      [](const InputPlan& input, OutputJournal&, InputResult&) {
+        if (input.stem == "bending_arm") throw std::bad_alloc();
+      },
+      [](const InputPlan&) {});
+  EXPECT_EQ(results[0].error, kOutOfMemory);
+  EXPECT_EQ(results[1].error, "");
+
+  size_t started = 0;
+  EXPECT_THROW(for_each_input(
+                   plans,
+                   [&](const InputPlan&, OutputJournal&, InputResult&) {
+                     ++started;
+                     throw NoGpuContext("no OpenGL 4.3 core context: test");
+                   },
+                   [](const InputPlan&) { FAIL() << "no context is not an input's failure"; }),
+               NoGpuContext);
+  EXPECT_EQ(started, 1u);
 }
 
 // Writers on several threads report frames at once: every frame is counted once, the total is the job's.

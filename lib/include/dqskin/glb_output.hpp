@@ -6,12 +6,10 @@
 
 #include "dqskin/animation.hpp"
 #include "dqskin/frame_view.hpp"
-#include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <string>
 #include <vector>
 

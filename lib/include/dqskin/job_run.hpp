@@ -35,8 +35,9 @@ using InputWork = std::function<void(const InputPlan& input, OutputJournal& jour
 using ForgetInput = std::function<void(const InputPlan& input)>;
 
 // Runs `work` on every input that planned without error, in order, and returns one result per plan (the
-// plan's own error, or the one `work` threw). JobCancelled and NoGpuContext leave the loop; any other
-// exception fails that input only.
+// plan's own error, or the one `work` threw; a failed input's frames count 0). `work` and `forget` receive
+// the elements of `plans` themselves, so a caller may find an input's index as &input - plans.data().
+// JobCancelled and NoGpuContext leave the loop; any other exception fails that input only.
 std::vector<InputResult> for_each_input(const std::vector<InputPlan>& plans, const InputWork& work,
                                         const ForgetInput& forget);
 
