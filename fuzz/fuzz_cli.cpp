@@ -25,14 +25,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One scratch folder per process, emptied after every input.
+// One scratch folder per process, emptied after every input and removed when the process exits.
 const fs::path& scratch() {
-  static const fs::path folder = [] {
+  // Never destroyed: the exit handler registered while it is made runs after static destructors would.
+  static const fs::path* const folder = [] {
     std::string name = (fs::temp_directory_path() / "dqskin-fuzz-cli-XXXXXX").string();
     if (!::mkdtemp(name.data())) std::abort();
-    return fs::path(name);
+    const fs::path* path = new fs::path(name);
+    std::atexit([] {
+      std::error_code ignored;
+      fs::remove_all(scratch(), ignored);
+    });
+    return path;
   }();
-  return folder;
+  return *folder;
 }
 
 int run(std::vector<std::string> args) {
