@@ -78,6 +78,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                                 {"files_unchanged", unchanged},
                                 {"bytes", bytes},
                                 {"manifest", r.manifest},
+                                {"deformer", r.deformer},
                                 {"backend", r.gpu.backend},
                                 {"renderer", r.gpu.renderer},
                                 {"wall_s", r.wall_seconds},
@@ -91,13 +92,15 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
   if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
   const BakeStageTimes& t = r.times;
   const size_t baked = size_t(std::count_if(r.inputs.begin(), r.inputs.end(), [](const InputResult& in) { return in.error.empty(); }));
-  std::fprintf(stderr, "baked %zu of %zu input%s in %.2f s: %zu frames deformed (%.1f frames/s); %zu files written, %zu unchanged, %.1f MB\n",
+  std::fprintf(stderr, "baked %zu of %zu input%s in %.2f s: %zu frames deformed on %s (%.1f frames/s); %zu files written, %zu unchanged, %.1f MB\n",
                baked, r.inputs.size(), r.inputs.size() == 1 ? "" : "s", r.wall_seconds, r.frames_total,
+               r.deformer.empty() ? "nothing" : r.deformer.c_str(),
                r.wall_seconds > 0 ? double(r.frames_total) / r.wall_seconds : 0.0, written, unchanged, double(bytes) / 1e6);
   std::fprintf(stderr,
                "stages (thread-seconds): load %.2f, sample %.2f, deform %.2f, readback %.2f, encode %.2f, write %.2f\n",
                t.load, t.sample, t.deform, t.readback, t.encode, t.write);
-  if (s.verbose) std::fprintf(stderr, "backend: %s, %s\n", r.gpu.backend.c_str(), r.gpu.renderer.c_str());
+  if (s.verbose)
+    std::fprintf(stderr, "deformer: %s; backend: %s, %s\n", r.deformer.c_str(), r.gpu.backend.c_str(), r.gpu.renderer.c_str());
   std::fprintf(stderr, "manifest: %s\n", printable(r.manifest).c_str());
 }
 
@@ -153,7 +156,8 @@ Command add_bake_command(CLI::App& app) {
       ->type_name("LIST")
       ->capture_default_str();
   bake_cmd->add_option("--backend", bake.backend,
-                       "Deformer: auto (EGL, then OSMesa), egl, osmesa, or cpu (the double-precision reference)")
+                       "Deformer: auto (a hardware GPU through EGL when there is one, else fast-cpu), egl, osmesa, "
+                       "fast-cpu (vectorized float, every core), or cpu (the double-precision reference)")
       ->type_name("NAME")
       ->capture_default_str();
   bake_cmd->add_option("--scene", bake.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");

@@ -1,19 +1,26 @@
 // `dqskin bench`: vertex-frames per second of every deformation path side by side, on synthetic
 // characters of 10k, 100k and 1M vertices: lbs, dqs and dqs with scale (T = 5), on the GPU path (1, 64
-// and 256 frames per batch, readback excluded and included) and on the CPU reference (1 and 2 threads).
+// and 256 frames per batch, readback excluded and included), the fast CPU deformer (1 thread and every
+// core), the CPU reference (1 and 2 threads), and a memcpy of the same bytes on every core (the bound).
+// A last table puts the fast CPU deformer beside the bound, the GPU path and lbs.
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"
 #include "synthetic_asset.hpp"
 
+#include "dqskin/deformer.hpp"
 #include "dqskin/gpu_deform.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <thread>
 
 namespace dqskin::cli {
 namespace {
@@ -81,6 +88,80 @@ Measurement measure_gpu(GpuContext& ctx, const Asset& asset, BlendMode mode, siz
   return m;
 }
 
+// The fast CPU deformer through the Deformer interface, 64 frames a run, every output handed to a sink
+// that keeps nothing (so the outputs are written to memory, as readback included on the GPU).
+Measurement measure_fast_cpu(const Asset& asset, BlendMode mode, unsigned threads, double min_seconds) {
+  DeformerOptions options;
+  options.mode = mode;
+  options.backend = Backend::kFastCpu;
+  options.threads = threads;
+  const std::unique_ptr<Deformer> fast = make_deformer(nullptr, asset, mesh_instances(asset, 0), options);
+  const size_t vertices = asset.meshes[0].primitives[0].vertex_count();
+  std::vector<double> times(64);
+  for (size_t f = 0; f < times.size(); ++f) times[f] = 0.25 + 1.5 * double(f) / double(times.size());
+  size_t sink_bytes = 0;
+  auto sink = [&](const DeformedBatch& b) { sink_bytes += b.primitives[0].positions.size(); };
+  fast->run(&asset.clips[0], times, sink);  // warm-up: first touch of the output pages
+  size_t frames = 0;
+  const Clock::time_point start = Clock::now();
+  double elapsed = 0;
+  do {
+    fast->run(&asset.clips[0], times, sink);
+    frames += times.size();
+    elapsed = seconds_since(start);
+  } while (elapsed < min_seconds);
+  Measurement m;
+  m.path = "fast";
+  m.backend = describe(DeformPath::kFastCpu);
+  m.vertices = vertices;
+  m.frames_requested = m.frames_per_batch = times.size();
+  m.threads = threads;
+  m.readback = true;
+  m.vertex_frames_per_second = double(vertices) * double(frames) / elapsed;
+  return m;
+}
+
+// The bound: kBytesPerVertexFrame moved per vertex-frame by memcpy on `threads` threads, each copying its
+// own slice. As in the fast CPU deformer, every frame reads the same source (the rest data, warm in cache
+// when it fits) and writes a region of its own, in batches of up to 64 frames and 64 MiB of outputs
+// (positions and normals), three batch buffers in turn: the same memory the deformer's outputs go through.
+Measurement measure_memcpy(size_t vertices, unsigned threads, double min_seconds) {
+  const size_t frames_per_batch = std::clamp<size_t>((size_t(64) << 20) / (vertices * 24), 1, 64);
+  const size_t bytes = vertices * size_t(kBytesPerVertexFrame) / 2;
+  std::vector<unsigned char> from(bytes, 1), to(3 * frames_per_batch * bytes, 0);
+  const size_t slice = (bytes + threads - 1) / threads;
+  size_t batch = 0;
+  auto copy_batch = [&] {
+    unsigned char* buffer = to.data() + (batch++ % 3) * frames_per_batch * bytes;
+    auto copy_slice = [&](unsigned t) {
+      const size_t begin = std::min(bytes, t * slice), end = std::min(bytes, begin + slice);
+      for (size_t f = 0; f < frames_per_batch; ++f) std::memcpy(buffer + f * bytes + begin, from.data() + begin, end - begin);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(copy_slice, t);
+    copy_slice(0);
+    for (std::thread& t : pool) t.join();
+  };
+  for (int i = 0; i < 3; ++i) copy_batch();  // warm-up: first touch of every buffer's pages
+  size_t frames = 0;
+  const Clock::time_point start = Clock::now();
+  double elapsed = 0;
+  do {
+    copy_batch();
+    frames += frames_per_batch;
+    elapsed = seconds_since(start);
+  } while (elapsed < min_seconds);
+  Measurement m;
+  m.path = "copy";
+  m.backend = "memcpy";
+  m.vertices = vertices;
+  m.frames_requested = m.frames_per_batch = frames_per_batch;
+  m.threads = threads;
+  m.readback = true;
+  m.vertex_frames_per_second = double(vertices) * double(frames) / elapsed;
+  return m;
+}
+
 Measurement measure_cpu(const Asset& asset, BlendMode mode, int threads, double min_seconds) {
   const std::vector<MeshInstance> instances = mesh_instances(asset, 0);
   const size_t vertices = asset.meshes[0].primitives[0].vertex_count();
@@ -110,8 +191,9 @@ void print_row(const Measurement& m) {
   const std::string frames = m.frames_requested == m.frames_per_batch
                                  ? std::to_string(m.frames_per_batch)
                                  : std::to_string(m.frames_requested) + "->" + std::to_string(m.frames_per_batch);
+  const bool threaded = m.path != "gpu";
   std::printf("%-10s %-4s %-16s %9zu %8s %8s %14.3e %8.2f\n", m.mode.c_str(), m.path.c_str(),
-              (m.path == "cpu" ? std::to_string(m.threads) + " thread" + (m.threads > 1 ? "s" : "") : m.backend).c_str(),
+              (threaded ? std::to_string(m.threads) + " thread" + (m.threads > 1 ? "s" : "") : m.backend).c_str(),
               m.vertices, frames.c_str(), m.readback ? "yes" : "no", m.vertex_frames_per_second,
               m.vertex_frames_per_second * kBytesPerVertexFrame / 1e9);
   std::fflush(stdout);
@@ -120,7 +202,8 @@ void print_row(const Measurement& m) {
 // Measures vertex-frames per second of every deformation path. Returns an ExitCode.
 int run_bench(const BenchSettings& settings) {
   Backend backend = Backend::kAuto;
-  if (!parse_backend(settings.backend, backend) || backend == Backend::kCpu) {  // bench measures the reference anyway
+  // The GL context of the GPU rows; bench measures the CPU deformers anyway.
+  if (!parse_backend(settings.backend, backend) || backend == Backend::kCpu || backend == Backend::kFastCpu) {
     print_error("--backend must be auto, egl or osmesa, not '" + settings.backend + "'");
     return kUsageOrInputError;
   }
@@ -152,6 +235,7 @@ int run_bench(const BenchSettings& settings) {
     std::printf("%-10s %-4s %-16s %9s %8s %8s %14s %8s\n", "mode", "path", "backend", "vertices", "frames", "readback",
                 "vertex-frames/s", "GB/s");
   }
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   std::vector<Measurement> all;
   for (size_t vertices : sizes) {
     for (const ModeCase& mc : modes) {
@@ -160,7 +244,9 @@ int run_bench(const BenchSettings& settings) {
       for (size_t fpb : batches)
         for (bool readback : {false, true})
           rows.push_back(measure_gpu(*ctx, asset, mc.mode, fpb, readback, budget, min_seconds));
+      for (unsigned threads : {1u, cores}) rows.push_back(measure_fast_cpu(asset, mc.mode, threads, min_seconds));
       for (int threads : {1, 2}) rows.push_back(measure_cpu(asset, mc.mode, threads, min_seconds));
+      rows.push_back(measure_memcpy(vertices, cores, min_seconds));
       for (Measurement& m : rows) {
         m.mode = mc.name;
         if (!settings.json) print_row(m);
@@ -169,12 +255,49 @@ int run_bench(const BenchSettings& settings) {
     }
   }
 
+  // The fast CPU deformer on every core beside the bound, the GPU path's best row (readback excluded: the
+  // strictest comparison) and lbs at the same size.
+  struct Ratios {
+    std::string mode;
+    size_t vertices;
+    double fast, of_bound, over_gpu, over_lbs;  // over_lbs: this mode's time per vertex-frame over lbs's
+  };
+  std::vector<Ratios> ratios;
+  for (size_t vertices : sizes)
+    for (const ModeCase& mc : modes) {
+      double fast = 0, bound = 0, gpu = 0, fast_lbs = 0;
+      for (const Measurement& m : all) {
+        if (m.vertices != vertices) continue;
+        const bool all_cores = m.threads == cores;
+        if (m.path == "fast" && all_cores && m.mode == "lbs") fast_lbs = m.vertex_frames_per_second;
+        if (m.mode != mc.name) continue;
+        if (m.path == "fast" && all_cores) fast = m.vertex_frames_per_second;
+        if (m.path == "copy") bound = m.vertex_frames_per_second;
+        if (m.path == "gpu") gpu = std::max(gpu, m.vertex_frames_per_second);
+      }
+      ratios.push_back({mc.name, vertices, fast, fast / bound, fast / gpu, fast_lbs / fast});
+    }
+  if (!settings.json) {
+    std::printf("\nfast CPU on %u thread%s: share of the memcpy bound, times the GPU path's best (%s), and this mode's "
+                "time over lbs's\n",
+                cores, cores > 1 ? "s" : "", ctx->info().backend.c_str());
+    std::printf("%-10s %9s %14s %9s %9s %9s\n", "mode", "vertices", "vertex-frames/s", "of bound", "x gpu", "time/lbs");
+    for (const Ratios& r : ratios)
+      std::printf("%-10s %9zu %14.3e %8.0f%% %9.2f %9.2f\n", r.mode.c_str(), r.vertices, r.fast, 100 * r.of_bound,
+                  r.over_gpu, r.over_lbs);
+  }
+
   if (settings.json) {
     nlohmann::ordered_json out;
     out["backend"] = ctx->info().backend;
     out["gl_version"] = ctx->info().version;
     out["renderer"] = ctx->info().renderer;
     out["bytes_per_vertex_frame"] = kBytesPerVertexFrame;
+    out["fast_cpu_ratios"] = nlohmann::ordered_json::array();
+    for (const Ratios& r : ratios)
+      out["fast_cpu_ratios"].push_back({{"mode", r.mode}, {"vertices", r.vertices}, {"vertex_frames_per_second", r.fast},
+                                        {"share_of_memcpy_bound", r.of_bound}, {"times_gpu_path", r.over_gpu},
+                                        {"time_over_lbs", r.over_lbs}});
     out["measurements"] = nlohmann::ordered_json::array();
     for (const Measurement& m : all)
       out["measurements"].push_back({{"mode", m.mode}, {"path", m.path}, {"backend", m.backend},
@@ -194,8 +317,9 @@ Command add_bench_command(CLI::App& app) {
   auto settings = std::make_shared<BenchSettings>();
   BenchSettings& bench = *settings;
   CLI::App* bench_cmd = app.add_subcommand(
-      "bench", "Measure vertex-frames per second of lbs, dqs and dqs with scale on the GPU path and the CPU "
-               "reference, for synthetic characters of 10k, 100k and 1M vertices");
+      "bench", "Measure vertex-frames per second of lbs, dqs and dqs with scale on the GPU path, the fast CPU "
+               "deformer, the CPU reference and a memcpy of the same bytes (the bound), for synthetic characters "
+               "of 10k, 100k and 1M vertices");
   bench_cmd->add_flag("--json", bench.json, "Print one JSON document: one entry per measurement");
   bench_cmd->add_flag("--quick", bench.quick, "A run under a minute: 10k and 100k vertices, 1 and 64 frames per batch");
   bench_cmd->add_option("--backend", bench.backend, "Headless OpenGL backend: auto (EGL, then OSMesa), egl or osmesa")

@@ -157,16 +157,16 @@ int run_render(const RenderSettings& given) {
     }
     if (settings.json_progress) {
       std::cout << json_text(nlohmann::json{{"event", "summary"},           {"mode_diff", scales},          {"frames", report.frames_total},
-                                  {"files", report.outputs.size()}, {"backend", report.gpu.backend},
+                                  {"files", report.outputs.size()}, {"deformer", report.deformer}, {"backend", report.gpu.backend},
                                   {"renderer", report.gpu.renderer}, {"failed_inputs", failed},
                                   {"wall_s", report.wall_seconds}})
                 << std::endl;
     } else if (!settings.quiet && failed < report.inputs.size()) {
       size_t frames = 0;  // not report.outputs: --sheet and --gif add files that are not frames
       for (const InputResult& in : report.inputs) frames += in.frames;
-      std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\n", frames,
+      std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\ndeformed on %s, drawn by %s\n", frames,
                    report.inputs.size() - failed, report.inputs.size() - failed == 1 ? "" : "s", report.wall_seconds,
-                   printable(options.out_dir).c_str());
+                   printable(options.out_dir).c_str(), report.deformer.c_str(), report.gpu.renderer.c_str());
     }
     return job_exit_status(report.inputs, settings.quiet, "rendered");
   }, [&] { progress.done(); }, &out_folder);
@@ -191,8 +191,10 @@ Command add_render_command(CLI::App& app) {
       ->type_name("lbs|dqs|dib")
       ->capture_default_str();
   render_cmd->add_option("--backend", render.backend,
-                         "Headless OpenGL backend that draws (and deforms): auto (EGL, then OSMesa), egl, osmesa, or "
-                         "cpu (deform with the double-precision CPU reference, draw with auto)")
+                         "Deformer, and the headless OpenGL backend that draws: auto (deform on a hardware GPU when "
+                         "there is one, else fast-cpu; draw with EGL, then OSMesa), egl, osmesa (deform and draw there), "
+                         "fast-cpu or cpu (deform with the vectorized float or the double-precision CPU deformer, "
+                         "draw as auto)")
       ->type_name("NAME")
       ->capture_default_str();
   render_cmd->add_option("--scene", render.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The output fingerprint of a dqskin build: runs a fixed set of commands (info; bake into every format with
-# lbs and dqs, on the GL path and on the CPU reference; dib; render; the golden render set; diff) on every
-# bundled rig and every shared sample model, and prints one line per file written, "SHA-256  path",
+# lbs and dqs, on the GL path, the fast CPU deformer and the CPU reference; dib; render; the golden render
+# set; diff) on every bundled rig and every shared sample model, and prints one line per file written, "SHA-256  path",
 # followed by each command's exit status. Two builds that print the same lines wrote the same bytes: a
 # refactor must not change them (compare with diff).
 #
@@ -41,9 +41,9 @@ run() {
 for m in "${models[@]}"; do
   stem="$(basename "$m")"  # with its extension: RiggedSimple comes as .glb and .gltf
   run "info-$stem" "$DQSKIN" info --json "$m"
-  # Every format, both blends, on the GL path and on the double-precision reference.
+  # Every format, both blends, on the GL path, the fast CPU deformer and the double-precision reference.
   for mode in dqs lbs; do
-    for backend in auto cpu; do
+    for backend in egl fast-cpu cpu; do
       run "bake-$mode-$backend-$stem" "$DQSKIN" bake "$m" -o out --format glb,ply,obj,vat,bones --fps 10 \
         --mode "$mode" --backend "$backend" --quiet
     done

@@ -35,6 +35,15 @@ dqskin_bake_test(unknown_mode_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --
   STDERR "^dqskin: --mode 'slerp' is not one of lbs, dqs, dib\n$")
 dqskin_bake_test(dib_on_the_gpu_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --mode dib --backend egl
   STDERR "^dqskin: --mode dib runs on the CPU reference only")
+dqskin_bake_test(dib_on_fast_cpu_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --mode dib --backend fast-cpu
+  STDERR "^dqskin: --mode dib runs on the CPU reference only")
+# The summary, --verbose and the manifest say which deformer ran.
+dqskin_bake_test(fast_cpu_says_so 0 ARGS bake ${rig} -o ${bake_scratch}/fast --format ply --backend fast-cpu -v
+  STDERR "frames deformed on fast-cpu \\((avx2-fma|baseline)\\).*\ndeformer: fast-cpu [^\n]*; backend: fast-cpu, dqskin fast CPU deformer")
+dqskin_bake_test(reference_says_so 0 ARGS bake ${rig} -o ${bake_scratch}/reference --format ply --backend cpu -v
+  STDERR "frames deformed on cpu-reference .*\ndeformer: cpu-reference; backend: cpu, dqskin CPU reference")
+dqskin_bake_test(auto_says_which_ran 0 ARGS bake ${rig} -o ${bake_scratch}/auto --format ply --json-progress
+  STDOUT "\"deformer\":\"(gpu|fast-cpu \\((avx2-fma|baseline)\\))\"[^\n]*\"event\":\"summary\"")
 dqskin_bake_test(two_frame_choices_exit_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --keys --times 0,1
   STDERR "^dqskin: --frames, --keys and --times choose frames in different ways")
 dqskin_bake_test(inputs_required_with_out_dir 2 ARGS bake ${rig}

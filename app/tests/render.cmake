@@ -17,7 +17,7 @@ dqskin_render_test(help 0 ARGS render --help
   STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--keys.*--times.*--mode.*--backend.*--shard.*--size.*--background.*--samples.*--shade.*--yaw.*--pitch.*--distance.*--fov.*--ortho.*--camera.*--format.*--sheet.*--sheet-cell.*--gif.*--quiet.*--json-progress.*Exit status")
 # Names as bake gives them; the summary on stderr; --json-progress one line per frame, then a summary.
 dqskin_render_test(writes_frames_named_like_bake 0 ARGS render ${render_rig} -o ${render_scratch}/frames --frames 0:2 --size 64x48
-  STDERR "^rendered 3 frames of 1 input in [0-9.]+ s into [^\n]*/frames\n$")
+  STDERR "^rendered 3 frames of 1 input in [0-9.]+ s into [^\n]*/frames\ndeformed on (fast-cpu|gpu)[^\n]*, drawn by [^\n]+\n$")
 dqskin_render_test(json_progress 0 ARGS render ${render_rig} -o ${render_scratch}/json --times 0,0.5 --size 32x32 --format exr --json-progress
   STDOUT "^{[^\n]*\"event\":\"progress\"[^\n]*\"frames_done\":1[^\n]*\"frames_per_s\":[^\n]*\n{[^\n]*\"eta_s\":0\.0,[^\n]*\"frames_done\":2[^\n]*\n{[^\n]*\"event\":\"summary\"[^\n]*\"files\":2")
 dqskin_render_test(quiet_prints_nothing 0 ARGS render ${render_rig} -o ${render_scratch}/quiet --times 0 --size 32x32 --quiet
@@ -48,7 +48,7 @@ dqskin_render_test(unknown_format_exits_2 2 ARGS render ${render_rig} -o ${rende
 dqskin_render_test(unknown_mode_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --mode slerp
   STDERR "^dqskin: --mode 'slerp' is not one of lbs, dqs, dib\n$")
 dqskin_render_test(unknown_backend_exits_2 2 ARGS render ${render_rig} -o ${render_scratch}/x --backend vulkan
-  STDERR "^dqskin: --backend 'vulkan' is not one of auto, egl, osmesa, cpu\n$")
+  STDERR "^dqskin: --backend 'vulkan' is not one of auto, egl, osmesa, fast-cpu, cpu\n$")
 # dib has only the CPU reference; --backend cpu deforms there too. Both draw on the headless context.
 dqskin_render_test(dib_renders 0 ARGS render ${render_rig} -o ${render_scratch}/dib --mode dib --times 0.5 --size 32x32 --quiet)
 dqskin_render_test(cpu_backend_renders 0 ARGS render ${render_rig} -o ${render_scratch}/cpu --backend cpu --times 0.5 --size 32x32 --quiet)
@@ -94,7 +94,7 @@ set_tests_properties(cli.render_file_names PROPERTIES FIXTURES_REQUIRED render_f
 # 64x48 GIF; a second run into the same folder (without --force) keeps every file, which it only does when
 # the bytes are equal. With --shard the shard's own frames get files of their own.
 dqskin_render_test(sheet_and_gif 0 ARGS render ${render_rig} -o ${render_scratch}/sheet --frames 0:4 --size 64x48
-  --sheet --sheet-cell 32 --gif --force STDERR "^rendered 5 frames of 1 input in [0-9.]+ s into [^\n]*/sheet\n$")
+  --sheet --sheet-cell 32 --gif --force STDERR "^rendered 5 frames of 1 input in [0-9.]+ s into [^\n]*/sheet\ndeformed on [^\n]+\n$")
 dqskin_render_test(sheet_and_gif_again 0 ARGS render ${render_rig} -o ${render_scratch}/sheet --frames 0:4 --size 64x48
   --sheet --sheet-cell 32 --gif --quiet)
 add_test(NAME cli.render_sheet_files COMMAND ${CMAKE_COMMAND} -DDIR=${render_scratch}/sheet/bending_arm/bend

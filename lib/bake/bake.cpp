@@ -247,7 +247,6 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   const Clock::time_point start = Clock::now();
   BakeReport report;
   if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
-  const bool cpu = deforms_on_cpu(options.backend, options.mode);
   if (!has_gpu_path(options.mode) && options.backend != Backend::kAuto && options.backend != Backend::kCpu)
     throw InputError("--mode " + std::string(to_string(options.mode)) +
                      " runs on the CPU reference only; use --backend cpu (or auto)");
@@ -305,15 +304,15 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       plans,
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {
         const size_t i = size_t(&plan - plans.data());
-        InputBaker baker(plan, options, cpu ? nullptr : &context.get(), ledger, journal, std::move(glb_writers[i]));
+        InputBaker baker(plan, options, context.for_deforming(options.mode), ledger, journal, std::move(glb_writers[i]));
         for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
       },
       [&](const InputPlan& plan) { ledger.forget(plan); });
-  if (cpu) {
-    report.gpu = {"cpu", "", "dqskin CPU reference (double precision)"};
-  } else if (context.info()) {
-    report.gpu = *context.info();
-  }
+  // What deformed: the GPU's context, or the CPU deformer (auto's choice is known once it was asked).
+  const DeformPath path = deform_path(options.backend, options.mode, context.info() ? &context.get() : nullptr);
+  if (path != DeformPath::kGpu) report.gpu = cpu_deformer_info(path);
+  else if (context.info()) report.gpu = *context.info();
+  if (!report.gpu.backend.empty()) report.deformer = describe(path);
   std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
   if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
     report.wall_seconds = since(start);

@@ -3,6 +3,7 @@
 #include "dqskin/bake.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/deformer.hpp"
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/sha256.hpp"
@@ -124,10 +125,11 @@ void check_bake_of(const std::string& input, const fs::path& out) {
   EXPECT_EQ(manifest["inputs"][0]["sha256"].get<std::string>(), sha256_file(input));
   EXPECT_EQ(manifest["backend"]["name"].get<std::string>(), report.gpu.backend);
 
-  // The deformer run again on the same times gives the same floats as the PLY and VAT files.
-  auto context = create_gpu_context(Backend::kAuto);
+  // The deformer bake chose (auto: a hardware GPU's context when there is one, else the fast CPU deformer)
+  // run again on the same times gives the same floats as the PLY and VAT files.
+  const std::unique_ptr<GpuContext> context = create_hardware_gpu_context();
   const int scene = choose_scene(asset, -1);
-  GpuDeformer deformer(*context, asset, mesh_instances(asset, scene), {});
+  const std::unique_ptr<Deformer> deformer = make_deformer(context.get(), asset, mesh_instances(asset, scene), {});
   for (const auto& clip_entry : manifest["inputs"][0]["animations"]) {
     const std::string folder = clip_entry["folder"].get<std::string>();
     const std::vector<double> times = clip_entry["frame_times"].get<std::vector<double>>();
@@ -138,7 +140,7 @@ void check_bake_of(const std::string& input, const fs::path& out) {
       if (c.name == name) clip = &c;
     int vat_width = 0, vat_height = 0;
     const std::vector<float> vat = read_exr(out / folder / "vat_positions.exr", vat_width, vat_height);
-    deformer.run(clip, times, [&](const DeformedBatch& batch) {
+    deformer->run(clip, times, [&](const DeformedBatch& batch) {
       for (size_t k = 0; k < batch.frame_count; ++k) {
         const size_t f = batch.first_frame + k;
         char file[32];

@@ -129,7 +129,7 @@ using QueryDeviceString = const char* (*)(EGLDeviceEXT, EGLint);
 
 }  // namespace
 
-std::unique_ptr<GpuContext> create_egl_context(std::string& report) {
+std::unique_ptr<GpuContext> create_egl_context(std::string& report, bool hardware_only) {
   const ClientExtensions client(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS));
   const auto get_platform_display = reinterpret_cast<GetPlatformDisplay>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   std::string why;
@@ -146,11 +146,14 @@ std::unique_ptr<GpuContext> create_egl_context(std::string& report) {
     }
     // Hardware first: Mesa lists its software rasterizer as a device too (EGL_MESA_device_software).
     for (const bool software : {false, true}) {
+      if (software && hardware_only) break;
       for (size_t i = 0; i < devices.size(); ++i) {
         const char* ext = query_string ? query_string(devices[i], EGL_EXTENSIONS) : nullptr;
         if (has_extension(ext, "EGL_MESA_device_software") != software) continue;
-        if (auto ctx = try_display(get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), "egl-device", why))
+        if (auto ctx = try_display(get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), "egl-device", why)) {
+          if (hardware_only && !ctx->info().hardware) continue;
           return ctx;
+        }
         report += "egl-device " + std::to_string(i) + ": " + why + "; ";
       }
     }
@@ -159,6 +162,7 @@ std::unique_ptr<GpuContext> create_egl_context(std::string& report) {
     report += "egl-device: EGL_EXT_platform_device not offered; ";
   }
 
+  if (hardware_only) return nullptr;
   if (client.platform_surfaceless && get_platform_display) {
     if (auto ctx = try_display(get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
                                "egl-surfaceless", why))

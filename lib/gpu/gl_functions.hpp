@@ -99,6 +99,10 @@ struct Gl {
   DQSKIN_GL_FUNCTIONS(DQSKIN_GL_MEMBER)
 #undef DQSKIN_GL_MEMBER
 
+  // OpenGL 4.4 (or ARB_buffer_storage): persistently mapped buffers. Null where the context lacks it, as a
+  // 4.3 context may: get-proc-address can return a stub for anything, so the version decides.
+  PFNGLBUFFERSTORAGEPROC BufferStorage = nullptr;
+
   // Resolves every entry point; returns the name of the first one missing, or empty.
   std::string load(const GpuContext& context);
 };

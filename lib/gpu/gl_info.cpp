@@ -16,6 +16,10 @@ std::string query_gl(ProcLoader loader, const void* user, GpuContextInfo& info) 
   };
   info.version = text(GL_VERSION);
   info.renderer = text(GL_RENDERER);
+  // Mesa's and Google's software rasterizers name themselves in GL_RENDERER.
+  info.hardware = true;
+  for (const char* software : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
+    if (info.renderer.find(software) != std::string::npos) info.hardware = false;
   GLint major = 0, minor = 0;
   get_integer(GL_MAJOR_VERSION, &major);
   get_integer(GL_MINOR_VERSION, &minor);

@@ -9,7 +9,8 @@
 
 namespace dqskin::gpu {
 
-std::unique_ptr<GpuContext> create_egl_context(std::string& report);
+// `hardware_only`: hardware devices of the device platform only, and no software renderer behind them.
+std::unique_ptr<GpuContext> create_egl_context(std::string& report, bool hardware_only);
 #ifdef DQSKIN_HAVE_OSMESA
 std::unique_ptr<GpuContext> create_osmesa_context(std::string& report);
 #endif

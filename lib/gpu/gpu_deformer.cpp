@@ -7,6 +7,7 @@
 #include "skin_kernel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <optional>
 #include <utility>
@@ -24,11 +25,12 @@ struct GpuDeformer::Impl {
   const std::vector<MeshInstance> instances;
   const bool read_back;
   gpu::SkinKernel kernel;
+  std::array<DeformedBatch, 3> buffers;  // read-back batches, reused run after run
   DeformStats stats;
 
   Impl(GpuContext& context, const Asset& a, std::vector<MeshInstance> inst, const GpuDeformOptions& options)
       : asset(a), instances(std::move(inst)), read_back(options.read_back),
-        kernel(context, a, instances, options.mode, options.memory_budget) {}
+        kernel(context, a, instances, options.mode, options.memory_budget, options.mapped_readback) {}
 
   // sample → palette → pack → dispatch for frames [first, first + count).
   gpu::SkinKernel::Submitted dispatch(const Clip* clip, std::span<const double> times, int set, gpu::KernelTimes& t) {
@@ -44,15 +46,19 @@ struct GpuDeformer::Impl {
     kernel.make_current();
     gpu::KernelTimes t;
     // The sink runs on its own thread: while it writes batch b − 2, batch b − 1 is read back and batch b
-    // is computed.
-    concurrency::OrderedWorker<DeformedBatch> worker(sink);
+    // is computed. Batch b is read into buffer b % 3, whose arrays are reused from batch b − 3 (the worker
+    // holds at most b − 1 waiting and b − 2 in the sink): no page faults and zero-filling of fresh arrays.
+    concurrency::OrderedWorker<const DeformedBatch*> worker([&](const DeformedBatch* batch) { sink(*batch); });
     struct InFlight {
       gpu::SkinKernel::Submitted submitted;
       size_t first = 0;
     };
     std::optional<InFlight> previous;
+    size_t delivered = 0;
     auto deliver = [&] {
-      worker.push(kernel.read_back(previous->submitted, previous->first, read_back, t));
+      DeformedBatch& out = buffers[delivered++ % buffers.size()];
+      kernel.read_back(previous->submitted, previous->first, read_back, t, out);
+      worker.push(&out);
       stats.deform_seconds += std::exchange(t.deform, 0.0);
       stats.readback_seconds += std::exchange(t.readback, 0.0);
     };
@@ -75,6 +81,7 @@ GpuDeformer::GpuDeformer(GpuContext& context, const Asset& asset, std::vector<Me
     : impl_(std::make_unique<Impl>(context, asset, std::move(instances), options)) {}
 GpuDeformer::~GpuDeformer() = default;
 size_t GpuDeformer::frames_per_batch() const { return impl_->kernel.frames_per_batch(); }
+bool GpuDeformer::mapped_readback() const { return impl_->kernel.mapped_readback(); }
 const DeformStats& GpuDeformer::stats() const { return impl_->stats; }
 void GpuDeformer::run(const Clip* clip, std::span<const double> times,
                       const std::function<void(const DeformedBatch&)>& sink) {

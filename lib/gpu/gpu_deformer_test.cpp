@@ -1,8 +1,9 @@
 // The GPU path against the CPU reference (the oracle): every rig and shared model, both modes, both
-// backends, every frame. Tolerances: positions 1e-5 × the model's bounding-box diagonal, normals 1e-4.
+// backends, every frame, to test_support/deform_accuracy.hpp's tolerances.
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
+#include "../test_support/deform_accuracy.hpp"
 #include "../test_support/gpu_context.hpp"
 
 #include <gtest/gtest.h>
@@ -18,57 +19,11 @@ namespace fs = std::filesystem;
 
 using testing_support::context_or_null;
 
-// A deformed normal is only defined where the blended 3×3 does not collapse the surface: LBS of a
-// 180° twist (the candy wrapper) maps a ring onto the axis, and there the normal's direction is rounding
-// noise in both paths. True when |cof(A) n| ≥ 1e-3 · |A|² (Frobenius) for the vertex's blend A (the LBS
-// matrix, or the blended S under dqs).
-bool well_conditioned_normal(const Asset& asset, const std::vector<MeshInstance>& instances, size_t flat_primitive,
-                             const std::vector<JointTransforms>& skins, size_t v, BlendMode mode) {
-  size_t index = 0;
-  for (const MeshInstance& inst : instances) {
-    const Mesh& mesh = asset.meshes[size_t(inst.mesh)];
-    if (flat_primitive >= index + mesh.primitives.size()) {
-      index += mesh.primitives.size();
-      continue;
-    }
-    const Primitive& prim = mesh.primitives[flat_primitive - index];
-    if (inst.skin < 0) return true;  // a node's world matrix: invertible in practice
-    const JointTransforms& jt = skins[size_t(inst.skin)];
-    Mat3<double> a(0.0);
-    double sum = 0;
-    for (size_t k = 0; k < size_t(prim.influences); ++k) sum += double(prim.weights[v * size_t(prim.influences) + k]);
-    if (sum == 0) return true;
-    for (size_t k = 0; k < size_t(prim.influences); ++k) {
-      const double w = double(prim.weights[v * size_t(prim.influences) + k]) / sum;
-      const size_t j = prim.joints[v * size_t(prim.influences) + k];
-      a += w * (mode == BlendMode::kLbs ? Mat3<double>(jt.matrices[j]) : jt.scale[j]);
-    }
-    const Mat3<double> cof(glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1]));
-    const double scale2 = glm::dot(a[0], a[0]) + glm::dot(a[1], a[1]) + glm::dot(a[2], a[2]);  // |A|², as cof(A) is quadratic
-    return glm::length(cof * glm::dvec3(prim.normals[v])) >= 1e-3 * scale2;
-  }
-  return true;
-}
-
 struct Case {
   std::string path;
   BlendMode mode;
   Backend backend;
 };
-
-std::vector<std::string> model_paths() {
-  std::vector<std::string> out;
-  for (const char* rig : {"twisted_cylinder", "bending_arm", "uniform_scale", "nonuniform_scale", "eight_influences",
-                          "interpolation_modes", "morph_skin", "two_skins"})
-    out.push_back(std::string(DQSKIN_TESTDATA_DIR) + "/" + rig + ".gltf");
-  for (const char* model : {"RiggedSimple/RiggedSimple.glb", "RiggedFigure/RiggedFigure.glb", "CesiumMan/CesiumMan.glb",
-                            "SimpleSkin/SimpleSkin.gltf", "Fox/Fox.glb", "BrainStem/BrainStem.glb",
-                            "RecursiveSkeletons/RecursiveSkeletons.glb", "raylib_robot/robot.glb",
-                            "raylib_greenman/greenman.glb", "InterpolationTest/InterpolationTest.glb",
-                            "AnimatedMorphCube/AnimatedMorphCube.glb", "SimpleMorph/SimpleMorph.gltf"})
-    out.push_back(std::string(DQSKIN_SHARED_TESTDATA_DIR) + "/" + model);
-  return out;
-}
 
 class GpuMatchesCpu : public testing::TestWithParam<Case> {};
 
@@ -82,9 +37,7 @@ TEST_P(GpuMatchesCpu, EveryFrameOfEveryClip) {
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
   GpuDeformer gpu(*ctx, asset, instances, {c.mode, size_t(64) << 20});
 
-  double worst_position = 0, worst_normal = 0;
-  size_t ill_conditioned = 0;
-  glm::dvec3 lo(1e300), hi(-1e300);  // extent of the animation, for the tolerance
+  testing_support::AccuracyMeter meter;
   const std::vector<const Clip*> clips = [&] {
     std::vector<const Clip*> v;
     for (const Clip& clip : asset.clips) v.push_back(&clip);
@@ -96,44 +49,21 @@ TEST_P(GpuMatchesCpu, EveryFrameOfEveryClip) {
     spec.fps = 10;  // every frame at 10 fps: enough frames to cross every key interval of these clips
     const std::vector<double> times = clip ? frame_times(*clip, spec) : std::vector<double>{0.0};
     gpu.run(clip, times, [&](const DeformedBatch& batch) {
-      for (size_t f = 0; f < batch.frame_count; ++f) {
-        const Pose pose = sample_pose(asset, clip, times[batch.first_frame + f]);
-        std::vector<JointTransforms> skins;
-        for (const Skin& skin : asset.skins) skins.push_back(joint_transforms(skin, pose));
-        const DeformedFrame cpu = deform_frame(asset, instances, pose, c.mode);
-        ASSERT_EQ(cpu.primitives.size(), batch.primitives.size());
-        for (size_t p = 0; p < cpu.primitives.size(); ++p) {
-          const DeformedBatch::Primitive& g = batch.primitives[p];
-          const DeformedPrimitive& r = cpu.primitives[p];
-          for (size_t v = 0; v < g.vertices; ++v) {
-            const size_t o = (f * g.vertices + v) * 3;
-            const glm::dvec3 gp(g.positions[o], g.positions[o + 1], g.positions[o + 2]);
-            worst_position = std::max(worst_position, glm::distance(gp, r.positions[v]));
-            lo = glm::min(lo, r.positions[v]);
-            hi = glm::max(hi, r.positions[v]);
-            if (!r.normals.empty() && !well_conditioned_normal(asset, instances, p, skins, v, c.mode)) {
-              ++ill_conditioned;
-            } else if (!r.normals.empty()) {
-              const glm::dvec3 gn(g.normals[o], g.normals[o + 1], g.normals[o + 2]);
-              worst_normal = std::max(worst_normal, glm::distance(gn, r.normals[v]));
-            }
-          }
-        }
-      }
+      for (size_t f = 0; f < batch.frame_count; ++f)
+        meter.add(asset, instances, c.mode, clip, times[batch.first_frame + f], batch, f);
     });
   }
-  const double position_tolerance = 1e-5 * glm::distance(lo, hi);
   std::cout << "  " << fs::path(c.path).filename().string() << " " << to_string(c.mode) << " "
-            << ctx->info().backend << ": max position error " << worst_position << " (tolerance "
-            << position_tolerance << "), max normal error " << worst_normal << " (" << ill_conditioned
-            << " undefined normals skipped)\n";
-  EXPECT_LE(worst_position, position_tolerance);
-  EXPECT_LE(worst_normal, 1e-4);
+            << ctx->info().backend << ": max position error " << meter.worst_position << " (tolerance "
+            << meter.position_tolerance() << "), max normal error " << meter.worst_normal << " ("
+            << meter.ill_conditioned << " undefined normals skipped)\n";
+  EXPECT_LE(meter.worst_position, meter.position_tolerance());
+  EXPECT_LE(meter.worst_normal, 1e-4);
 }
 
 std::vector<Case> cases() {
   std::vector<Case> out;
-  for (const std::string& path : model_paths())
+  for (const std::string& path : testing_support::accuracy_model_paths())
     for (BlendMode mode : {BlendMode::kLbs, BlendMode::kDqs})
       for (Backend backend : {Backend::kEgl, Backend::kOsMesa}) out.push_back({path, mode, backend});
   return out;
@@ -162,6 +92,40 @@ TEST(GpuDeformer, TwoRunsAreByteIdentical) {
   }
   ASSERT_EQ(runs[0].size(), runs[1].size());
   EXPECT_EQ(std::memcmp(runs[0].data(), runs[1].data(), runs[0].size() * 4), 0);
+}
+
+// Persistently mapped outputs and glGetBufferSubData read the same bytes, and a second run over reused
+// batch buffers hands out the same bytes again.
+TEST(GpuDeformer, MappedAndCopiedReadbackGiveTheSameBytes) {
+  const std::unique_ptr<GpuContext> ctx = context_or_null();
+  if (!ctx) GTEST_SKIP() << "no OpenGL 4.3 context";
+  const Asset asset = load_asset(std::string(DQSKIN_TESTDATA_DIR) + "/morph_skin.gltf");
+  const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
+  std::vector<double> times(37);
+  for (size_t i = 0; i < times.size(); ++i) times[i] = asset.clips[0].last_key * double(i) / 36.0;
+  auto bytes = [&](GpuDeformer& gpu) {
+    std::vector<float> out;
+    gpu.run(&asset.clips[0], times, [&](const DeformedBatch& batch) {
+      for (const DeformedBatch::Primitive& p : batch.primitives)
+        for (const std::vector<float>* a : {&p.positions, &p.normals, &p.tangents}) out.insert(out.end(), a->begin(), a->end());
+    });
+    return out;
+  };
+  GpuDeformOptions options{BlendMode::kDqs, 8192};  // a few frames per batch: more batches than buffers
+  GpuDeformer mapped(*ctx, asset, instances, options);
+  options.mapped_readback = false;
+  GpuDeformer copied(*ctx, asset, instances, options);
+  EXPECT_FALSE(copied.mapped_readback());
+  if (ctx->info().version.rfind("4.3", 0) != 0) {
+    EXPECT_TRUE(mapped.mapped_readback()) << ctx->info().version;
+  }
+  ASSERT_GT(times.size(), 3 * mapped.frames_per_batch());
+  const std::vector<float> a = bytes(mapped), b = bytes(copied);
+  ASSERT_FALSE(a.empty());
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+  const std::vector<float> again = bytes(mapped);
+  EXPECT_EQ(std::memcmp(a.data(), again.data(), a.size() * sizeof(float)), 0);
 }
 
 TEST(GpuDeformer, SmallBudgetSplitsIntoBatchesWithTheSameResult) {

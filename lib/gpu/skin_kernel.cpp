@@ -62,6 +62,8 @@ struct SkinKernel::Impl {
     GLuint morph_weight = 0;
     // Two sets of outputs: batch b is computed into set b % 2 while batch b − 1 is read from the other.
     GLuint out_position[2] = {}, out_normal[2] = {}, out_tangent[2] = {};
+    // With mapped readback, where each output buffer is mapped for the kernel's life.
+    const float* mapped_position[2] = {}, *mapped_normal[2] = {}, *mapped_tangent[2] = {};
   };
 
   GpuContext& context;
@@ -77,13 +79,16 @@ struct SkinKernel::Impl {
 
   GLint max_texture_width = 0;  // GL_MAX_TEXTURE_SIZE, asked once by the constructor
 
-  Impl(GpuContext& c, const Asset& a, std::vector<MeshInstance> inst, BlendMode m, size_t budget)
+  bool mapped = false;  // outputs read through persistently mapped buffers
+
+  Impl(GpuContext& c, const Asset& a, std::vector<MeshInstance> inst, BlendMode m, size_t budget, bool mapped_readback)
       : context(c), asset(a), instances(std::move(inst)), mode(m), memory_budget(budget) {
     if (!has_gpu_path(mode))
       throw InputError("mode dib runs on the CPU reference only; the GPU path offers lbs and dqs");
     context.make_current();
     if (const std::string missing = gl.load(context); !missing.empty())
       throw NoGpuContext("the OpenGL context has no " + missing);
+    mapped = mapped_readback && gl.BufferStorage;
     check_texture_width();
     upload();
     choose_batch();
@@ -194,18 +199,27 @@ struct SkinKernel::Impl {
     batch = std::min(batch, memory_budget / std::max<size_t>(1, 2 * total));
     batch = std::max<size_t>(batch, 1);
     for (Prim& p : prims) {
-      auto out = [&](size_t per_vertex) {
+      auto out = [&](size_t per_vertex, const float*& pointer) {
         GLuint b = 0;
         gl.GenBuffers(1, &b);
         gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-        gl.BufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(16, p.vertices * per_vertex * batch)),
-                      nullptr, GL_DYNAMIC_READ);
+        const GLsizeiptr bytes = GLsizeiptr(std::max<size_t>(16, p.vertices * per_vertex * batch));
+        if (!mapped) {
+          gl.BufferData(GL_SHADER_STORAGE_BUFFER, bytes, nullptr, GL_DYNAMIC_READ);
+          return b;
+        }
+        // Mapped once, coherent: after a batch's fence the host reads what the shader wrote, with no map
+        // or copy call per batch. CLIENT_STORAGE asks for memory the CPU reads fast (host memory).
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        gl.BufferStorage(GL_SHADER_STORAGE_BUFFER, bytes, nullptr, access | GL_CLIENT_STORAGE_BIT);
+        pointer = static_cast<const float*>(gl.MapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, bytes, access));
+        if (!pointer) throw NoGpuContext("the OpenGL context could not map an output buffer persistently");
         return b;
       };
       for (int set = 0; set < 2; ++set) {
-        p.out_position[set] = out(12);
-        p.out_normal[set] = out(p.normals ? 12 : 0);
-        p.out_tangent[set] = out(p.tangents ? 16 : 0);
+        p.out_position[set] = out(12, p.mapped_position[set]);
+        p.out_normal[set] = out(p.normals ? 12 : 0, p.mapped_normal[set]);
+        p.out_tangent[set] = out(p.tangents ? 16 : 0, p.mapped_tangent[set]);
       }
     }
   }
@@ -230,8 +244,7 @@ struct SkinKernel::Impl {
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   }
 
-  DeformedBatch read_back(GLsync done, size_t first, size_t count, int set, bool copy, KernelTimes& times) {
-    DeformedBatch out;
+  void read_back(GLsync done, size_t first, size_t count, int set, bool copy, KernelTimes& times, DeformedBatch& out) {
     out.first_frame = first;
     out.frame_count = count;
     // Waiting for the fence is the GPU's deformation time not hidden behind our own work; what follows
@@ -241,25 +254,28 @@ struct SkinKernel::Impl {
     gl.DeleteSync(done);
     times.deform += since(wait);
     const Clock::time_point start = Clock::now();
-    for (const Prim& p : prims) {
-      DeformedBatch::Primitive r;
+    out.primitives.resize(prims.size());
+    for (size_t i = 0; i < prims.size(); ++i) {
+      const Prim& p = prims[i];
+      DeformedBatch::Primitive& r = out.primitives[i];
       r.vertices = p.vertices;
-      if (copy) {
-        auto read = [&](GLuint b, std::vector<float>& dst, size_t per_vertex) {
-          dst.resize(p.vertices * per_vertex * count);
-          gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
-          gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(dst.size() * 4), dst.data());
-        };
-        read(p.out_position[set], r.positions, 3);
-        if (p.normals) read(p.out_normal[set], r.normals, 3);
-        if (p.tangents) read(p.out_tangent[set], r.tangents, 4);
-      }
-      out.primitives.push_back(std::move(r));
+      auto read = [&](GLuint b, const float* mapped_data, std::vector<float>& dst, size_t per_vertex) {
+        dst.resize(copy ? p.vertices * per_vertex * count : 0);
+        if (dst.empty()) return;
+        if (mapped_data) {
+          std::memcpy(dst.data(), mapped_data, dst.size() * 4);
+          return;
+        }
+        gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+        gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(dst.size() * 4), dst.data());
+      };
+      read(p.out_position[set], p.mapped_position[set], r.positions, 3);
+      read(p.out_normal[set], p.mapped_normal[set], r.normals, p.normals ? 3 : 0);
+      read(p.out_tangent[set], p.mapped_tangent[set], r.tangents, p.tangents ? 4 : 0);
     }
     if (const GLenum e = gl.GetError(); e != GL_NO_ERROR)
       throw std::runtime_error("OpenGL error " + std::to_string(e) + " during GPU deformation");
     times.readback += since(start);
-    return out;
   }
 
   // Uploads the bone textures and morph weights of one batch and dispatches every primitive into `set`.
@@ -296,7 +312,8 @@ struct SkinKernel::Impl {
       gl.Uniform1i(gl.GetUniformLocation(prog, "first_row"), 0);
       gl.DispatchCompute(GLuint((p.vertices + 63) / 64), GLuint(count), 1);
     }
-    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    // Mapped outputs: the shader's writes must reach the client's mapping before the fence signals.
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | (mapped ? GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT : 0));
     const GLsync fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     gl.Flush();  // start it now: the previous batch is read back while this one runs
     times.deform += since(submit);
@@ -306,10 +323,11 @@ struct SkinKernel::Impl {
 };
 
 SkinKernel::SkinKernel(GpuContext& context, const Asset& asset, std::vector<MeshInstance> instances, BlendMode mode,
-                       size_t memory_budget)
-    : impl_(std::make_unique<Impl>(context, asset, std::move(instances), mode, memory_budget)) {}
+                       size_t memory_budget, bool mapped_readback)
+    : impl_(std::make_unique<Impl>(context, asset, std::move(instances), mode, memory_budget, mapped_readback)) {}
 SkinKernel::~SkinKernel() = default;
 size_t SkinKernel::frames_per_batch() const { return impl_->batch; }
+bool SkinKernel::mapped_readback() const { return impl_->mapped; }
 
 void SkinKernel::make_current() { impl_->context.make_current(); }
 
@@ -318,8 +336,8 @@ SkinKernel::Submitted SkinKernel::dispatch(std::span<const BoneTexture> bones, s
   return {impl_->dispatch(bones, poses, set, times), poses.size(), set};
 }
 
-DeformedBatch SkinKernel::read_back(const Submitted& batch, size_t first_frame, bool copy, KernelTimes& times) {
-  return impl_->read_back(static_cast<GLsync>(batch.fence), first_frame, batch.frames, batch.set, copy, times);
+void SkinKernel::read_back(const Submitted& batch, size_t first_frame, bool copy, KernelTimes& times, DeformedBatch& out) {
+  impl_->read_back(static_cast<GLsync>(batch.fence), first_frame, batch.frames, batch.set, copy, times, out);
 }
 
 }  // namespace dqskin::gpu

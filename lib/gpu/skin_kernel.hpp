@@ -30,12 +30,14 @@ public:
   // `memory_budget` bytes (two sets). Throws InputError for a mode without a GPU path or a skin too wide
   // for the GPU's textures, NoGpuContext when the context lacks an entry point.
   SkinKernel(GpuContext& context, const Asset& asset, std::vector<MeshInstance> instances, BlendMode mode,
-             size_t memory_budget);
+             size_t memory_budget, bool mapped_readback);
   ~SkinKernel();
   SkinKernel(const SkinKernel&) = delete;
   SkinKernel& operator=(const SkinKernel&) = delete;
 
   size_t frames_per_batch() const;
+  // Whether results are read through persistently mapped buffers (else glGetBufferSubData).
+  bool mapped_readback() const;
   // Makes the context current on this thread; call before the first dispatch of a run.
   void make_current();
 
@@ -49,9 +51,9 @@ public:
   // primitive into output `set` and starts the GPU. Shader variants compile on first use (a failure throws
   // std::runtime_error naming glsl/skin.comp and the line).
   Submitted dispatch(std::span<const BoneTexture> bones, std::span<const Pose> poses, int set, KernelTimes& times);
-  // Waits for `batch` and, with `copy`, reads its outputs back (without, the arrays stay empty: for
-  // benchmarks of the deformation alone).
-  DeformedBatch read_back(const Submitted& batch, size_t first_frame, bool copy, KernelTimes& times);
+  // Waits for `batch` and, with `copy`, reads its outputs back into `out`, reusing its arrays (without,
+  // they are left empty: for benchmarks of the deformation alone).
+  void read_back(const Submitted& batch, size_t first_frame, bool copy, KernelTimes& times, DeformedBatch& out);
 
 private:
   struct Impl;

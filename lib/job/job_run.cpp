@@ -9,6 +9,14 @@ GpuContext& JobContext::get() {
   return *context_;
 }
 
+GpuContext* JobContext::for_deforming(BlendMode mode) {
+  if (backend_ == Backend::kCpu || backend_ == Backend::kFastCpu || !has_gpu_path(mode)) return nullptr;
+  if (backend_ != Backend::kAuto) return &get();
+  if (!context_ && !hardware_asked_) context_ = create_hardware_gpu_context();
+  hardware_asked_ = true;
+  return context_ && context_->info().hardware ? context_.get() : nullptr;
+}
+
 std::vector<InputResult> for_each_input(const std::vector<InputPlan>& plans, const InputWork& work,
                                         const ForgetInput& forget) {
   std::vector<InputResult> results;

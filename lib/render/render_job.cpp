@@ -38,8 +38,8 @@ std::vector<std::vector<float>> distances(const FrameView& a, const FrameView& b
   return out;
 }
 
-// Deforms frames of one input in one blend mode: on the GPU, or with the double-precision CPU reference
-// (dib, which has no GPU path, and --backend cpu).
+// Deforms frames of one input in one blend mode, where deform_path() says: the GPU, the fast CPU deformer,
+// or the double-precision CPU reference (dib, which has no GPU path, and --backend cpu).
 class FrameSource {
 public:
   FrameSource(GpuContext& context, const InputPlan& input, BlendMode mode, Backend backend) {
@@ -87,7 +87,9 @@ public:
     }
     if (options.renderer.shade == Shade::kModeDiff)  // against lbs, or dqs when lbs is drawn
       other_ = std::make_unique<FrameSource>(context, input, options.mode == BlendMode::kLbs ? BlendMode::kDqs : BlendMode::kLbs,
-                                             deforms_on_cpu(options.backend, options.mode) ? Backend::kCpu : options.backend);
+                                             deform_path(options.backend, options.mode, &context) == DeformPath::kReference
+                                                 ? Backend::kCpu
+                                                 : options.backend);
   }
 
   void render_clip(const ClipPlan& clip) {
@@ -222,7 +224,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
                     const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
   if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
-  // The backend's context draws; where the deformation runs is deforms_on_cpu()'s decision.
+  // The backend's context draws; where the deformation runs is deform_path()'s decision.
   if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
     throw InputError("--sheet-cell must be 1 to 4096 pixels");
 
@@ -250,7 +252,10 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
         report.outputs.resize(outputs_before);
         report.mode_diff.resize(mode_diff_before);
       });
-  if (context.info()) report.gpu = *context.info();
+  if (context.info()) {
+    report.gpu = *context.info();
+    report.deformer = describe(deform_path(options.backend, options.mode, &context.get()));
+  }
   std::sort(report.outputs.begin(), report.outputs.end());
   report.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;

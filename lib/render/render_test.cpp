@@ -30,7 +30,9 @@ using testing_support::context_or_null;
 // Every frame of `clip` at `times`, deformed on the GPU (mode dqs), as one batch per deformer batch.
 std::vector<DeformedBatch> deform(GpuContext& context, const Asset& asset, const std::vector<MeshInstance>& instances,
                                   const Clip* clip, const std::vector<double>& times) {
-  const std::unique_ptr<Deformer> deformer = make_deformer(&context, asset, instances, DeformerOptions{});
+  DeformerOptions options;
+  options.backend = testing_support::backend_of(context);
+  const std::unique_ptr<Deformer> deformer = make_deformer(&context, asset, instances, options);
   std::vector<DeformedBatch> out;
   deformer->run(clip, times, [&](const DeformedBatch& b) { out.push_back(b); });
   return out;

@@ -18,4 +18,10 @@ inline std::unique_ptr<GpuContext> context_or_null(Backend backend = Backend::kA
   }
 }
 
+// The --backend that names `context`'s own backend: for a test of the GPU path on whatever context there is
+// (auto would deform on the fast CPU deformer where the context is a software rasterizer).
+inline Backend backend_of(const GpuContext& context) {
+  return context.info().backend == "osmesa" ? Backend::kOsMesa : Backend::kEgl;
+}
+
 }  // namespace dqskin::testing_support

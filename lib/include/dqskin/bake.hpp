@@ -58,7 +58,8 @@ struct BakeReport {
   std::vector<InputResult> inputs;
   std::vector<BakeOutput> outputs;  // sorted by path; with dry_run, what would be written
   std::string manifest;             // path of the manifest written (empty for dry runs)
-  GpuContextInfo gpu;               // backend "cpu" when the CPU reference deformed
+  GpuContextInfo gpu;               // what deformed: the GPU's context, or backend "fast-cpu" or "cpu"
+  std::string deformer;             // describe(DeformPath): "gpu", "fast-cpu (avx2-fma)", "cpu-reference"
   size_t frames_total = 0;          // frames to deform over all inputs
   // The planned work, known before anything is written (with dry_run, what a bake would do): vertices ×
   // frames deformed, bytes of the files this shard writes (EXR at their uncompressed size, an upper bound),

@@ -1,7 +1,7 @@
 // The "deform" stage of shared/DESIGN.md as one interface: callers ask for a clip at some times in one
 // blend mode and receive DeformedBatches in frame order, whichever implementation runs (the compute shader
-// on a headless GL context, or the double-precision CPU reference). Which one runs is decided here, once,
-// from the backend and the mode.
+// on a headless GL context, the vectorized float CPU deformer, or the double-precision CPU reference).
+// Which one runs is decided here, once, from the backend, the mode and the context.
 #pragma once
 
 #include "dqskin/deformed_batch.hpp"
@@ -17,10 +17,18 @@
 
 namespace dqskin {
 
-// Whether a blend mode has a GPU path: dib exists only on the CPU reference.
+// Whether a blend mode has a GPU path (and the fast CPU deformer's): dib exists only on the CPU reference.
 bool has_gpu_path(BlendMode mode);
-// Where a deformation runs: on the CPU reference for --backend cpu and for a mode without a GPU path.
-bool deforms_on_cpu(Backend backend, BlendMode mode);
+
+// Where a deformation runs.
+enum class DeformPath { kGpu, kFastCpu, kReference };
+// The CPU reference for --backend cpu and for a mode without a GPU path; fast-cpu for fast-cpu; the GPU
+// path for egl and osmesa; for auto, the GPU path when `context` is a hardware GPU's, else fast-cpu.
+DeformPath deform_path(Backend backend, BlendMode mode, const GpuContext* context);
+// What runs, in words for --verbose, summaries and manifests: "gpu", "fast-cpu (avx2-fma)", "cpu-reference".
+std::string describe(DeformPath path);
+// The GpuContextInfo a report gives for a deformation on the CPU (backend "fast-cpu" or "cpu").
+GpuContextInfo cpu_deformer_info(DeformPath path);
 
 // Where a deformer's time went, accumulated over runs, in seconds of the calling thread.
 struct DeformStats {
@@ -44,12 +52,12 @@ struct DeformerOptions {
   BlendMode mode = BlendMode::kDqs;
   Backend backend = Backend::kAuto;
   size_t gpu_memory = size_t(512) << 20;  // GPU: bytes of output buffers (--gpu-memory)
-  unsigned threads = 0;                   // CPU reference: threads per frame, 0 for every core
-  std::function<void()> before_batch;     // CPU reference: called before each batch (a cancellation point)
+  unsigned threads = 0;                   // CPU deformers: threads, 0 for every core (results do not depend on it)
+  std::function<void()> before_batch;     // CPU deformers: called before each batch (a cancellation point)
 };
 
-// The deformer of an asset's mesh instances for `options`: the CPU reference where deforms_on_cpu(),
-// otherwise the GPU path on `context` (then not null). `context` and `asset` must outlive it.
+// The deformer of an asset's mesh instances for `options` on deform_path(options.backend, options.mode,
+// context); the GPU path needs `context`. `context` and `asset` must outlive it.
 std::unique_ptr<Deformer> make_deformer(GpuContext* context, const Asset& asset, std::vector<MeshInstance> instances,
                                         const DeformerOptions& options);
 

@@ -8,9 +8,11 @@
 
 namespace dqskin {
 
-// --backend, the one backend enum: a headless OpenGL context (auto: EGL, then OSMesa), or cpu, the
-// double-precision CPU reference (deforms_on_cpu in deformer.hpp decides where a deformation runs).
-enum class Backend { kAuto, kEgl, kOsMesa, kCpu };
+// --backend, the one backend enum. egl and osmesa deform on that headless OpenGL context; fast-cpu on the
+// vectorized float CPU deformer; cpu on the double-precision CPU reference; auto on a hardware GPU when
+// EGL's device platform offers one, else on fast-cpu (deform_path in deformer.hpp decides). Render draws
+// on a headless context whichever deformed: the one --backend names, else EGL, then OSMesa.
+enum class Backend { kAuto, kEgl, kOsMesa, kFastCpu, kCpu };
 const char* to_string(Backend backend);
 bool parse_backend(const std::string& text, Backend& backend);
 // The one-line refusal of a --backend value that parse_backend does not know.
@@ -21,6 +23,7 @@ struct GpuContextInfo {
   std::string backend;   // "egl-device", "egl-surfaceless" or "osmesa"
   std::string version;   // GL_VERSION
   std::string renderer;  // GL_RENDERER
+  bool hardware = false; // a GPU, not a software rasterizer (llvmpipe, softpipe, SwiftShader)
 };
 
 // An OpenGL 4.3 core context, current on the creating thread, needing no display. Not copyable; the
@@ -49,8 +52,10 @@ public:
 };
 
 // kAuto tries EGL (the device platform, hardware devices first, then Mesa's surfaceless platform), then
-// OSMesa when it was built in. kCpu asks for a context as kAuto does: with the CPU reference deforming,
+// OSMesa when it was built in. kFastCpu and kCpu ask for a context as kAuto does: with a CPU deformer,
 // render still draws on whichever context there is.
 std::unique_ptr<GpuContext> create_gpu_context(Backend backend);
+// A context on a hardware GPU of EGL's device platform, or null when there is none (auto's question).
+std::unique_ptr<GpuContext> create_hardware_gpu_context();
 
 }  // namespace dqskin

@@ -23,6 +23,10 @@ struct GpuDeformOptions {
                                              // in flight, one computed while the other is read back
   bool read_back = true;  // false: wait for the GPU (glFinish) but leave the results there; batches
                           // reach the sink with empty arrays (for benchmarks of the deformation alone)
+  // Read results through output buffers mapped once for the deformer's life (glBufferStorage with
+  // MAP_PERSISTENT, a fence per batch) where the context has OpenGL 4.4; false, or a 4.3 context:
+  // glGetBufferSubData. The bytes are the same either way.
+  bool mapped_readback = true;
 };
 
 // Deforms an asset's mesh instances on the GPU. Uploads the rest data once; each run() samples the clip,
@@ -41,6 +45,8 @@ public:
 
   // Frames per batch under the memory budget (at least 1).
   size_t frames_per_batch() const;
+  // Whether results are read through persistently mapped buffers (GpuDeformOptions::mapped_readback).
+  bool mapped_readback() const;
   const DeformStats& stats() const override;
 
   // Calls `sink` once per batch, in frame order, on a thread of its own, so that the sink's work (encoding,

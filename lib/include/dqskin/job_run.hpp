@@ -21,12 +21,17 @@ class JobContext {
 public:
   explicit JobContext(Backend backend) : backend_(backend) {}
   GpuContext& get();
+  // The context the deformer of `mode` runs on, or null where it runs on the CPU (deform_path): egl and
+  // osmesa make one (NoGpuContext when they cannot); auto takes a hardware GPU's when there is one (asked
+  // once); fast-cpu, cpu and a mode without a GPU path need none.
+  GpuContext* for_deforming(BlendMode mode);
   // What was made; null while nothing was.
   const GpuContextInfo* info() const { return context_ ? &context_->info() : nullptr; }
 
 private:
   Backend backend_;
   std::unique_ptr<GpuContext> context_;
+  bool hardware_asked_ = false;
 };
 
 // One input's work: writes through `journal`, counts into `result.frames`, throws to fail the input.

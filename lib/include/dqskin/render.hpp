@@ -67,7 +67,8 @@ struct RenderReport {
   std::vector<InputResult> inputs;  // error empty when the input rendered
   std::vector<ModeDiffScale> mode_diff;  // one per rendered clip with Shade::kModeDiff
   std::vector<std::string> outputs;     // files written or found equal, relative to out_dir, sorted
-  GpuContextInfo gpu;
+  GpuContextInfo gpu;       // the context that drew
+  std::string deformer;     // what deformed: describe(DeformPath), empty when nothing was rendered
   size_t frames_total = 0;  // frames this shard renders over all inputs
   double wall_seconds = 0;
   bool any_failed() const;
