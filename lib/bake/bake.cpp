@@ -90,6 +90,27 @@ struct Ledger {
   }
 };
 
+// Encoding buffers, taken by whichever thread encodes a frame and given back after the write, so that a
+// buffer's pages are faulted in once per bake rather than once per frame.
+class BufferPool {
+public:
+  std::string take() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (free_.empty()) return {};
+    std::string s = std::move(free_.back());
+    free_.pop_back();
+    return s;
+  }
+  void give(std::string s) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(s));
+  }
+
+private:
+  std::mutex mutex_;
+  std::vector<std::string> free_;
+};
+
 // Bakes the clips of one input with one deformer.
 class InputBaker {
 public:
@@ -98,6 +119,8 @@ public:
              OutputJournal& journal, std::unique_ptr<GlbWriter> glb)
       : input_(input), asset_(*input.asset), options_(options), ledger_(ledger), journal_(journal),
         jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())), glb_(std::move(glb)) {
+    if (has(options.formats, BakeFormat::kPly) || has(options.formats, BakeFormat::kObj))
+      mesh_ = std::make_unique<MeshFrameEncoder>(asset_, input.instances, asset_.materials.empty() ? "" : "materials.mtl");
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
     const bool deforms = std::any_of(input.clips.begin(), input.clips.end(),
                                      [&](const ClipPlan& c) { return !frames_to_deform(c, options.formats).empty(); });
@@ -194,19 +217,20 @@ private:
       ledger_.write(clip.frame_file(f, "glb"), bytes, journal_);
       start = Clock::now();
     }
-    if (!has(options_.formats, BakeFormat::kPly) && !has(options_.formats, BakeFormat::kObj)) return;
-    const MergedMesh mesh = merge_frame(asset_, input_.instances, view);
+    if (!mesh_) return;
+    std::string bytes = buffers_.take();
     if (has(options_.formats, BakeFormat::kPly)) {
-      const std::string bytes = encode_ply(mesh);
+      mesh_->encode_ply(view, bytes);
       ledger_.add_time(&BakeStageTimes::encode, since(start));
       ledger_.write(clip.frame_file(f, "ply"), bytes, journal_);
       start = Clock::now();
     }
     if (has(options_.formats, BakeFormat::kObj)) {
-      const std::string bytes = encode_obj(mesh, asset_, asset_.materials.empty() ? "" : "materials.mtl");
+      mesh_->encode_obj(view, bytes);
       ledger_.add_time(&BakeStageTimes::encode, since(start));
       ledger_.write(clip.frame_file(f, "obj"), bytes, journal_);
     }
+    buffers_.give(std::move(bytes));
   }
 
   const InputPlan& input_;
@@ -216,6 +240,8 @@ private:
   OutputJournal& journal_;
   const unsigned jobs_;
   std::unique_ptr<GlbWriter> glb_;
+  std::unique_ptr<MeshFrameEncoder> mesh_;  // when PLY or OBJ is asked for
+  BufferPool buffers_;
   std::unique_ptr<Deformer> deformer_;
 };
 

@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <charconv>
+#include <cstring>
 
 namespace dqskin {
 namespace {
@@ -24,21 +25,57 @@ void put_uint(std::string& out, size_t x) {
 
 bool name_char_ok(char c) { return c > ' ' && c != '#' && c < 127; }
 
+std::string ply_header(const MergedMesh& mesh) {
+  static_assert(std::endian::native == std::endian::little, "PLY is written as binary_little_endian");
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by dqskin\n";
+  out += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
+  for (const char* p : {"x", "y", "z", "nx", "ny", "nz", "s", "t"}) out += std::string("property float ") + p + "\n";
+  out += "element face " + std::to_string(mesh.triangles.size() / 3) + "\n";
+  out += "property list uchar uint vertex_indices\nend_header\n";
+  return out;
+}
+
+void put_ply_faces(std::string& out, const MergedMesh& mesh) {
+  for (size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
+    out += char(3);
+    out.append(reinterpret_cast<const char*>(&mesh.triangles[t]), 12);
+  }
+}
+
+std::string obj_header(const std::string& mtl_file) {
+  std::string out = std::string("# dqskin ") + kVersion + "\n";
+  if (!mtl_file.empty()) out += "mtllib " + mtl_file + "\n";
+  return out;
+}
+
+// "tag x y z\n" (n numbers).
+void put_vector(std::string& out, const char* tag, const float* x, int n) {
+  out += tag;
+  for (int c = 0; c < n; ++c) {
+    out += ' ';
+    put_float(out, x[c]);
+  }
+  out += '\n';
+}
+
+void put_texcoords(std::string& out, const std::vector<glm::vec2>& uv0) {
+  for (const glm::vec2& t : uv0) {
+    const float st[2] = {t.x, 1.0f - t.y};
+    put_vector(out, "vt", st, 2);
+  }
+}
+
+void put_obj_faces(std::string& out, const MergedMesh& mesh, const Asset& asset, const std::string& mtl_file);
+
 }  // namespace
 
-MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& frame) {
+MergedMesh merge_topology(const Asset& asset, const std::vector<MeshInstance>& instances) {
   MergedMesh out;
-  size_t index = 0;
   for (const MeshInstance& inst : instances) {
     for (const Primitive& prim : asset.meshes[size_t(inst.mesh)].primitives) {
-      const PrimitiveView& d = frame.primitives[index++];
-      const uint32_t base = uint32_t(out.positions.size());
-      for (size_t v = 0; v < prim.vertex_count(); ++v) {
-        out.positions.emplace_back(d.positions[3 * v], d.positions[3 * v + 1], d.positions[3 * v + 2]);
-        out.normals.push_back(d.normals.empty() ? glm::vec3(0)
-                                                : glm::vec3(d.normals[3 * v], d.normals[3 * v + 1], d.normals[3 * v + 2]));
-        out.uv0.push_back(prim.uv0.empty() ? glm::vec2(0) : prim.uv0[v]);
-      }
+      const uint32_t base = uint32_t(out.uv0.size());
+      if (prim.uv0.empty()) out.uv0.resize(out.uv0.size() + prim.vertex_count(), glm::vec2(0));
+      else out.uv0.insert(out.uv0.end(), prim.uv0.begin(), prim.uv0.end());
       MergedMesh::Group group{asset.nodes[size_t(inst.node)].name, prim.material, out.triangles.size() / 3, 0};
       for (uint32_t i : triangle_list(prim)) out.triangles.push_back(base + i);
       group.triangle_count = out.triangles.size() / 3 - group.first_triangle;
@@ -48,14 +85,22 @@ MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& inst
   return out;
 }
 
-std::string encode_ply(const MergedMesh& mesh) {
-  static_assert(std::endian::native == std::endian::little, "PLY is written as binary_little_endian");
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by dqskin\n";
-  out += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
-  for (const char* p : {"x", "y", "z", "nx", "ny", "nz", "s", "t"}) out += std::string("property float ") + p + "\n";
-  out += "element face " + std::to_string(mesh.triangles.size() / 3) + "\n";
-  out += "property list uchar uint vertex_indices\nend_header\n";
+MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& frame) {
+  MergedMesh out = merge_topology(asset, instances);
+  out.positions.reserve(out.uv0.size());
+  out.normals.reserve(out.uv0.size());
+  for (const PrimitiveView& d : frame.primitives) {
+    for (size_t v = 0; v < d.vertices; ++v) {
+      out.positions.emplace_back(d.positions[3 * v], d.positions[3 * v + 1], d.positions[3 * v + 2]);
+      out.normals.push_back(d.normals.empty() ? glm::vec3(0)
+                                              : glm::vec3(d.normals[3 * v], d.normals[3 * v + 1], d.normals[3 * v + 2]));
+    }
+  }
+  return out;
+}
 
+std::string encode_ply(const MergedMesh& mesh) {
+  std::string out = ply_header(mesh);
   out.reserve(out.size() + mesh.positions.size() * 32 + mesh.triangles.size() / 3 * 13);
   auto put = [&out](const void* data, size_t bytes) { out.append(static_cast<const char*>(data), bytes); };
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -63,11 +108,7 @@ std::string encode_ply(const MergedMesh& mesh) {
     put(&mesh.normals[v], 12);
     put(&mesh.uv0[v], 8);
   }
-  for (size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
-    const unsigned char three = 3;
-    put(&three, 1);
-    put(&mesh.triangles[t], 12);
-  }
+  put_ply_faces(out, mesh);
   return out;
 }
 
@@ -104,23 +145,59 @@ std::string encode_mtl(const Asset& asset) {
 }
 
 std::string encode_obj(const MergedMesh& mesh, const Asset& asset, const std::string& mtl_file) {
-  std::string out = std::string("# dqskin ") + kVersion + "\n";
-  if (!mtl_file.empty()) out += "mtllib " + mtl_file + "\n";
+  std::string out = obj_header(mtl_file);
   out.reserve(mesh.positions.size() * 96 + mesh.triangles.size() * 12);
-  auto vec = [&out](const char* tag, const float* x, int n) {
-    out += tag;
-    for (int c = 0; c < n; ++c) {
-      out += ' ';
-      put_float(out, x[c]);
+  for (const glm::vec3& p : mesh.positions) put_vector(out, "v", &p.x, 3);
+  put_texcoords(out, mesh.uv0);
+  for (const glm::vec3& n : mesh.normals) put_vector(out, "vn", &n.x, 3);
+  put_obj_faces(out, mesh, asset, mtl_file);
+  return out;
+}
+
+MeshFrameEncoder::MeshFrameEncoder(const Asset& asset, const std::vector<MeshInstance>& instances,
+                                   const std::string& mtl_file)
+    : shared_(merge_topology(asset, instances)) {
+  vertices_ = shared_.uv0.size();
+  shared_.positions.assign(vertices_, glm::vec3(0));  // for the header's vertex count
+  ply_header_ = ply_header(shared_);
+  put_ply_faces(ply_faces_, shared_);
+  obj_header_ = obj_header(mtl_file);
+  put_texcoords(obj_texcoords_, shared_.uv0);
+  put_obj_faces(obj_faces_, shared_, asset, mtl_file);
+  shared_.positions = {};
+  shared_.triangles = {};  // encoded: no longer needed
+}
+
+void MeshFrameEncoder::encode_ply(const FrameView& frame, std::string& out) const {
+  out.assign(ply_header_);
+  out.resize(ply_header_.size() + vertices_ * kPlyVertexBytes);
+  char* at = out.data() + ply_header_.size();
+  const float zero[3] = {0, 0, 0};
+  const glm::vec2* uv = shared_.uv0.data();
+  for (const PrimitiveView& d : frame.primitives) {
+    for (size_t v = 0; v < d.vertices; ++v, at += kPlyVertexBytes, ++uv) {
+      std::memcpy(at, &d.positions[3 * v], 12);
+      std::memcpy(at + 12, d.normals.empty() ? zero : &d.normals[3 * v], 12);
+      std::memcpy(at + 24, uv, 8);
     }
-    out += '\n';
-  };
-  for (const glm::vec3& p : mesh.positions) vec("v", &p.x, 3);
-  for (const glm::vec2& t : mesh.uv0) {
-    const float st[2] = {t.x, 1.0f - t.y};
-    vec("vt", st, 2);
   }
-  for (const glm::vec3& n : mesh.normals) vec("vn", &n.x, 3);
+  out += ply_faces_;
+}
+
+void MeshFrameEncoder::encode_obj(const FrameView& frame, std::string& out) const {
+  out.assign(obj_header_);
+  const float zero[3] = {0, 0, 0};
+  for (const PrimitiveView& d : frame.primitives)
+    for (size_t v = 0; v < d.vertices; ++v) put_vector(out, "v", &d.positions[3 * v], 3);
+  out += obj_texcoords_;
+  for (const PrimitiveView& d : frame.primitives)
+    for (size_t v = 0; v < d.vertices; ++v) put_vector(out, "vn", d.normals.empty() ? zero : &d.normals[3 * v], 3);
+  out += obj_faces_;
+}
+
+namespace {
+
+void put_obj_faces(std::string& out, const MergedMesh& mesh, const Asset& asset, const std::string& mtl_file) {
   for (size_t g = 0; g < mesh.groups.size(); ++g) {
     const MergedMesh::Group& group = mesh.groups[g];
     if (group.triangle_count == 0) continue;
@@ -141,7 +218,7 @@ std::string encode_obj(const MergedMesh& mesh, const Asset& asset, const std::st
       out += '\n';
     }
   }
-  return out;
 }
 
+}  // namespace
 }  // namespace dqskin

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 namespace dqskin {
@@ -125,6 +126,42 @@ TEST(WriteObj, MaterialLibraryHasEveryMaterialWithUniqueNames) {
   EXPECT_NE(mtl.find("newmtl skin\nKd 0.5 0.25 1\nd 0.75\n"), std::string::npos) << mtl;
   EXPECT_NE(mtl.find("newmtl dqskin_default\nKd 1 1 1\nd 1\n"), std::string::npos) << mtl;
   EXPECT_EQ(encode_mtl(Asset{}), "");
+}
+
+// The frame encoder bake uses writes the bytes of encode_ply/encode_obj of merge_frame: on every rig and
+// the shared models with several primitives, materials, no UVs or no normals, with and without a
+// material library, frame after frame into one reused buffer.
+TEST(MeshFrameEncoder, WritesTheBytesOfMergeFrameAndEncode) {
+  std::vector<std::string> paths;
+  for (const char* rig : {"twisted_cylinder", "bending_arm", "morph_skin", "two_skins", "eight_influences",
+                          "textured_cylinder", "nonuniform_scale"})
+    paths.push_back(std::string(DQSKIN_TESTDATA_DIR) + "/" + rig + ".gltf");
+  for (const char* model : {"BrainStem/BrainStem.glb", "Fox/Fox.glb", "SimpleSkin/SimpleSkin.gltf",
+                            "AnimatedMorphCube/AnimatedMorphCube.glb", "raylib_robot/robot.glb"}) {
+    const std::string path = std::string(DQSKIN_SHARED_TESTDATA_DIR) + "/" + model;
+    if (fs::exists(path)) paths.push_back(path);
+    else std::cout << "  skipped, test data not found: " << path << "\n";
+  }
+  for (const std::string& path : paths) {
+    const Asset asset = load_asset(path);
+    const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
+    for (const std::string mtl : {"", "materials.mtl"}) {
+      const MeshFrameEncoder encoder(asset, instances, mtl);
+      std::string ply, obj;  // reused, as bake reuses its buffers
+      for (double t : {0.0, 0.37, 0.9}) {
+        const Clip* clip = asset.clips.empty() ? nullptr : &asset.clips[0];
+        const DeformedFrame frame = deform_frame(asset, instances, sample_pose(asset, clip, t), BlendMode::kDqs);
+        const DeformedBatch batch = to_batch(std::span<const DeformedFrame>(&frame, 1), 0);
+        const FrameView view = frame_view(batch, 0);
+        const MergedMesh mesh = merge_frame(asset, instances, view);
+        encoder.encode_ply(view, ply);
+        encoder.encode_obj(view, obj);
+        EXPECT_TRUE(ply == encode_ply(mesh)) << path << " t=" << t;
+        EXPECT_EQ(ply.size(), encoder.ply_size()) << path;
+        EXPECT_TRUE(obj == encode_obj(mesh, asset, mtl)) << path << " t=" << t << " mtl '" << mtl << "'";
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -26,6 +26,8 @@ struct MergedMesh {
   std::vector<Group> groups;
 };
 
+// What every frame of `instances` shares: texture coordinates, faces and groups (no positions, normals).
+MergedMesh merge_topology(const Asset& asset, const std::vector<MeshInstance>& instances);
 // Merges one frame (as deform_frame orders primitives: instances, then their mesh's primitives).
 MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& frame);
 
@@ -36,6 +38,27 @@ std::string encode_ply(const MergedMesh& mesh);
 // after its node, and `usemtl` per primitive when `mtl_file` is not empty (then `mtllib mtl_file`).
 // Numbers are written in their shortest round-trip form, so reading them back gives the same floats.
 std::string encode_obj(const MergedMesh& mesh, const Asset& asset, const std::string& mtl_file);
+
+// The frames of one input as PLY and OBJ, byte for byte what encode_ply and encode_obj write for
+// merge_frame, made for baking many frames: what every frame shares (the header, texture coordinates and
+// faces, encoded once here) is copied, and only positions and normals are encoded per frame. Thread-safe
+// after construction.
+class MeshFrameEncoder {
+public:
+  MeshFrameEncoder(const Asset& asset, const std::vector<MeshInstance>& instances, const std::string& mtl_file);
+  // Replaces `out` with the frame's file (its capacity is reused: pass the same string frame after frame).
+  void encode_ply(const FrameView& frame, std::string& out) const;
+  void encode_obj(const FrameView& frame, std::string& out) const;
+  // Bytes of every frame's PLY file (they all have the same size).
+  size_t ply_size() const { return ply_header_.size() + vertices_ * kPlyVertexBytes + ply_faces_.size(); }
+
+private:
+  static constexpr size_t kPlyVertexBytes = 32;  // x y z nx ny nz s t
+  MergedMesh shared_;  // merge_topology(): its texture coordinates (its faces are kept encoded below)
+  size_t vertices_ = 0;
+  std::string ply_header_, ply_faces_;
+  std::string obj_header_, obj_texcoords_, obj_faces_;
+};
 
 // The material library for encode_obj: Kd and d from each material's base color factor. Empty when the
 // asset has no materials (then OBJ files name no library).
