@@ -50,6 +50,20 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// Calls `step` (which returns how many frames it did) until at least `min_seconds` have passed; returns
+// frames per second.
+template <class Step>
+double frames_per_second(double min_seconds, const Step& step) {
+  size_t frames = 0;
+  const Clock::time_point start = Clock::now();
+  double elapsed = 0;
+  do {
+    frames += step();
+    elapsed = seconds_since(start);
+  } while (elapsed < min_seconds);
+  return double(frames) / elapsed;
+}
+
 // GPU: runs whole batches until at least `min_seconds` passed (after one warm-up batch, which also
 // compiles the shader variant), and counts vertex-frames.
 Measurement measure_gpu(GpuContext& ctx, const Asset& asset, BlendMode mode, size_t frames_per_batch, bool readback,
@@ -69,14 +83,10 @@ Measurement measure_gpu(GpuContext& ctx, const Asset& asset, BlendMode mode, siz
   auto sink = [&](const DeformedBatch& b) { sink_bytes += b.primitives[0].positions.size(); };
   gpu.run(&asset.clips[0], times, sink);  // warm-up
 
-  size_t frames = 0;
-  const Clock::time_point start = Clock::now();
-  double elapsed = 0;
-  do {
+  const double fps = frames_per_second(min_seconds, [&] {
     gpu.run(&asset.clips[0], times, sink);
-    frames += batch;
-    elapsed = seconds_since(start);
-  } while (elapsed < min_seconds);
+    return batch;
+  });
   Measurement m;
   m.path = "gpu";
   m.backend = ctx.info().backend;
@@ -84,7 +94,7 @@ Measurement measure_gpu(GpuContext& ctx, const Asset& asset, BlendMode mode, siz
   m.frames_requested = frames_per_batch;
   m.frames_per_batch = batch;
   m.readback = readback;
-  m.vertex_frames_per_second = double(vertices) * double(frames) / elapsed;
+  m.vertex_frames_per_second = double(vertices) * fps;
   return m;
 }
 
@@ -102,14 +112,10 @@ Measurement measure_fast_cpu(const Asset& asset, BlendMode mode, unsigned thread
   size_t sink_bytes = 0;
   auto sink = [&](const DeformedBatch& b) { sink_bytes += b.primitives[0].positions.size(); };
   fast->run(&asset.clips[0], times, sink);  // warm-up: first touch of the output pages
-  size_t frames = 0;
-  const Clock::time_point start = Clock::now();
-  double elapsed = 0;
-  do {
+  const double fps = frames_per_second(min_seconds, [&] {
     fast->run(&asset.clips[0], times, sink);
-    frames += times.size();
-    elapsed = seconds_since(start);
-  } while (elapsed < min_seconds);
+    return times.size();
+  });
   Measurement m;
   m.path = "fast";
   m.backend = describe(DeformPath::kFastCpu);
@@ -117,7 +123,7 @@ Measurement measure_fast_cpu(const Asset& asset, BlendMode mode, unsigned thread
   m.frames_requested = m.frames_per_batch = times.size();
   m.threads = threads;
   m.readback = true;
-  m.vertex_frames_per_second = double(vertices) * double(frames) / elapsed;
+  m.vertex_frames_per_second = double(vertices) * fps;
   return m;
 }
 
@@ -143,14 +149,10 @@ Measurement measure_memcpy(size_t vertices, unsigned threads, double min_seconds
     for (std::thread& t : pool) t.join();
   };
   for (int i = 0; i < 3; ++i) copy_batch();  // warm-up: first touch of every buffer's pages
-  size_t frames = 0;
-  const Clock::time_point start = Clock::now();
-  double elapsed = 0;
-  do {
+  const double fps = frames_per_second(min_seconds, [&] {
     copy_batch();
-    frames += frames_per_batch;
-    elapsed = seconds_since(start);
-  } while (elapsed < min_seconds);
+    return frames_per_batch;
+  });
   Measurement m;
   m.path = "copy";
   m.backend = "memcpy";
@@ -158,22 +160,18 @@ Measurement measure_memcpy(size_t vertices, unsigned threads, double min_seconds
   m.frames_requested = m.frames_per_batch = frames_per_batch;
   m.threads = threads;
   m.readback = true;
-  m.vertex_frames_per_second = double(vertices) * double(frames) / elapsed;
+  m.vertex_frames_per_second = double(vertices) * fps;
   return m;
 }
 
 Measurement measure_cpu(const Asset& asset, BlendMode mode, int threads, double min_seconds) {
   const std::vector<MeshInstance> instances = mesh_instances(asset, 0);
   const size_t vertices = asset.meshes[0].primitives[0].vertex_count();
-  size_t frames = 0;
-  const Clock::time_point start = Clock::now();
-  double elapsed = 0;
-  do {
-    const Pose pose = sample_pose(asset, &asset.clips[0], 0.1 * double(frames % 20));
-    const DeformedFrame frame = deform_frame(asset, instances, pose, mode, threads);
-    frames += frame.primitives.empty() ? 0u : 1u;
-    elapsed = seconds_since(start);
-  } while (elapsed < min_seconds);
+  size_t step = 0;
+  const double fps = frames_per_second(min_seconds, [&] {
+    const Pose pose = sample_pose(asset, &asset.clips[0], 0.1 * double(step++ % 20));
+    return deform_frame(asset, instances, pose, mode, threads).primitives.empty() ? 0u : 1u;
+  });
   Measurement m;
   m.path = "cpu";
   m.backend = "cpu-double";
@@ -181,7 +179,7 @@ Measurement measure_cpu(const Asset& asset, BlendMode mode, int threads, double 
   m.frames_per_batch = 1;
   m.threads = size_t(threads);
   m.readback = true;
-  m.vertex_frames_per_second = double(vertices) * double(frames) / elapsed;
+  m.vertex_frames_per_second = double(vertices) * fps;
   return m;
 }
 

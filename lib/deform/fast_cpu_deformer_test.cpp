@@ -20,18 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 using deform::KernelIsa;
 
-std::vector<const Clip*> clips_of(const Asset& asset) {
-  std::vector<const Clip*> v;
-  for (const Clip& clip : asset.clips) v.push_back(&clip);
-  if (v.empty()) v.push_back(nullptr);  // the rest pose
-  return v;
-}
-
-std::vector<double> times_of(const Clip* clip) {
-  FrameSpec spec;
-  spec.fps = 10;  // every frame at 10 fps: enough frames to cross every key interval of these clips
-  return clip ? frame_times(*clip, spec) : std::vector<double>{0.0};
-}
+using testing_support::accuracy_times;
+using testing_support::clips_or_rest;
 
 struct Case {
   std::string path;
@@ -52,8 +42,8 @@ TEST_P(FastCpuMatchesReference, EveryFrameOfEveryClip) {
   const std::unique_ptr<Deformer> fast = deform::make_fast_cpu_deformer(asset, instances, options, c.isa);
 
   testing_support::AccuracyMeter meter;
-  for (const Clip* clip : clips_of(asset)) {
-    const std::vector<double> times = times_of(clip);
+  for (const Clip* clip : clips_or_rest(asset)) {
+    const std::vector<double> times = accuracy_times(clip);
     fast->run(clip, times, [&](const DeformedBatch& batch) {
       for (size_t f = 0; f < batch.frame_count; ++f)
         meter.add(asset, instances, c.mode, clip, times[batch.first_frame + f], batch, f);
@@ -93,8 +83,8 @@ std::vector<float> run_bytes(const Asset& asset, BlendMode mode, unsigned thread
   const std::unique_ptr<Deformer> fast =
       deform::make_fast_cpu_deformer(asset, mesh_instances(asset, choose_scene(asset, -1)), options);
   std::vector<float> out;
-  for (const Clip* clip : clips_of(asset))
-    fast->run(clip, times_of(clip), [&](const DeformedBatch& batch) {
+  for (const Clip* clip : clips_or_rest(asset))
+    fast->run(clip, accuracy_times(clip), [&](const DeformedBatch& batch) {
       for (const DeformedBatch::Primitive& p : batch.primitives)
         for (const std::vector<float>* a : {&p.positions, &p.normals, &p.tangents}) out.insert(out.end(), a->begin(), a->end());
     });

@@ -38,16 +38,8 @@ TEST_P(GpuMatchesCpu, EveryFrameOfEveryClip) {
   GpuDeformer gpu(*ctx, asset, instances, {c.mode, size_t(64) << 20});
 
   testing_support::AccuracyMeter meter;
-  const std::vector<const Clip*> clips = [&] {
-    std::vector<const Clip*> v;
-    for (const Clip& clip : asset.clips) v.push_back(&clip);
-    if (v.empty()) v.push_back(nullptr);
-    return v;
-  }();
-  for (const Clip* clip : clips) {
-    FrameSpec spec;
-    spec.fps = 10;  // every frame at 10 fps: enough frames to cross every key interval of these clips
-    const std::vector<double> times = clip ? frame_times(*clip, spec) : std::vector<double>{0.0};
+  for (const Clip* clip : testing_support::clips_or_rest(asset)) {
+    const std::vector<double> times = testing_support::accuracy_times(clip);
     gpu.run(clip, times, [&](const DeformedBatch& batch) {
       for (size_t f = 0; f < batch.frame_count; ++f)
         meter.add(asset, instances, c.mode, clip, times[batch.first_frame + f], batch, f);

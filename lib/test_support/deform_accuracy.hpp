@@ -62,6 +62,22 @@ inline bool well_conditioned_normal(const Asset& asset, const std::vector<MeshIn
   return true;
 }
 
+// Every clip of `asset`, or the rest pose (null) when it has none.
+inline std::vector<const Clip*> clips_or_rest(const Asset& asset) {
+  std::vector<const Clip*> v;
+  for (const Clip& clip : asset.clips) v.push_back(&clip);
+  if (v.empty()) v.push_back(nullptr);
+  return v;
+}
+
+// The times the accuracy tests deform: every frame at 10 fps, enough to cross every key interval of the
+// test models' clips; the rest pose once.
+inline std::vector<double> accuracy_times(const Clip* clip) {
+  FrameSpec spec;
+  spec.fps = 10;
+  return clip ? frame_times(*clip, spec) : std::vector<double>{0.0};
+}
+
 // The largest differences of a float deformer's batch from the reference, frame by frame.
 struct AccuracyMeter {
   double worst_position = 0, worst_normal = 0, worst_tangent = 0;
