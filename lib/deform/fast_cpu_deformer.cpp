@@ -23,7 +23,8 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Output bytes of one batch: enough frames for every core to encode one (consumers encode a batch's frames
-// in parallel), few enough that two batches (one computed, one written) stay small beside the asset.
+// in parallel), few enough that the three batch buffers (one computed, one waiting, one in the sink) stay
+// small beside the asset.
 constexpr size_t kBatchBytes = size_t(64) << 20;
 constexpr size_t kMaxFramesPerBatch = 64;
 // Blocks of kLanes vertices per work item: large enough to amortize a task, small enough to balance.
