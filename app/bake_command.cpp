@@ -92,7 +92,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
   if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
   const BakeStageTimes& t = r.times;
   const size_t baked = size_t(std::count_if(r.inputs.begin(), r.inputs.end(), [](const InputResult& in) { return in.error.empty(); }));
-  std::fprintf(stderr, "baked %zu of %zu input%s in %.2f s: %zu frames deformed on %s (%.1f frames/s); %zu files written, %zu unchanged, %.1f MB\n",
+  std::fprintf(stderr, "baked %zu of %zu input%s in %.2f s: %zu frames deformed on %s at %.1f frames/s; %zu files written, %zu unchanged, %.1f MB\n",
                baked, r.inputs.size(), r.inputs.size() == 1 ? "" : "s", r.wall_seconds, r.frames_total,
                r.deformer.empty() ? "nothing" : r.deformer.c_str(),
                r.wall_seconds > 0 ? double(r.frames_total) / r.wall_seconds : 0.0, written, unchanged, double(bytes) / 1e6);
