@@ -30,11 +30,12 @@ constexpr size_t kMaxFramesPerBatch = 64;
 // Blocks of kLanes vertices per work item: large enough to amortize a task, small enough to balance.
 constexpr size_t kBlocksPerItem = 256;
 
-// One frame's palettes, one per mesh instance (instances of one skin share one).
+// One frame's palettes and morph weights, indexed by mesh instance. Instances of one skin share the palette
+// of the first of them (palette_owner_), so only owners' entries are filled.
 struct FramePalettes {
-  std::vector<std::vector<float>> palette;   // per instance: (joints + 1) · kPaletteStride floats
-  std::vector<KernelMode> mode;              // per instance
-  std::vector<std::vector<float>> morph;     // per instance: morph weights as float
+  std::vector<std::vector<float>> palette;   // (joints + 1) · kPaletteStride floats
+  std::vector<KernelMode> mode;
+  std::vector<std::vector<float>> morph;     // morph weights as float, one per target
 };
 
 class FastCpuDeformer final : public Deformer {
@@ -45,6 +46,16 @@ public:
         rest_(make_rest_data(asset, instances_)) {
     if (!has_gpu_path(options.mode))
       throw InputError(std::string("mode ") + to_string(options.mode) + " runs on the CPU reference only");
+    // The first instance of each skin owns the palette that its later instances read.
+    palette_owner_.resize(instances_.size());
+    for (size_t i = 0; i < instances_.size(); ++i) {
+      palette_owner_[i] = i;
+      for (size_t j = 0; j < i && instances_[i].skin >= 0; ++j)
+        if (instances_[j].skin == instances_[i].skin) {
+          palette_owner_[i] = j;
+          break;
+        }
+    }
     size_t frame_bytes = 0;
     targets_.assign(instances_.size(), 0);
     for (const RestPrimitive& r : rest_) {
@@ -87,17 +98,9 @@ private:
       frame.morph.resize(instances_.size());
       for (size_t i = 0; i < instances_.size(); ++i) {
         const MeshInstance& inst = instances_[i];
-        // An earlier instance of the same skin has this frame's palette already.
-        const auto same = std::find_if(instances_.begin(), instances_.begin() + std::ptrdiff_t(i),
-                                       [&](const MeshInstance& o) { return inst.skin >= 0 && o.skin == inst.skin; });
-        if (same != instances_.begin() + std::ptrdiff_t(i)) {
-          const size_t s = size_t(same - instances_.begin());
-          frame.palette[i] = frame.palette[s];
-          frame.mode[i] = frame.mode[s];
-        } else {
-          frame.mode[i] = pack_palette(instance_joint_transforms(asset_, inst, pose), inst.skin < 0 ? BlendMode::kLbs : options_.mode,
-                                       frame.palette[i]);
-        }
+        if (palette_owner_[i] == i)  // a rigid instance's one joint is its node's world matrix: lbs, as the reference
+          frame.mode[i] = pack_palette(instance_joint_transforms(asset_, inst, pose),
+                                       inst.skin < 0 ? BlendMode::kLbs : options_.mode, frame.palette[i]);
         // One weight per target of the instance's primitives; a target beyond the node's weights has none.
         const std::vector<double>& weights = pose.weights[size_t(inst.node)];
         frame.morph[i].assign(weights.begin(), weights.end());
@@ -133,13 +136,14 @@ private:
       const FramePalettes& frame = palettes[item.frame];
       DeformedBatch::Primitive& out = batch.primitives[item.primitive];
       KernelFrame k;
-      k.palette = frame.palette[r.instance].data();
+      const size_t owner = palette_owner_[r.instance];
+      k.palette = frame.palette[owner].data();
       k.morph_weights = frame.morph[r.instance].data();
       k.vertices = r.vertices;
       k.positions = out.positions.data() + item.frame * r.vertices * 3;
       if (r.has_normals()) k.normals = out.normals.data() + item.frame * r.vertices * 3;
       if (r.has_tangents()) k.tangents = out.tangents.data() + item.frame * r.vertices * 4;
-      kernel_function(frame.mode[r.instance], isa_)(r.view, k, item.first_block, item.last_block);
+      kernel_function(frame.mode[owner], isa_)(r.view, k, item.first_block, item.last_block);
     });
   }
 
@@ -149,6 +153,7 @@ private:
   const unsigned threads_;
   const KernelIsa isa_;
   const std::vector<RestPrimitive> rest_;
+  std::vector<size_t> palette_owner_;  // per instance: the instance whose palette it reads
   std::vector<size_t> targets_;  // per instance: the most morph targets of its primitives
   size_t frames_per_batch_ = 1;
   std::array<DeformedBatch, 3> buffers_;
