@@ -25,12 +25,12 @@ void put_uint(std::string& out, size_t x) {
 
 bool name_char_ok(char c) { return c > ' ' && c != '#' && c < 127; }
 
-std::string ply_header(const MergedMesh& mesh) {
+std::string ply_header(size_t vertices, size_t faces) {
   static_assert(std::endian::native == std::endian::little, "PLY is written as binary_little_endian");
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by dqskin\n";
-  out += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
+  out += "element vertex " + std::to_string(vertices) + "\n";
   for (const char* p : {"x", "y", "z", "nx", "ny", "nz", "s", "t"}) out += std::string("property float ") + p + "\n";
-  out += "element face " + std::to_string(mesh.triangles.size() / 3) + "\n";
+  out += "element face " + std::to_string(faces) + "\n";
   out += "property list uchar uint vertex_indices\nend_header\n";
   return out;
 }
@@ -100,7 +100,7 @@ MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& inst
 }
 
 std::string encode_ply(const MergedMesh& mesh) {
-  std::string out = ply_header(mesh);
+  std::string out = ply_header(mesh.positions.size(), mesh.triangles.size() / 3);
   out.reserve(out.size() + mesh.positions.size() * 32 + mesh.triangles.size() / 3 * 13);
   auto put = [&out](const void* data, size_t bytes) { out.append(static_cast<const char*>(data), bytes); };
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -158,19 +158,18 @@ MeshFrameEncoder::MeshFrameEncoder(const Asset& asset, const std::vector<MeshIns
                                    const std::string& mtl_file)
     : shared_(merge_topology(asset, instances)) {
   vertices_ = shared_.uv0.size();
-  shared_.positions.assign(vertices_, glm::vec3(0));  // for the header's vertex count
-  ply_header_ = ply_header(shared_);
+  ply_header_ = ply_header(vertices_, shared_.triangles.size() / 3);
   put_ply_faces(ply_faces_, shared_);
   obj_header_ = obj_header(mtl_file);
   put_texcoords(obj_texcoords_, shared_.uv0);
   put_obj_faces(obj_faces_, shared_, asset, mtl_file);
-  shared_.positions = {};
   shared_.triangles = {};  // encoded: no longer needed
 }
 
 void MeshFrameEncoder::encode_ply(const FrameView& frame, std::string& out) const {
-  out.assign(ply_header_);
-  out.resize(ply_header_.size() + vertices_ * kPlyVertexBytes);
+  // Sized, not cleared: a reused buffer keeps its length, so no pass zero-fills what is overwritten next.
+  out.resize(ply_size());
+  std::memcpy(out.data(), ply_header_.data(), ply_header_.size());
   char* at = out.data() + ply_header_.size();
   const float zero[3] = {0, 0, 0};
   const glm::vec2* uv = shared_.uv0.data();
@@ -181,7 +180,7 @@ void MeshFrameEncoder::encode_ply(const FrameView& frame, std::string& out) cons
       std::memcpy(at + 24, uv, 8);
     }
   }
-  out += ply_faces_;
+  std::memcpy(at, ply_faces_.data(), ply_faces_.size());
 }
 
 void MeshFrameEncoder::encode_obj(const FrameView& frame, std::string& out) const {
