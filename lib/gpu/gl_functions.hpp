@@ -16,6 +16,7 @@ namespace dqskin::gpu {
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                  \
   X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                              \
   X(PFNGLGETSTRINGPROC, GetString)                                      \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                                    \
   X(PFNGLFINISHPROC, Finish)                                            \
   X(PFNGLFLUSHPROC, Flush)                                              \
   X(PFNGLCREATESHADERPROC, CreateShader)                                \
@@ -99,8 +100,9 @@ struct Gl {
   DQSKIN_GL_FUNCTIONS(DQSKIN_GL_MEMBER)
 #undef DQSKIN_GL_MEMBER
 
-  // OpenGL 4.4 (or ARB_buffer_storage): persistently mapped buffers. Null where the context lacks it, as a
-  // 4.3 context may: get-proc-address can return a stub for anything, so the version decides.
+  // OpenGL 4.4 or ARB_buffer_storage: persistently mapped buffers. Null where the context has neither:
+  // get-proc-address can return a stub for anything, so the version and the extension list decide (NVIDIA
+  // answers a request for 4.3 with exactly 4.3, and offers the extension).
   PFNGLBUFFERSTORAGEPROC BufferStorage = nullptr;
 
   // Resolves every entry point; returns the name of the first one missing, or empty.

@@ -24,8 +24,8 @@ struct GpuDeformOptions {
   bool read_back = true;  // false: wait for the GPU (glFinish) but leave the results there; batches
                           // reach the sink with empty arrays (for benchmarks of the deformation alone)
   // Read results through output buffers mapped once for the deformer's life (glBufferStorage with
-  // MAP_PERSISTENT, a fence per batch) where the context has OpenGL 4.4; false, or a 4.3 context:
-  // glGetBufferSubData. The bytes are the same either way.
+  // MAP_PERSISTENT, a fence per batch) where the context has OpenGL 4.4 or ARB_buffer_storage; false, or a
+  // context with neither: glGetBufferSubData. The bytes are the same either way.
   bool mapped_readback = true;
 };
 
