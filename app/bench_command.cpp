@@ -120,7 +120,8 @@ Measurement measure_fast_cpu(const Asset& asset, BlendMode mode, unsigned thread
   m.path = "fast";
   m.backend = describe(DeformPath::kFastCpu);
   m.vertices = vertices;
-  m.frames_requested = m.frames_per_batch = times.size();
+  m.frames_requested = times.size();
+  m.frames_per_batch = fast->frames_per_batch();
   m.threads = threads;
   m.readback = true;
   m.vertex_frames_per_second = double(vertices) * fps;
@@ -129,10 +130,9 @@ Measurement measure_fast_cpu(const Asset& asset, BlendMode mode, unsigned thread
 
 // The bound: kBytesPerVertexFrame moved per vertex-frame by memcpy on `threads` threads, each copying its
 // own slice. As in the fast CPU deformer, every frame reads the same source (the rest data, warm in cache
-// when it fits) and writes a region of its own, in batches of up to 64 frames and 64 MiB of outputs
-// (positions and normals), three batch buffers in turn: the same memory the deformer's outputs go through.
-Measurement measure_memcpy(size_t vertices, unsigned threads, double min_seconds) {
-  const size_t frames_per_batch = std::clamp<size_t>((size_t(64) << 20) / (vertices * 24), 1, 64);
+// when it fits) and writes a region of its own, in batches of the deformer's `frames_per_batch`, three
+// batch buffers in turn: the same memory the deformer's outputs go through.
+Measurement measure_memcpy(size_t vertices, unsigned threads, size_t frames_per_batch, double min_seconds) {
   const size_t bytes = vertices * size_t(kBytesPerVertexFrame) / 2;
   std::vector<unsigned char> from(bytes, 1), to(3 * frames_per_batch * bytes, 0);
   const size_t slice = (bytes + threads - 1) / threads;
@@ -243,8 +243,9 @@ int run_bench(const BenchSettings& settings) {
         for (bool readback : {false, true})
           rows.push_back(measure_gpu(*ctx, asset, mc.mode, fpb, readback, budget, min_seconds));
       for (unsigned threads : {1u, cores}) rows.push_back(measure_fast_cpu(asset, mc.mode, threads, min_seconds));
+      const size_t fast_batch = rows.back().frames_per_batch;
       for (int threads : {1, 2}) rows.push_back(measure_cpu(asset, mc.mode, threads, min_seconds));
-      rows.push_back(measure_memcpy(vertices, cores, min_seconds));
+      rows.push_back(measure_memcpy(vertices, cores, fast_batch, min_seconds));
       for (Measurement& m : rows) {
         m.mode = mc.name;
         if (!settings.json) print_row(m);

@@ -85,6 +85,7 @@ public:
   }
 
   const DeformStats& stats() const override { return stats_; }
+  size_t frames_per_batch() const override { return frames_per_batch_; }
 
 private:
   // sample → palette for every frame of a batch, frames in parallel.

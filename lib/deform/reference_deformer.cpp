@@ -40,6 +40,7 @@ public:
   }
 
   const DeformStats& stats() const override { return stats_; }
+  size_t frames_per_batch() const override { return kFramesPerBatch; }
 
 private:
   const Asset& asset_;

@@ -46,6 +46,8 @@ public:
   virtual void run(const Clip* clip, std::span<const double> times,
                    const std::function<void(const DeformedBatch&)>& sink) = 0;
   virtual const DeformStats& stats() const = 0;
+  // Frames a batch holds at most (fewer in the last one of a run).
+  virtual size_t frames_per_batch() const = 0;
 };
 
 struct DeformerOptions {

@@ -44,7 +44,7 @@ public:
   GpuDeformer& operator=(const GpuDeformer&) = delete;
 
   // Frames per batch under the memory budget (at least 1).
-  size_t frames_per_batch() const;
+  size_t frames_per_batch() const override;
   // Whether results are read through persistently mapped buffers (GpuDeformOptions::mapped_readback).
   bool mapped_readback() const;
   const DeformStats& stats() const override;
