@@ -10,6 +10,7 @@ packages=(
   libopenimageio-dev                           # EXR/PNG/GIF images
   libssl-dev                                   # SHA-256 (libcrypto) for bake manifests
   libcli11-dev                                 # command line
+  libnanoflann-dev                             # k-d tree of the geometric diff
   libegl-dev libgl-dev libosmesa6-dev          # headless GL headers: EGL, GL, OSMesa
   libegl-mesa0 libgl1-mesa-dri                 # Mesa's EGL and its drivers (llvmpipe without a GPU)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks

@@ -2,7 +2,7 @@
 // (include/dqskin/diff_report.hpp). Formatting only: nothing here reads an image.
 #include "dqskin/diff_report.hpp"
 #include "diff_numbers.hpp"
-#include "../io/utf8.hpp"
+#include "xml_escape.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -19,43 +19,7 @@ namespace {
 using Json = nlohmann::ordered_json;  // keys in the order written
 using diff_detail::number;
 using diff_detail::percent;
-
-// XML text or attribute value: markup escaped, invalid UTF-8 and the control characters XML 1.0 cannot hold
-// replaced by U+FFFD, line breaks kept (as character references in attributes).
-std::string xml(const std::string& text, bool attribute) {
-  std::string out;
-  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
-  const size_t n = text.size();
-  for (size_t i = 0; i < n;) {
-    const unsigned char c = s[i];
-    if (c < 0x80) {
-      switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += attribute ? "&quot;" : "\""; break;
-        case '\'': out += attribute ? "&apos;" : "'"; break;
-        case '\n': out += attribute ? "&#10;" : "\n"; break;
-        case '\r': out += "&#13;"; break;
-        case '\t': out += attribute ? "&#9;" : "\t"; break;
-        default: out += c < 0x20 || c == 0x7f ? "\xEF\xBF\xBD" : std::string(1, char(c));
-      }
-      ++i;
-      continue;
-    }
-    uint32_t code = 0;
-    const size_t length = utf8_sequence(text, i, code);
-    const bool valid = length > 0 && code != 0xFFFE && code != 0xFFFF;  // XML 1.0 Char excludes both
-    if (valid) {
-      out.append(text, i, length);
-      i += length;
-    } else {
-      out += "\xEF\xBF\xBD";
-      ++i;
-    }
-  }
-  return out;
-}
+using diff_detail::xml;
 
 Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 

@@ -4,6 +4,7 @@
 #include "../io/oiio_message.hpp"
 #include "../io/image_file.hpp"
 #include "../io/srgb.hpp"
+#include "bitmap_font.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -17,20 +18,6 @@
 
 namespace dqskin {
 namespace {
-
-// 5x7 digit glyphs, one byte per row from the top, bit 4 the leftmost pixel.
-constexpr std::array<std::array<uint8_t, 7>, 10> kDigits{{
-    {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E},  // 0
-    {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E},  // 1
-    {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F},  // 2
-    {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E},  // 3
-    {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02},  // 4
-    {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E},  // 5
-    {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E},  // 6
-    {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08},  // 7
-    {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E},  // 8
-    {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C},  // 9
-}};
 
 constexpr std::array<uint8_t, 4> kGapColor{16, 16, 16, 255};
 
@@ -51,15 +38,9 @@ Image8 to_srgb8(const Image& image) {
 
 int draw_number(Image8& image, int x, int y, int number, int scale) {
   const std::string digits = std::to_string(std::max(0, number));
-  const int width = scale * (6 * int(digits.size()) + 1), height = scale * 9;
+  const int width = scale * (font::kAdvance * int(digits.size()) + 1), height = scale * (font::kGlyphHeight + 2);
   fill(image, x, y, width, height, {0, 0, 0, 255});
-  for (size_t d = 0; d < digits.size(); ++d) {
-    const auto& glyph = kDigits[size_t(digits[d] - '0')];
-    for (int row = 0; row < 7; ++row)
-      for (int col = 0; col < 5; ++col)
-        if (glyph[size_t(row)] & (0x10 >> col))
-          fill(image, x + scale * (1 + 6 * int(d) + col), y + scale * (1 + row), scale, scale, {255, 255, 255, 255});
-  }
+  font::draw(digits, x + scale, y + scale, scale, [&](int px, int py) { fill(image, px, py, 1, 1, {255, 255, 255, 255}); });
   return width;
 }
 

@@ -1,0 +1,106 @@
+#include "error_heat_map.hpp"
+#include "../render/bitmap_font.hpp"
+
+#include "dqskin/camera.hpp"
+#include "dqskin/image_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace dqskin::diff_detail {
+namespace {
+
+void fill(Image& image, int x0, int y0, int w, int h, const glm::vec3& color) {
+  for (int y = std::max(0, y0); y < std::min(image.height, y0 + h); ++y)
+    for (int x = std::max(0, x0); x < std::min(image.width, x0 + w); ++x) {
+      float* p = image.rgba.data() + (size_t(y) * size_t(image.width) + size_t(x)) * 4;
+      p[0] = color.r, p[1] = color.g, p[2] = color.b, p[3] = 1.0f;
+    }
+}
+
+// White text on a black box with a one-font-pixel margin.
+void label(Image& image, const std::string& text, int x, int y, int scale) {
+  fill(image, x - scale, y - scale, font::text_width(text, scale) + 2 * scale, (font::kGlyphHeight + 2) * scale, glm::vec3(0));
+  font::draw(text, x, y, scale, [&](int px, int py) { fill(image, px, py, 1, 1, glm::vec3(1)); });
+}
+
+}  // namespace
+
+glm::vec3 heat_color(float t) {
+  static const glm::vec3 stops[4] = {{0.02f, 0.02f, 0.25f}, {0.0f, 0.6f, 0.8f}, {1.0f, 0.85f, 0.0f}, {0.8f, 0.0f, 0.0f}};
+  t = std::clamp(t, 0.0f, 1.0f);
+  const float x = t * 3.0f;
+  const int i = std::min(int(x), 2);
+  return glm::mix(stops[i], stops[i + 1], x - float(i));
+}
+
+std::string legend_length(double value, double scale) {
+  struct Unit {
+    double size;
+    const char* name;
+  };
+  static const Unit units[] = {{1, "m"}, {1e-2, "cm"}, {1e-3, "mm"}, {1e-6, "um"}};
+  const Unit* unit = &units[3];
+  for (const Unit& u : units)
+    if (scale >= u.size) {
+      unit = &u;
+      break;
+    }
+  char text[48];
+  std::snprintf(text, sizeof text, "%.3g %s", value / unit->size, unit->name);
+  return text;
+}
+
+Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int size) {
+  const DiffSide& side = map.side;
+  FrameView view;
+  std::vector<std::vector<float>> scalars;
+  for (size_t p = 0; p < side.first_vertex.size(); ++p) {
+    const size_t first = side.first_vertex[p], n = side.primitive_size[p];
+    PrimitiveView pv;
+    pv.vertices = n;
+    pv.positions = std::span<const float>(map.frame.positions).subspan(3 * first, 3 * n);
+    if (side.file_normals[p]) pv.normals = std::span<const float>(map.frame.normals).subspan(3 * first, 3 * n);
+    view.primitives.push_back(pv);
+    std::vector<float>& s = scalars.emplace_back(n);
+    for (size_t v = 0; v < n; ++v) s[v] = map.top > 0 ? float(std::min(1.0, double(map.error[first + v]) / map.top)) : 0.0f;
+  }
+  RendererOptions options;
+  options.width = options.height = size;
+  options.shade = Shade::kModeDiff;
+  Renderer renderer(context, side.asset, side.instances, options);
+  Bounds box;
+  box.add(view);
+  Image image = renderer.render(view, frame_camera(box, CameraOptions{}, 1.0), scalars);
+
+  // The legend, right side: a bar from 0 (bottom) to top, labels at 0, half and top, the unit's scale
+  // chosen from the top so that all three read in one unit.
+  const int scale = std::max(1, size / 256);
+  const int bar_w = 8 * scale, bar_top = 24 * scale, bar_bottom = size - 16 * scale;
+  const int text_w = font::text_width(legend_length(map.top, map.top), scale);
+  const int bar_x = size - bar_w - text_w - 8 * scale;
+  if (bar_bottom > bar_top) {
+    for (int y = bar_top; y < bar_bottom; ++y)
+      fill(image, bar_x, y, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));
+    const int x = bar_x + bar_w + 3 * scale, half = font::kGlyphHeight * scale / 2;
+    label(image, legend_length(map.top, map.top), x, bar_top - half, scale);
+    label(image, legend_length(map.top / 2, map.top), x, (bar_top + bar_bottom) / 2 - half, scale);
+    label(image, legend_length(0, map.top), x, bar_bottom - 1 - half, scale);
+  }
+  label(image, map.caption, 3 * scale, 3 * scale, scale);
+  return image;
+}
+
+std::string heat_map_file_name(const std::string& clip) {
+  std::string name = clip.empty() ? "clip" : clip;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  return name + ".error.png";
+}
+
+void write_heat_map(const std::string& path, const Image& image) {
+  write_image(path, image, ImageFormat::kPng, {Overwrite::kReplace});
+}
+
+}  // namespace dqskin::diff_detail

@@ -1,0 +1,42 @@
+// The picture of a failing clip (internal to lib/diff): A's surface at the clip's worst frame shaded by
+// each vertex's distance to B, with the color bar and its scale drawn into the image, so that the file
+// read alone says what its colors mean.
+#pragma once
+
+#include "diff_side.hpp"
+
+#include "dqskin/gpu_context.hpp"
+#include "dqskin/renderer.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dqskin::diff_detail {
+
+struct ErrorHeatMap {
+  const DiffSide& side;
+  const SideFrame& frame;
+  const std::vector<float>& error;  // per vertex of side, scene units
+  double top = 0;                   // the error the top of the color bar stands for (the clip's max)
+  std::string caption;              // drawn top left ("t = 0.433 s"); only characters of the built-in font
+};
+
+// The render's heat colors (glsl/render.frag heat(), unlit): dark blue at 0, cyan, yellow, red at 1.
+glm::vec3 heat_color(float t);
+
+// A length as the legend prints it, in the SI prefix that suits `scale`: "3.1 mm", "250 um", "1.2 m".
+std::string legend_length(double value, double scale);
+
+// Renders the heat map (square, `size` pixels, the automatic camera framed on the frame) and draws the
+// legend: a vertical color bar on the right from 0 to `top`, labelled at 0, half and top in scene units
+// (glTF's meters), and the caption.
+Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int size);
+
+// A file name for a clip's heat map: "<clip>.error.png" with characters other than letters, digits, '-',
+// '_' and '.' replaced by '_'.
+std::string heat_map_file_name(const std::string& clip);
+
+// Writes the image as an 8-bit sRGB PNG, atomically, replacing an older one. Throws OutputError.
+void write_heat_map(const std::string& path, const Image& image);
+
+}  // namespace dqskin::diff_detail

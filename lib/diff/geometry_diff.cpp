@@ -1,0 +1,459 @@
+// `dqskin diff A.glb B.glb`: correspondence at the rest pose, then both files deformed chunk by chunk at
+// the same times and every corresponding pair of surface points measured.
+#include "dqskin/geometry_diff.hpp"
+
+#include "clip_matching.hpp"
+#include "diff_numbers.hpp"
+#include "diff_side.hpp"
+#include "error_heat_map.hpp"
+#include "surface_correspondence.hpp"
+#include "../concurrency/parallel_for.hpp"
+
+#include "dqskin/animation.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/image_output.hpp"
+#include "dqskin/job.hpp"
+#include "dqskin/job_run.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+namespace dqskin {
+
+using diff_detail::DiffSide;
+using diff_detail::SideFrame;
+using diff_detail::SurfacePoint;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Where each compared vertex of one side lies on the other side's surface.
+struct Correspondence {
+  std::vector<uint32_t> vertices;  // the compared vertices (those on triangles)
+  std::vector<SurfacePoint> points;
+  std::vector<uint32_t> joint;  // per compared vertex: the joint it mostly follows (the diff's joint table)
+  double max_rest_distance = 0;
+};
+
+glm::dvec3 lower(const std::vector<glm::dvec3>& p) {
+  glm::dvec3 m(INFINITY);
+  for (const glm::dvec3& v : p) m = glm::min(m, v);
+  return m;
+}
+glm::dvec3 upper(const std::vector<glm::dvec3>& p) {
+  glm::dvec3 m(-INFINITY);
+  for (const glm::dvec3& v : p) m = glm::max(m, v);
+  return m;
+}
+
+// Identity when the files have the same primitives with the same vertex counts and every vertex of one is
+// where the other's is: a re-export that kept the order is then compared vertex by vertex.
+bool same_vertices(const DiffSide& a, const DiffSide& b, double tolerance) {
+  if (a.primitive_size != b.primitive_size) return false;
+  for (size_t v = 0; v < a.vertices; ++v)
+    if (glm::length(a.rest[v] - b.rest[v]) > tolerance) return false;
+  return true;
+}
+
+Correspondence identity(const DiffSide& side) {
+  Correspondence c;
+  for (size_t v = 0; v < side.vertices; ++v) {
+    if (!side.on_surface[v]) continue;
+    c.vertices.push_back(uint32_t(v));
+    SurfacePoint p;
+    p.vertex[0] = p.vertex[1] = p.vertex[2] = uint32_t(v);
+    c.points.push_back(p);
+  }
+  return c;
+}
+
+Correspondence closest_points(const DiffSide& from, const DiffSide& onto, unsigned threads) {
+  const diff_detail::SurfaceIndex index(onto.rest, onto.triangles, onto.rest_normals);
+  if (index.empty()) throw InputError("the scene's triangles all have zero area");
+  Correspondence c;
+  for (size_t v = 0; v < from.vertices; ++v)
+    if (from.on_surface[v]) c.vertices.push_back(uint32_t(v));
+  c.points.resize(c.vertices.size());
+  constexpr size_t kBlock = 1024;
+  concurrency::parallel_for((c.vertices.size() + kBlock - 1) / kBlock, threads, [&](size_t block) {
+    const size_t end = std::min(c.vertices.size(), (block + 1) * kBlock);
+    for (size_t i = block * kBlock; i < end; ++i) c.points[i] = index.closest(from.rest[c.vertices[i]], from.rest_normals[c.vertices[i]]);
+  });
+  for (const SurfacePoint& p : c.points) c.max_rest_distance = std::max(c.max_rest_distance, double(p.distance));
+  return c;
+}
+
+// The figures of one frame, with what the clip accumulates from it.
+struct FrameResult {
+  FrameDiff figures;
+  double max_a_to_b = 0, max_b_to_a = 0;
+  char worst_side = 'A';
+  size_t worst_vertex = 0;
+  double sum = 0;
+  uint64_t samples = 0, over_warn = 0, over_fail = 0;
+  std::vector<float> joint_max;  // per joint name of the clip's table
+  glm::vec3 low{INFINITY}, high{-INFINITY};  // A's bounding box
+};
+
+glm::vec3 at(const std::vector<float>& a, size_t v) { return {a[3 * v], a[3 * v + 1], a[3 * v + 2]}; }
+
+// One direction of one frame: `from`'s compared vertices against the surface points of `onto`. Errors go
+// to `errors` from `offset` on (for the frame's percentile). The normal angle is found through the
+// smallest cosine, then measured exactly once (atan2 of |m × n| and m · n: an acos of a rounded cosine
+// reads 1e-5 degrees for equal normals).
+void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Correspondence& c, double warn, double fail,
+             char side, FrameResult& r, std::vector<float>& errors, size_t offset, double& direction_max) {
+  const float* P = onto_frame.positions.data();
+  const float* N = onto_frame.normals.data();
+  const float* A = from_frame.positions.data();
+  const float* M = from_frame.normals.data();
+  float worst = -1;
+  size_t worst_i = 0;
+  bool nan = false;
+  float min_cosine = 2;
+  size_t min_cosine_i = SIZE_MAX;
+  double sum = 0;
+  uint64_t over_warn = 0, over_fail = 0;
+  const float w = float(warn), f = float(fail);
+  for (size_t i = 0; i < c.vertices.size(); ++i) {
+    const uint32_t v = c.vertices[i];
+    const SurfacePoint& s = c.points[i];
+    float p[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const size_t o = 3 * size_t(s.vertex[k]);
+      for (int j = 0; j < 3; ++j) p[j] += s.weight[k] * P[o + size_t(j)], n[j] += s.weight[k] * N[o + size_t(j)];
+    }
+    const size_t a = 3 * size_t(v);
+    const float dx = A[a] - p[0], dy = A[a + 1] - p[1], dz = A[a + 2] - p[2];
+    const float e = std::sqrt(dx * dx + dy * dy + dz * dz);
+    errors[offset + i] = e;
+    sum += double(e);
+    over_warn += e > w;
+    over_fail += e > f;
+    if (e > worst) worst = e, worst_i = i;
+    nan |= std::isnan(e);
+    float& joint = r.joint_max[c.joint[i]];
+    joint = std::max(joint, e);
+    const float mm = M[a] * M[a] + M[a + 1] * M[a + 1] + M[a + 2] * M[a + 2];
+    const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (mm > 0 && nn > 1e-12f) {
+      const float cosine = (M[a] * n[0] + M[a + 1] * n[1] + M[a + 2] * n[2]) / std::sqrt(mm * nn);
+      if (cosine < min_cosine) min_cosine = cosine, min_cosine_i = i;
+    }
+  }
+  r.sum += sum, r.over_warn += over_warn, r.over_fail += over_fail;
+  // A NaN is the worst error there is: it must fail whatever the thresholds.
+  const double max = nan ? double(NAN) : double(std::max(worst, 0.0f));
+  direction_max = std::max(direction_max, max);
+  if (nan) direction_max = max;
+  if (worst >= 0 && !std::isnan(r.figures.max_error) && (nan || max > r.figures.max_error)) {
+    r.figures.max_error = max;
+    r.worst_side = side, r.worst_vertex = c.vertices[worst_i];
+  }
+  if (min_cosine_i != SIZE_MAX) {
+    const SurfacePoint& s = c.points[min_cosine_i];
+    glm::dvec3 n(0);
+    for (int k = 0; k < 3; ++k) n += double(s.weight[k]) * glm::dvec3(at(onto_frame.normals, s.vertex[k]));
+    const glm::dvec3 m = at(from_frame.normals, c.vertices[min_cosine_i]);
+    const double angle = std::atan2(glm::length(glm::cross(m, n)), glm::dot(m, n));
+    r.figures.max_normal_degrees = std::max(r.figures.max_normal_degrees, angle * 180.0 / M_PI);
+  }
+}
+
+struct Thresholds {
+  double warn, fail, hard_warn, hard_fail;
+};
+
+Thresholds absolute(const DiffThresholds& t, bool relative, double diagonal) {
+  const double k = relative ? diagonal : 1.0;
+  return {t.warn * k, t.fail * k, t.hard_warn * k, t.hard_fail * k};
+}
+
+std::string length(double value) { return diff_detail::number(value); }
+
+// Why a clip failed or warned, in words.
+std::string verdict_reason(const ClipGeometryDiff& c, const DiffThresholds& t, const Thresholds& abs, bool relative) {
+  const char* unit = relative ? " of the diagonal" : "";
+  auto over = [&](uint64_t n, const char* flag, double value) {
+    return std::to_string(n) + " samples (" + diff_detail::percent(n, c.samples) + ") over " + flag + " " +
+           diff_detail::number(value) + unit;
+  };
+  if (!std::isfinite(c.max_error)) return "an error is not finite";
+  if (c.status == DiffStatus::kFail) {
+    if (c.max_error > abs.hard_fail) return "max " + length(c.max_error) + " over --hardfail " + diff_detail::number(t.hard_fail) + unit;
+    return over(c.over_fail, "--fail", t.fail);
+  }
+  if (c.status == DiffStatus::kWarn) {
+    if (c.max_error > abs.hard_warn) return "max " + length(c.max_error) + " over --hardwarn " + diff_detail::number(t.hard_warn) + unit;
+    return over(c.over_warn, "--warn", t.warn);
+  }
+  return "";
+}
+
+class GeometryDiffer {
+public:
+  GeometryDiffer(DiffSide& a, DiffSide& b, const GeometryDiffOptions& options, GeometryDiffReport& report)
+      : a_(a), b_(b), options_(options), report_(report),
+        threads_(options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency())),
+        context_(options.backend) {
+    for (const std::string& name : a.joint_names) joint_index(name);
+    for (const std::string& name : b.joint_names) joint_index(name);
+    for (const std::string& name : a.joint_names) joint_a_.push_back(joint_index(name));
+    for (const std::string& name : b.joint_names) joint_b_.push_back(joint_index(name));
+    DeformerOptions d;
+    d.mode = options.mode, d.backend = options.backend, d.threads = options.threads;
+    d.before_batch = [cancel = options.cancel] { check_cancelled(cancel); };
+    GpuContext* context = context_.for_deforming(options.mode);
+    report.deformer = describe(deform_path(options.backend, options.mode, context));
+    deform_a_ = make_deformer(context, a.asset, a.instances, d);
+    deform_b_ = make_deformer(context, b.asset, b.instances, d);
+  }
+
+  void correspond() {
+    const auto start = Clock::now();
+    const glm::dvec3 la = lower(a_.rest), ua = upper(a_.rest), lb = lower(b_.rest), ub = upper(b_.rest);
+    const double diagonal = std::max(glm::length(ua - la), glm::length(ub - lb));
+    const double slack = 1e-6 * diagonal;
+    if (glm::any(glm::greaterThan(la, ub + slack)) || glm::any(glm::greaterThan(lb, ua + slack)))
+      throw InputError("the two files' meshes do not overlap at the rest pose (their bounding boxes are disjoint)");
+    report_.identity = same_vertices(a_, b_, slack);
+    if (report_.identity) {
+      a_to_b_ = identity(a_), b_to_a_ = identity(b_);
+    } else {
+      a_to_b_ = closest_points(a_, b_, threads_);
+      b_to_a_ = closest_points(b_, a_, threads_);
+    }
+    for (uint32_t v : a_to_b_.vertices) a_to_b_.joint.push_back(joint_a_[a_.joint[v]]);
+    for (uint32_t v : b_to_a_.vertices) b_to_a_.joint.push_back(joint_b_[b_.joint[v]]);
+    report_.rest_a_to_b = a_to_b_.max_rest_distance;
+    report_.rest_b_to_a = b_to_a_.max_rest_distance;
+    report_.correspondence_seconds = seconds_since(start);
+  }
+
+  ClipGeometryDiff compare(const diff_detail::ClipPair& pair) {
+    const Clip* clip_a = pair.a >= 0 ? &a_.asset.clips[size_t(pair.a)] : nullptr;
+    const Clip* clip_b = pair.b >= 0 ? &b_.asset.clips[size_t(pair.b)] : nullptr;
+    ClipGeometryDiff c;
+    c.name = diff_detail::clip_label(a_.asset, pair.a);
+    c.name_b = diff_detail::clip_label(b_.asset, pair.b);
+    const std::vector<double> times = clip_times(clip_a, clip_b);
+
+    // Relative thresholds need the clip's diagonal before the samples are counted.
+    if (options_.relative) c.diagonal = diagonal_of(clip_a, times);
+    const Thresholds abs = absolute(options_.thresholds, options_.relative, c.diagonal);
+
+    std::vector<double> joint_max(joint_names_.size(), -1.0), joint_time(joint_names_.size(), 0.0);
+    glm::vec3 low(INFINITY), high(-INFINITY);
+    double sum = 0;
+    constexpr size_t kChunk = 32;
+    std::vector<SideFrame> frames_a(kChunk), frames_b(kChunk);
+    std::vector<FrameResult> results(kChunk);
+    for (size_t first = 0; first < times.size(); first += kChunk) {
+      check_cancelled(options_.cancel);
+      const std::span<const double> chunk(times.data() + first, std::min(kChunk, times.size() - first));
+      deform(*deform_a_, a_, clip_a, chunk, frames_a);
+      deform(*deform_b_, b_, clip_b, chunk, frames_b);
+      concurrency::parallel_for(chunk.size(), threads_, [&](size_t f) {
+        results[f] = measure_frame(frames_a[f], frames_b[f], abs);
+        results[f].figures.time = chunk[f];
+      });
+      for (size_t f = 0; f < chunk.size(); ++f) {
+        FrameResult& r = results[f];
+        if (c.frames.empty() || (!std::isnan(c.max_error) && !(r.figures.max_error <= c.max_error))) {
+          c.max_error = r.figures.max_error;
+          c.worst = {r.worst_side, r.worst_vertex, chunk[f], r.figures.worst_joint};
+        }
+        c.max_a_to_b = std::max(c.max_a_to_b, r.max_a_to_b);
+        c.max_b_to_a = std::max(c.max_b_to_a, r.max_b_to_a);
+        c.p99_error = std::max(c.p99_error, r.figures.p99_error);
+        c.max_normal_degrees = std::max(c.max_normal_degrees, r.figures.max_normal_degrees);
+        c.samples += r.samples, c.over_warn += r.over_warn, c.over_fail += r.over_fail;
+        sum += r.sum;
+        for (size_t j = 0; j < joint_max.size(); ++j)
+          if (double(r.joint_max[j]) > joint_max[j]) joint_max[j] = double(r.joint_max[j]), joint_time[j] = chunk[f];
+        low = glm::min(low, r.low), high = glm::max(high, r.high);
+        c.frames.push_back(std::move(r.figures));
+      }
+    }
+    if (!options_.relative) c.diagonal = glm::length(glm::dvec3(high - low));
+    c.mean_error = c.samples ? sum / double(c.samples) : 0;
+    for (size_t j = 0; j < joint_max.size(); ++j)
+      if (joint_max[j] >= 0) c.joints.push_back({joint_names_[j], joint_max[j], joint_time[j]});
+    std::stable_sort(c.joints.begin(), c.joints.end(), [](const JointDiff& x, const JointDiff& y) { return x.max_error > y.max_error; });
+    c.status = diff_verdict({abs.fail, options_.thresholds.fail_percent, abs.hard_fail, abs.warn,
+                             options_.thresholds.warn_percent, abs.hard_warn},
+                            c.max_error, c.over_warn, c.over_fail, std::max<uint64_t>(c.samples, 1));
+    c.reason = verdict_reason(c, options_.thresholds, abs, options_.relative);
+    if (!options_.out_dir.empty() && c.status == DiffStatus::kFail) c.heat_map = heat_map(clip_a, clip_b, c);
+    return c;
+  }
+
+  std::string contact_sheet() { return sheet_.size() ? write_sheet() : ""; }
+
+private:
+  uint32_t joint_index(const std::string& name) {
+    const auto [it, added] = joint_ids_.emplace(name, uint32_t(joint_names_.size()));
+    if (added) joint_names_.push_back(name);
+    return it->second;
+  }
+
+  std::vector<double> clip_times(const Clip* clip_a, const Clip* clip_b) const {
+    if (!options_.times.empty()) return options_.times;
+    if (options_.fps && clip_a) {
+      FrameSpec spec;
+      spec.fps = *options_.fps;
+      return frame_times(*clip_a, spec);
+    }
+    return diff_detail::comparison_times(clip_a, clip_b);
+  }
+
+  double diagonal_of(const Clip* clip, const std::vector<double>& times) {
+    glm::vec3 low(INFINITY), high(-INFINITY);
+    deform_a_->run(clip, times, [&](const DeformedBatch& batch) {
+      for (const DeformedBatch::Primitive& p : batch.primitives)
+        for (size_t i = 0; i + 2 < p.positions.size(); i += 3) {
+          const glm::vec3 v(p.positions[i], p.positions[i + 1], p.positions[i + 2]);
+          low = glm::min(low, v), high = glm::max(high, v);
+        }
+    });
+    return glm::length(glm::dvec3(high - low));
+  }
+
+  void deform(Deformer& deformer, const DiffSide& side, const Clip* clip, std::span<const double> times,
+              std::vector<SideFrame>& out) {
+    deformer.run(clip, times, [&](const DeformedBatch& batch) {
+      for (size_t f = 0; f < batch.frame_count; ++f) diff_detail::gather_frame(side, batch, f, out[batch.first_frame + f]);
+    });
+  }
+
+  FrameResult measure_frame(const SideFrame& fa, const SideFrame& fb, const Thresholds& abs) const {
+    FrameResult r;
+    r.joint_max.assign(joint_names_.size(), -1.0f);
+    thread_local std::vector<float> errors;
+    const size_t na = a_to_b_.vertices.size();
+    errors.resize(na + b_to_a_.vertices.size());
+    measure(fa, fb, a_to_b_, abs.warn, abs.fail, 'A', r, errors, 0, r.max_a_to_b);
+    measure(fb, fa, b_to_a_, abs.warn, abs.fail, 'B', r, errors, na, r.max_b_to_a);
+    r.samples = errors.size();
+    if (!errors.empty()) {
+      r.figures.mean_error = r.sum / double(errors.size());
+      const size_t k = std::min(errors.size() - 1, size_t(std::ceil(0.99 * double(errors.size()))) - 1);
+      std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(k), errors.end());
+      r.figures.p99_error = errors[k];
+    }
+    const DiffSide& side = r.worst_side == 'A' ? a_ : b_;
+    r.figures.worst_joint = side.joint_names[side.joint[r.worst_vertex]];
+    for (size_t v = 0; v < a_.vertices; ++v) {
+      const glm::vec3 p = at(fa.positions, v);
+      r.low = glm::min(r.low, p), r.high = glm::max(r.high, p);
+    }
+    return r;
+  }
+
+  // The worst frame of a failing clip, A's surface colored by its error against B.
+  std::string heat_map(const Clip* clip_a, const Clip* clip_b, const ClipGeometryDiff& c) {
+    const double time[1] = {c.worst.time};
+    std::vector<SideFrame> fa(1), fb(1);
+    deform(*deform_a_, a_, clip_a, time, fa);
+    deform(*deform_b_, b_, clip_b, time, fb);
+    std::vector<float> error(a_.vertices, 0.0f);
+    for (size_t i = 0; i < a_to_b_.vertices.size(); ++i) {
+      const SurfacePoint& s = a_to_b_.points[i];
+      glm::vec3 p(0.0f);
+      for (int k = 0; k < 3; ++k) p += s.weight[k] * at(fb[0].positions, s.vertex[k]);
+      error[a_to_b_.vertices[i]] = glm::length(at(fa[0].positions, a_to_b_.vertices[i]) - p);
+    }
+    const std::string file = diff_detail::heat_map_file_name(c.name);
+    diff_detail::ErrorHeatMap map{a_, fa[0], error, c.max_error,
+                                  "t = " + diff_detail::number(c.worst.time) + " s"};
+    const Image image = diff_detail::render_error_heat_map(context_.get(), map, options_.image_size);
+    diff_detail::write_heat_map(options_.out_dir + "/" + file, image);
+    sheet_.add(image, int(sheet_.size()));
+    return file;
+  }
+
+  std::string write_sheet() {
+    const std::string file = "worst_frames.png";
+    sheet_.write(options_.out_dir + "/" + file, {Overwrite::kReplace});
+    return file;
+  }
+
+  DiffSide& a_;
+  DiffSide& b_;
+  const GeometryDiffOptions& options_;
+  GeometryDiffReport& report_;
+  unsigned threads_;
+  JobContext context_;
+  std::unique_ptr<Deformer> deform_a_, deform_b_;
+  Correspondence a_to_b_, b_to_a_;
+  std::map<std::string, uint32_t> joint_ids_;
+  std::vector<std::string> joint_names_;
+  std::vector<uint32_t> joint_a_, joint_b_;  // each side's joint table into joint_names_
+  ContactSheet sheet_{256};
+};
+
+DiffSide load_side(const std::string& path, const GeometryDiffOptions& options) {
+  try {
+    return diff_detail::make_diff_side(load_asset(path, options.load), options.mode);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+bool is_gltf_name(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  return ext == ".gltf" || ext == ".glb";
+}
+
+DiffStatus GeometryDiffReport::status() const {
+  DiffStatus worst = DiffStatus::kPass;
+  auto take = [&](DiffStatus s) { worst = std::max(worst, s); };
+  for (const ClipGeometryDiff& c : clips) take(c.status);
+  for (const AnimationFinding& f : findings) take(f.severity);
+  return worst;
+}
+
+GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, const GeometryDiffOptions& options) {
+  const auto start = Clock::now();
+  GeometryDiffReport report;
+  report.a = a, report.b = b;
+  report.mode = options.mode;
+  report.thresholds = options.thresholds;
+  report.relative = options.relative;
+
+  DiffSide side_a = load_side(a, options);
+  DiffSide side_b = load_side(b, options);
+  report.vertices_a = side_a.vertices, report.vertices_b = side_b.vertices;
+  const std::vector<size_t> selected =
+      side_a.asset.clips.empty() ? std::vector<size_t>{} : select_clips(side_a.asset, options.clips);
+  diff_detail::ClipMatch match = diff_detail::match_clips(side_a.asset, side_b.asset, selected);
+  report.findings = std::move(match.findings);
+  for (const diff_detail::ClipPair& pair : match.pairs)
+    if (pair.a >= 0) {
+      const std::vector<AnimationFinding> notes =
+          diff_detail::compare_animations(side_a.asset, side_a.asset.clips[size_t(pair.a)], side_b.asset,
+                                          side_b.asset.clips[size_t(pair.b)], diff_detail::clip_label(side_a.asset, pair.a));
+      report.findings.insert(report.findings.end(), notes.begin(), notes.end());
+    }
+
+  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
+  GeometryDiffer differ(side_a, side_b, options, report);
+  differ.correspond();
+  for (const diff_detail::ClipPair& pair : match.pairs) report.clips.push_back(differ.compare(pair));
+  report.contact_sheet = differ.contact_sheet();
+  report.wall_seconds = seconds_since(start);
+  return report;
+}
+
+}  // namespace dqskin

@@ -1,0 +1,194 @@
+// The reports of a GeometryDiffReport (include/dqskin/geometry_report.hpp). Formatting only.
+#include "dqskin/geometry_report.hpp"
+#include "diff_numbers.hpp"
+#include "error_heat_map.hpp"
+#include "xml_escape.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace dqskin {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using diff_detail::number;
+using diff_detail::percent;
+using diff_detail::xml;
+
+Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+// A length with the SI prefix that suits it: "3.1 mm"; "0 m" for zero.
+std::string length(double value) {
+  if (!std::isfinite(value)) return number(value);
+  return value == 0 ? "0 m" : diff_detail::legend_length(value, value);
+}
+
+double relative(double value, double diagonal) { return diagonal > 0 ? value / diagonal : 0; }
+
+std::string clip_line(const ClipGeometryDiff& c) {
+  std::string line = std::string(status_name(c.status)) + "  clip " + c.name;
+  if (c.name_b != c.name) line += " (B: " + c.name_b + ")";
+  line += ", t = " + number(c.worst.time) + " s, max " + length(c.max_error) + " at " + c.worst.joint + " (" +
+          number(relative(c.max_error, c.diagonal)) + " of the diagonal " + length(c.diagonal) + "); p99 " +
+          length(c.p99_error) + ", mean " + length(c.mean_error) + ", normals " + number(c.max_normal_degrees) +
+          " deg; " + std::to_string(c.frames.size()) + " frames";
+  if (!c.reason.empty()) line += "; " + c.reason;
+  return line + "\n";
+}
+
+std::string threshold_unit(const GeometryDiffReport& r) { return r.relative ? " of the diagonal" : " scene units"; }
+
+}  // namespace
+
+std::string geometry_text(const GeometryDiffReport& r) {
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.3g s", r.correspondence_seconds);
+  std::string t = "A " + r.a + " (" + std::to_string(r.vertices_a) + " vertices), B " + r.b + " (" +
+                  std::to_string(r.vertices_b) + " vertices); " + to_string(r.mode) + " on " + r.deformer + "\n";
+  t += r.identity ? "correspondence: the same vertices in the same order\n"
+                  : "correspondence: closest surface points, built in " + std::string(seconds) + "; at rest A to B max " +
+                        length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
+  for (const ClipGeometryDiff& c : r.clips) {
+    t += clip_line(c);
+    if (!c.joints.empty()) {
+      t += "      worst joints:";
+      for (size_t j = 0; j < c.joints.size() && j < 5; ++j)
+        t += std::string(j ? "," : "") + " " + c.joints[j].joint + " " + length(c.joints[j].max_error) + " (t = " +
+             number(c.joints[j].time) + " s)";
+      t += "\n";
+    }
+    if (!c.heat_map.empty()) t += "      heat map " + c.heat_map + "\n";
+  }
+  if (!r.findings.empty()) {
+    t += "animations:\n";
+    for (const AnimationFinding& f : r.findings)
+      t += std::string("  ") + (f.severity == DiffStatus::kPass ? "note" : status_name(f.severity)) + "  clip " + f.clip +
+           ": " + f.text + "\n";
+  }
+  if (!r.contact_sheet.empty()) t += "worst frames: " + r.contact_sheet + "\n";
+  size_t counts[3] = {0, 0, 0};
+  for (const ClipGeometryDiff& c : r.clips) ++counts[int(c.status)];
+  t += std::string("summary: ") + status_name(r.status()) + " (" + std::to_string(r.clips.size()) + " clips: " +
+       std::to_string(counts[0]) + " pass, " + std::to_string(counts[1]) + " warn, " + std::to_string(counts[2]) +
+       " fail; thresholds --fail " + number(r.thresholds.fail) + ", --warn " + number(r.thresholds.warn) +
+       threshold_unit(r) + ")\n";
+  return t;
+}
+
+std::string geometry_json(const GeometryDiffReport& r) {
+  const DiffThresholds& t = r.thresholds;
+  Json doc;
+  doc["a"] = r.a;
+  doc["b"] = r.b;
+  doc["mode"] = to_string(r.mode);
+  doc["deformer"] = r.deformer;
+  doc["thresholds"] = {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
+                       {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
+                       {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)},
+                       {"relative", r.relative}};
+  doc["correspondence"] = {{"kind", r.identity ? "identity" : "closest-point"},
+                           {"rest_a_to_b", r.rest_a_to_b},
+                           {"rest_b_to_a", r.rest_b_to_a}};
+  doc["vertices"] = {{"a", r.vertices_a}, {"b", r.vertices_b}};
+  Json findings = Json::array();
+  for (const AnimationFinding& f : r.findings)
+    findings.push_back({{"severity", f.severity == DiffStatus::kPass ? "note" : status_name(f.severity)},
+                        {"clip", f.clip},
+                        {"text", f.text}});
+  doc["findings"] = std::move(findings);
+  Json clips = Json::array();
+  for (const ClipGeometryDiff& c : r.clips) {
+    Json j;
+    j["name"] = c.name;
+    j["name_b"] = c.name_b;
+    j["status"] = status_name(c.status);
+    j["reason"] = c.reason.empty() ? Json(nullptr) : Json(c.reason);
+    j["diagonal"] = c.diagonal;
+    j["max_error"] = finite_or_null(c.max_error);
+    j["max_error_relative"] = finite_or_null(relative(c.max_error, c.diagonal));
+    j["max_a_to_b"] = finite_or_null(c.max_a_to_b);
+    j["max_b_to_a"] = finite_or_null(c.max_b_to_a);
+    j["p99_error"] = finite_or_null(c.p99_error);
+    j["mean_error"] = finite_or_null(c.mean_error);
+    j["max_normal_degrees"] = c.max_normal_degrees;
+    j["worst_time"] = c.worst.time;
+    j["worst_joint"] = c.worst.joint;
+    j["worst_vertex"] = {{"side", std::string(1, c.worst.side)}, {"index", c.worst.vertex}};
+    j["samples"] = c.samples;
+    j["over_warn"] = c.over_warn;
+    j["over_fail"] = c.over_fail;
+    Json joints = Json::array();
+    for (const JointDiff& d : c.joints) joints.push_back({{"joint", d.joint}, {"max_error", finite_or_null(d.max_error)}, {"time", d.time}});
+    j["joints"] = std::move(joints);
+    Json frames = Json::array();
+    for (const FrameDiff& f : c.frames)
+      frames.push_back({{"time", f.time},
+                        {"max_error", finite_or_null(f.max_error)},
+                        {"p99_error", finite_or_null(f.p99_error)},
+                        {"mean_error", finite_or_null(f.mean_error)},
+                        {"max_normal_degrees", f.max_normal_degrees},
+                        {"worst_joint", f.worst_joint}});
+    j["frames"] = std::move(frames);
+    j["heat_map"] = c.heat_map.empty() ? Json(nullptr) : Json(c.heat_map);
+    clips.push_back(std::move(j));
+  }
+  doc["clips"] = std::move(clips);
+  doc["contact_sheet"] = r.contact_sheet.empty() ? Json(nullptr) : Json(r.contact_sheet);
+  doc["status"] = status_name(r.status());
+  return doc.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+std::string geometry_junit(const GeometryDiffReport& r) {
+  size_t tests = r.clips.size(), failures = 0;
+  for (const ClipGeometryDiff& c : r.clips) failures += c.status == DiffStatus::kFail;
+  std::string notes, cases;
+  for (const AnimationFinding& f : r.findings) {
+    if (f.severity == DiffStatus::kPass) {
+      notes += "clip " + f.clip + ": " + f.text + "\n";
+      continue;
+    }
+    ++tests;
+    cases += "    <testcase classname=\"dqskin.diff.geometry\" name=\"" + xml("clip " + f.clip + " (animation)", true) + "\">\n";
+    if (f.severity == DiffStatus::kFail) {
+      ++failures;
+      cases += "      <failure type=\"FAIL\" message=\"" + xml(f.text, true) + "\"/>\n";
+    } else {
+      cases += "      <system-out>" + xml("WARN: " + f.text, false) + "</system-out>\n";
+    }
+    cases += "    </testcase>\n";
+  }
+  for (const ClipGeometryDiff& c : r.clips) {
+    cases += "    <testcase classname=\"dqskin.diff.geometry\" name=\"" + xml("clip " + c.name, true) + "\"";
+    if (c.status == DiffStatus::kPass) {
+      cases += "/>\n";
+      continue;
+    }
+    const std::string line = clip_line(c) + (c.heat_map.empty() ? "" : "heat map: " + c.heat_map + "\n");
+    cases += ">\n";
+    if (c.status == DiffStatus::kFail)
+      cases += "      <failure type=\"FAIL\" message=\"" + xml(c.reason, true) + "\">" + xml(line, false) + "</failure>\n";
+    else
+      cases += "      <system-out>" + xml("WARN: " + line, false) + "</system-out>\n";
+    cases += "    </testcase>\n";
+  }
+  const std::string n = std::to_string(tests), f = std::to_string(failures);
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += "<testsuites name=\"dqskin diff\" tests=\"" + n + "\" failures=\"" + f + "\" errors=\"0\">\n";
+  x += "  <testsuite name=\"" + xml("dqskin diff " + r.a + " " + r.b, true) + "\" tests=\"" + n + "\" failures=\"" + f +
+       "\" errors=\"0\" skipped=\"0\">\n";
+  x += "    <properties>\n";
+  const std::pair<const char*, std::string> properties[] = {
+      {"a", r.a}, {"b", r.b}, {"mode", to_string(r.mode)}, {"fail", number(r.thresholds.fail)},
+      {"failpercent", number(r.thresholds.fail_percent)}, {"warn", number(r.thresholds.warn)},
+      {"relative", r.relative ? "true" : "false"}};
+  for (const auto& [name, value] : properties)
+    x += "      <property name=\"" + std::string(name) + "\" value=\"" + xml(value, true) + "\"/>\n";
+  x += "    </properties>\n" + cases;
+  if (!notes.empty()) x += "    <system-out>" + xml(notes, false) + "</system-out>\n";
+  x += "  </testsuite>\n</testsuites>\n";
+  return x;
+}
+
+}  // namespace dqskin

@@ -1,0 +1,121 @@
+// Comparing two glTF files by what they do, not what they store: both are deformed at the same times and
+// their surfaces compared over every frame, so that an optimizer's or exporter's changes to tracks,
+// quantization and vertex order are measured where they show (shared/DESIGN.md "diff"). A of the
+// reference, B the candidate. The reports are dqskin/geometry_report.hpp's.
+#pragma once
+
+#include "dqskin/deformer.hpp"
+#include "dqskin/gpu_context.hpp"
+#include "dqskin/image_diff.hpp"
+#include "dqskin/load.hpp"
+#include "dqskin/skinning.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dqskin {
+
+struct GeometryDiffOptions {
+  LoadOptions load;
+  BlendMode mode = BlendMode::kDqs;  // both files are deformed the same way
+  Backend backend = Backend::kAuto;
+  unsigned threads = 0;              // CPU work (deforming, comparing): 0 for every core
+  std::string clips = "all";         // A's clips to compare: all, a name or an index
+  // Times: by default the union of both clips' key times and the midpoints between consecutive ones
+  // (where resampling errors are largest); else every 1/fps from 0 to A's last key, or explicit times.
+  std::optional<double> fps;
+  std::vector<double> times;
+  // idiff's thresholds, applied to the distance between corresponding surface points: in scene units, or
+  // with `relative` as fractions of the clip's bounding-box diagonal (A's surface over every frame).
+  // Percentages count vertex samples (each vertex of both sides at each frame).
+  DiffThresholds thresholds;
+  bool relative = false;
+  // When set: for each failing clip, OUT/<clip>.error.png (its worst frame shaded by A's per-vertex error,
+  // with a color bar and its scale in scene units), and OUT/worst_frames.png, a contact sheet of them.
+  std::string out_dir;
+  int image_size = 512;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+// One frame's figures over both directions (A's vertices against B's surface and B's against A's).
+struct FrameDiff {
+  double time = 0;
+  double max_error = 0, p99_error = 0, mean_error = 0;  // scene units
+  double max_normal_degrees = 0;  // largest angle between corresponding normals (where both have normals)
+  std::string worst_joint;        // the joint the worst vertex mostly follows
+};
+
+// The worst error seen at vertices that mostly follow one joint (by its node's name, "node N" if unnamed).
+struct JointDiff {
+  std::string joint;
+  double max_error = 0;
+  double time = 0;
+};
+
+// Where the worst error of a clip is.
+struct WorstVertex {
+  char side = 'A';    // whose vertex: A's (measured against B's surface) or B's
+  size_t vertex = 0;  // in the order of FrameView: instances, primitives, vertices
+  double time = 0;
+  std::string joint;
+};
+
+struct ClipGeometryDiff {
+  std::string name;          // A's clip name ("#3" when unnamed; "rest pose" when neither file animates)
+  std::string name_b;        // B's, when matched by index with another name; else equal to name
+  DiffStatus status = DiffStatus::kPass;
+  std::string reason;        // why it failed or warned, in words; empty on PASS
+  double diagonal = 0;       // of A's bounding box over the clip's frames
+  double max_error = 0;      // symmetric: the larger of the two directions
+  double max_a_to_b = 0, max_b_to_a = 0;
+  double mean_error = 0;     // over every sample of the clip
+  double p99_error = 0;      // the largest 99th percentile of a frame
+  double max_normal_degrees = 0;
+  WorstVertex worst;
+  uint64_t samples = 0, over_warn = 0, over_fail = 0;
+  std::vector<FrameDiff> frames;
+  std::vector<JointDiff> joints;  // worst first
+  std::string heat_map;           // relative to out_dir, or empty
+};
+
+// Something the files' animations say before anything is measured: a clip, channel or target in one file
+// only, a changed duration or key count.
+struct AnimationFinding {
+  DiffStatus severity = DiffStatus::kPass;  // kFail for A's clip missing in B, kWarn for B's extra clip,
+                                            // kPass for changes an optimizer makes on purpose (notes)
+  std::string clip;
+  std::string text;
+};
+
+struct GeometryDiffReport {
+  std::string a, b;
+  BlendMode mode = BlendMode::kDqs;
+  DiffThresholds thresholds;
+  bool relative = false;
+  std::string deformer;          // describe(DeformPath) of what deformed
+  bool identity = false;         // same vertices in the same order: compared vertex by vertex
+  double correspondence_seconds = 0;
+  double rest_a_to_b = 0, rest_b_to_a = 0;  // largest distance to the other surface at the rest pose
+  size_t vertices_a = 0, vertices_b = 0;
+  std::vector<AnimationFinding> findings;
+  std::vector<ClipGeometryDiff> clips;
+  std::string contact_sheet;     // relative to out_dir, or empty
+  double wall_seconds = 0;
+
+  // FAIL when a clip failed or a finding is a failure, else WARN likewise, else PASS.
+  DiffStatus status() const;
+};
+
+// True when `path` names a glTF file (.gltf or .glb, any case): diff compares geometry then.
+bool is_gltf_name(const std::string& path);
+
+// Loads and compares two glTF files. Throws InputError naming the file for a file that does not load,
+// and naming the problem when the files cannot be compared (no clip in common, no triangles, surfaces
+// that do not overlap at rest); NoGpuContext when the backend needs a context that cannot be made;
+// JobCancelled; OutputError for images that cannot be written.
+GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, const GeometryDiffOptions& options);
+
+}  // namespace dqskin
