@@ -48,7 +48,8 @@ void write_junit(const std::string& path, const std::string& text) {
   junit.commit(Overwrite::kReplace);
 }
 
-// Two glTF files: their animations deformed and compared surface to surface.
+// Two glTF files: their animations deformed and compared surface to surface; two bakes: their files
+// vertex by vertex.
 int run_geometry_diff(const DiffSettings& s) {
   GeometryDiffOptions o;
   o.load = to_load_options(s.load);
@@ -67,7 +68,7 @@ int run_geometry_diff(const DiffSettings& s) {
   o.relative = s.relative;
   o.out_dir = s.out_dir;
   o.cancel = catch_interrupts("diff");
-  const GeometryDiffReport report = diff_geometry(s.a, s.b, o);
+  const GeometryDiffReport report = is_gltf_name(s.a) ? diff_geometry(s.a, s.b, o) : diff_bakes(s.a, s.b, o);
   std::cout << (s.json ? geometry_json(report) : geometry_text(report)) << std::flush;
   write_junit(s.junit, geometry_junit(report));
   return exit_status(report.status());
@@ -97,6 +98,7 @@ int run_diff(const DiffSettings& settings) {
     if (is_gltf_name(settings.a) != is_gltf_name(settings.b))
       throw InputError("compare two glTF files (.gltf, .glb) or two images or folders of images, not one of each");
     if (is_gltf_name(settings.a)) return run_geometry_diff(settings);
+    if (is_bake_folder(settings.a) && is_bake_folder(settings.b)) return run_geometry_diff(settings);
     const DiffReport report = diff_images(settings.a, settings.b, {settings.thresholds, settings.out_dir});
     for (const ImageDiff& d : report.pairs)
       if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);
@@ -188,6 +190,9 @@ Command add_diff_command(CLI::App& app) {
       "fails; a clip only in B warns; dropped or resampled channels are listed as notes. --out writes\n"
       "DIR/<clip>.error.png for each failing clip (its worst frame shaded by error, with a color bar in scene\n"
       "units) and DIR/worst_frames.png.\n"
+      "Two bake folders (each with the manifest.json that bake writes): PLY, OBJ and glb frames paired by relative\n"
+      "path and compared vertex by vertex, EXR textures texel by texel (distance of the first three channels);\n"
+      "--relative uses each file's diagonal. Other folders are compared as images.\n"
       "Exit status: 0 all pass, 1 warnings but no failure, 2 a failure, or a usage or input error.\n"
       "Examples:\n"
       "  dqskin diff Fox.glb Fox.optimized.glb --fail 1e-3 --relative --out diffs --junit diff.xml\n"

@@ -27,7 +27,21 @@ std::string length(double value) {
 
 double relative(double value, double diagonal) { return diagonal > 0 ? value / diagonal : 0; }
 
-std::string clip_line(const ClipGeometryDiff& c) {
+// A bake's file: "STATUS  path, max E at vertex V (R of the diagonal D); p99 …, mean …[, normals …]".
+std::string file_line(const ClipGeometryDiff& c) {
+  std::string line = std::string(status_name(c.status)) + "  " + c.name;
+  if (!c.frames.empty())
+    line += ", max " + length(c.max_error) + " at " +
+            (c.name.size() > 4 && c.name.compare(c.name.size() - 4, 4, ".exr") == 0 ? "texel " : "vertex ") +
+            std::to_string(c.worst.vertex) + " (" +
+            number(relative(c.max_error, c.diagonal)) + " of the diagonal " + length(c.diagonal) + "); p99 " +
+            length(c.p99_error) + ", mean " + length(c.mean_error) + ", normals " + number(c.max_normal_degrees) + " deg";
+  if (!c.reason.empty()) line += (c.frames.empty() ? ": " : "; ") + c.reason;
+  return line + "\n";
+}
+
+std::string clip_line(const GeometryDiffReport& r, const ClipGeometryDiff& c) {
+  if (r.bake) return file_line(c);
   std::string line = std::string(status_name(c.status)) + "  clip " + c.name;
   if (c.name_b != c.name) line += " (B: " + c.name_b + ")";
   line += ", t = " + number(c.worst.time) + " s, max " + length(c.max_error) + " at " + c.worst.joint + " (" +
@@ -45,13 +59,25 @@ std::string threshold_unit(const GeometryDiffReport& r) { return r.relative ? " 
 std::string geometry_text(const GeometryDiffReport& r) {
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.3g s", r.correspondence_seconds);
+  if (r.bake) {
+    std::string t = "A " + r.a + ", B " + r.b + ": bakes, " + std::to_string(r.clips.size()) + " files paired by path\n";
+    size_t counts[3] = {0, 0, 0};
+    for (const ClipGeometryDiff& c : r.clips) {
+      ++counts[int(c.status)];
+      t += clip_line(r, c);
+    }
+    return t + "summary: " + status_name(r.status()) + " (" + std::to_string(r.clips.size()) + " files: " +
+           std::to_string(counts[0]) + " pass, " + std::to_string(counts[1]) + " warn, " + std::to_string(counts[2]) +
+           " fail; thresholds --fail " + number(r.thresholds.fail) + ", --warn " + number(r.thresholds.warn) +
+           threshold_unit(r) + ")\n";
+  }
   std::string t = "A " + r.a + " (" + std::to_string(r.vertices_a) + " vertices), B " + r.b + " (" +
                   std::to_string(r.vertices_b) + " vertices); " + to_string(r.mode) + " on " + r.deformer + "\n";
   t += r.identity ? "correspondence: the same vertices in the same order\n"
                   : "correspondence: closest surface points, built in " + std::string(seconds) + "; at rest A to B max " +
                         length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
   for (const ClipGeometryDiff& c : r.clips) {
-    t += clip_line(c);
+    t += clip_line(r, c);
     if (!c.joints.empty()) {
       t += "      worst joints:";
       for (size_t j = 0; j < c.joints.size() && j < 5; ++j)
@@ -82,6 +108,7 @@ std::string geometry_json(const GeometryDiffReport& r) {
   Json doc;
   doc["a"] = r.a;
   doc["b"] = r.b;
+  doc["kind"] = r.bake ? "bakes" : "gltf";
   doc["mode"] = to_string(r.mode);
   doc["deformer"] = r.deformer;
   doc["thresholds"] = {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
@@ -160,12 +187,12 @@ std::string geometry_junit(const GeometryDiffReport& r) {
     cases += "    </testcase>\n";
   }
   for (const ClipGeometryDiff& c : r.clips) {
-    cases += "    <testcase classname=\"dqskin.diff.geometry\" name=\"" + xml("clip " + c.name, true) + "\"";
+    cases += "    <testcase classname=\"dqskin.diff.geometry\" name=\"" + xml(r.bake ? c.name : "clip " + c.name, true) + "\"";
     if (c.status == DiffStatus::kPass) {
       cases += "/>\n";
       continue;
     }
-    const std::string line = clip_line(c) + (c.heat_map.empty() ? "" : "heat map: " + c.heat_map + "\n");
+    const std::string line = clip_line(r, c) + (c.heat_map.empty() ? "" : "heat map: " + c.heat_map + "\n");
     cases += ">\n";
     if (c.status == DiffStatus::kFail)
       cases += "      <failure type=\"FAIL\" message=\"" + xml(c.reason, true) + "\">" + xml(line, false) + "</failure>\n";

@@ -92,6 +92,7 @@ struct AnimationFinding {
 
 struct GeometryDiffReport {
   std::string a, b;
+  bool bake = false;             // two bake folders: one entry of `clips` per file, named by its path
   BlendMode mode = BlendMode::kDqs;
   DiffThresholds thresholds;
   bool relative = false;
@@ -111,6 +112,16 @@ struct GeometryDiffReport {
 
 // True when `path` names a glTF file (.gltf or .glb, any case): diff compares geometry then.
 bool is_gltf_name(const std::string& path);
+
+// True when `path` is a folder `dqskin bake` wrote (it holds a manifest.json).
+bool is_bake_folder(const std::string& path);
+
+// Compares two bake folders: PLY, OBJ and glb frames paired by relative path and compared vertex by vertex
+// (bake keeps the input's vertex order), EXR textures texel by texel (the distance between the first three
+// channels: a VAT's positions). One report entry per file, `frames` holding its one figure; a file in one
+// folder only, or with another vertex or texel count, or unreadable, fails. Throws InputError when neither
+// folder holds such a file.
+GeometryDiffReport diff_bakes(const std::string& a, const std::string& b, const GeometryDiffOptions& options);
 
 // Loads and compares two glTF files. Throws InputError naming the file for a file that does not load,
 // and naming the problem when the files cannot be compared (no clip in common, no triangles, surfaces
