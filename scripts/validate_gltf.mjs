@@ -2,7 +2,7 @@
 //
 //   node scripts/validate_gltf.mjs [--validator DIR] FILE_OR_DIR...
 //
-// DIR is the installed npm package (PREFIX/node_modules/gltf-validator, see scripts/install-validator.sh),
+// DIR is the installed npm package (PREFIX/node_modules/gltf-validator, see scripts/install-node-tools.sh),
 // or else $GLTF_VALIDATOR. Folders are searched for .glb files, recursively. Prints one line per file
 // with its error/warning/info/hint counts and its first messages. Exit status: 0 when no file has an error,
 // 1 when one has (or no .glb was found), 2 for a usage problem or a missing validator.
@@ -25,7 +25,7 @@ for (let i = 0; i < args.length; ++i) {
 if (inputs.length === 0) fail(2, 'usage: node scripts/validate_gltf.mjs [--validator DIR] FILE_OR_DIR...');
 if (!validatorDir) fail(2, 'no validator given: pass --validator DIR or set GLTF_VALIDATOR');
 if (!fs.existsSync(path.join(validatorDir, 'package.json')))
-  fail(2, `the glTF-Validator is not installed at ${validatorDir}; run scripts/install-validator.sh ` +
+  fail(2, `the glTF-Validator is not installed at ${validatorDir}; run scripts/install-node-tools.sh ` +
           `${path.dirname(path.dirname(validatorDir))}`);
 const validator = createRequire(import.meta.url)(path.resolve(validatorDir));
 
