@@ -36,7 +36,6 @@ Python 3 standard library only (and scripts/gltf_builder.py, for the container).
 
 import argparse
 import base64
-import copy as copy_module
 import json
 import math
 import os
