@@ -18,7 +18,7 @@ packages=(
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
 )
 
-# Node.js and npm run the Khronos glTF-Validator (scripts/install-validator.sh). Debian's are installed
+# Node.js and npm run the glTF tools of scripts/install-node-tools.sh. Debian's are installed
 # only when no npm is on the PATH, so that a Node.js installed otherwise is left alone.
 command -v npm >/dev/null || packages+=(nodejs npm)
 

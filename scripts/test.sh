@@ -15,7 +15,7 @@ build_and_test() {
   echo "== $1: configure and build"
   cmake --preset "$1" >/dev/null
   cmake --build --preset "$1" -j "$jobs"
-  bash scripts/install-validator.sh "build/$1/tools"  # for the glb_validator test
+  bash scripts/install-node-tools.sh "build/$1/tools"  # validator and optimizers, for the glb and geometry diff tests
   echo "== $1: test"
   ctest --preset "$1" -j "$jobs"
 }

@@ -2,8 +2,9 @@
 //
 //   node scripts/validate_gltf.mjs [--validator DIR] FILE_OR_DIR...
 //
-// DIR is the installed npm package (PREFIX/node_modules/gltf-validator, see scripts/install-validator.sh),
-// or else $GLTF_VALIDATOR. Folders are searched for .glb files, recursively. Prints one line per file
+// DIR is the installed npm package (PREFIX/node_modules/gltf-validator, see scripts/install-node-tools.sh),
+// or else $GLTF_VALIDATOR. Folders are searched for .glb files, recursively; a .gltf is validated when it is
+// named, with its external files (buffers, images) read from its folder. Prints one line per file
 // with its error/warning/info/hint counts and its first messages. Exit status: 0 when no file has an error,
 // 1 when one has (or no .glb was found), 2 for a usage problem or a missing validator.
 import fs from 'node:fs';
@@ -25,7 +26,7 @@ for (let i = 0; i < args.length; ++i) {
 if (inputs.length === 0) fail(2, 'usage: node scripts/validate_gltf.mjs [--validator DIR] FILE_OR_DIR...');
 if (!validatorDir) fail(2, 'no validator given: pass --validator DIR or set GLTF_VALIDATOR');
 if (!fs.existsSync(path.join(validatorDir, 'package.json')))
-  fail(2, `the glTF-Validator is not installed at ${validatorDir}; run scripts/install-validator.sh ` +
+  fail(2, `the glTF-Validator is not installed at ${validatorDir}; run scripts/install-node-tools.sh ` +
           `${path.dirname(path.dirname(validatorDir))}`);
 const validator = createRequire(import.meta.url)(path.resolve(validatorDir));
 
@@ -52,12 +53,17 @@ if (files.length === 0) fail(1, `no .glb files in ${inputs.join(' ')}`);
 const severities = ['error', 'warning', 'info', 'hint'];
 let failed = 0;
 for (const file of files) {
-  const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), {
+  const options = {
     uri: path.basename(file),
     maxIssues: 0,
     // A .glb frame is self-contained: any external reference is itself a defect.
     externalResourceFunction: (uri) => Promise.reject(new Error(`external resource ${uri} refused`)),
-  });
+  };
+  if (file.endsWith('.gltf')) {
+    options.externalResourceFunction = (uri) => fs.promises.readFile(
+      path.join(path.dirname(file), decodeURIComponent(uri))).then((data) => new Uint8Array(data));
+  }
+  const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), options);
   const i = report.issues;
   const first = [...i.messages].sort((a, b) => a.severity - b.severity).slice(0, 3).map((m) => `${severities[m.severity]} ${m.code} ${m.pointer || ''}: ${m.message}`);
   console.log(`${i.numErrors ? 'FAIL' : 'ok  '} ${file}: ${i.numErrors} errors, ${i.numWarnings} warnings, ` +

@@ -8,6 +8,8 @@
 #         [-DFOLDER=out [-DUNCHANGED=ON] [-DPREPARE=args of a run that must succeed first]
 #          [-DALTER=file in FOLDER to overwrite after it] [-DPRESENT=paths] [-DABSENT=paths]]
 #         [-DWORKING_DIRECTORY=dir] [-DTIMEOUT=s] -P expect_outcome.cmake
+# Included by another script with these variables set (geometry_diff_case.cmake), it leaves the run's
+# status, out (stdout) and err (stderr) set for further checks.
 if(NOT DEFINED TIMEOUT)
   set(TIMEOUT 300)
 endif()

@@ -1,0 +1,174 @@
+# One case of the geometric diff (app/tests/geometry_diff.cmake), at test time: makes B from SOURCE (with
+# scripts/make_diff_cases.py or an npm optimizer), runs `dqskin diff A B ARGS` through expect_outcome.cmake
+# and checks the report.
+#
+#   cmake -DDQSKIN=dqskin -DPYTHON=python3 -DSCRIPT=scripts/make_diff_cases.py -DWORK=folder
+#         -DA=a.glb [-DSOURCE=file B is made from, default A] [-DB_NAME=b.glb]
+#         [-DMAKE=make_diff_cases.py command and its options | -DTOOL=gltfpack|gltf-transform -DTOOLS=node_modules/.bin
+#          "-DTOOL_ARGS=arguments, with <A> and <B> for the files"]
+#         "-DARGS=diff options" -DEXPECTED=status [-DSTDOUT_REGEX=...] [-DSTDERR_REGEX=...] [-DONE_LINE=ON]
+#         [-DFAIL_LINE=ON] [-DEXACT_JSON=ON] [-DCONTROL=ON] [-DTIMEOUT=s] -P geometry_diff_case.cmake
+#
+# FAIL_LINE: one line of stdout holds "clip <name>", "t = <seconds> s" and "at <joint>"; after `MAKE
+# rotate-key` they must be the clip, joint and key time (within 1e-3 s) that the script printed.
+# EXACT_JSON: stdout is one JSON document with status PASS and clips whose max_error is exactly 0.
+# Prints "geometry_diff: SKIPPED: <why>" (CTest's SKIP_REGULAR_EXPRESSION) when SOURCE or the tool is missing.
+cmake_minimum_required(VERSION 3.25)
+if(NOT DEFINED TIMEOUT)
+  set(TIMEOUT 300)
+endif()
+
+# Leaves the script without failing (a macro: its return() ends the file); CTest sees the line.
+macro(skip why)
+  message("geometry_diff: SKIPPED: ${why}")
+  return()
+endmacro()
+
+if(NOT DEFINED SOURCE)
+  set(SOURCE "${A}")
+endif()
+foreach(f "${A}" "${SOURCE}")
+  if(NOT EXISTS "${f}")
+    skip("${f} is missing (the shared models are in ../shared/testdata beside the repository)")
+  endif()
+endforeach()
+if(NOT DEFINED B_NAME)
+  set(B_NAME b.glb)
+endif()
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(B "${WORK}/${B_NAME}")
+
+# -- make B ---------------------------------------------------------------------------------------------------
+set(made "")
+if(DEFINED TOOL)
+  set(program "${TOOLS}/${TOOL}")
+  if(NOT EXISTS "${program}")
+    skip("${program} is missing; run scripts/install-node-tools.sh on the build folder's tools/")
+  endif()
+  # gltf-transform 4 needs Node.js 20: where it cannot start, the case cannot be made. Both print their
+  # version and exit 0 (gltfpack: -v alone).
+  set(version_flag --version)
+  if(TOOL STREQUAL "gltfpack")
+    set(version_flag -v)
+  endif()
+  execute_process(COMMAND "${program}" ${version_flag} RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE err TIMEOUT 60)
+  if(NOT status STREQUAL "0")
+    string(REGEX REPLACE "\n.*" "" err "${err}")
+    skip("${TOOL} does not run here (exit status ${status}: ${err})")
+  endif()
+  list(TRANSFORM TOOL_ARGS REPLACE "^<A>$" "${SOURCE}")
+  list(TRANSFORM TOOL_ARGS REPLACE "^<B>$" "${B}")
+  execute_process(COMMAND "${program}" ${TOOL_ARGS} RESULT_VARIABLE status OUTPUT_VARIABLE made ERROR_VARIABLE err
+                  TIMEOUT 300)
+  if(NOT status STREQUAL "0" OR NOT EXISTS "${B}")
+    message(FATAL_ERROR "${TOOL} ${TOOL_ARGS} failed (${status}):\n${made}${err}")
+  endif()
+else()
+  list(POP_FRONT MAKE make_command)
+  execute_process(COMMAND "${PYTHON}" "${SCRIPT}" ${make_command} "${SOURCE}" "${B}" ${MAKE}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE made ERROR_VARIABLE err TIMEOUT 300)
+  if(NOT status STREQUAL "0")
+    message(FATAL_ERROR "make_diff_cases.py ${make_command} ${MAKE} failed (${status}):\n${made}${err}")
+  endif()
+endif()
+
+# -- run the diff ---------------------------------------------------------------------------------------------
+# CONTROL: A and B each compare equal to themselves first, so that an expected failure is not a file the
+# diff cannot read at all.
+if(CONTROL)
+  foreach(f "${A}" "${B}")
+    execute_process(COMMAND "${DQSKIN}" diff "${f}" "${f}" RESULT_VARIABLE status OUTPUT_VARIABLE out
+                    ERROR_VARIABLE err TIMEOUT ${TIMEOUT})
+    if(NOT status STREQUAL "0")
+      message(FATAL_ERROR "dqskin diff ${f} ${f}: exit status '${status}', expected 0\n${out}${err}")
+    endif()
+  endforeach()
+endif()
+set(COMMAND "${DQSKIN}")
+set(ARGS diff "${A}" "${B}" ${ARGS})
+include(${CMAKE_CURRENT_LIST_DIR}/expect_outcome.cmake)  # fails on a wrong status or stream; sets out, err
+
+function(report problem)
+  message(FATAL_ERROR "dqskin ${ARGS}:\n${problem}\n${made}stdout:\n${out}\nstderr:\n${err}")
+endfunction()
+
+# "12.5" → 12500000: seconds as integer microseconds (CMake has no floating-point arithmetic). Other
+# spellings (an exponent) give "".
+function(microseconds text result)
+  if(text MATCHES "^([0-9]+)(\\.([0-9]*))?$")
+    set(whole ${CMAKE_MATCH_1})
+    string(SUBSTRING "${CMAKE_MATCH_3}000000" 0 6 fraction)
+    string(REGEX MATCH "^0*([0-9]+)$" fraction "${fraction}")  # without leading zeros, keeping one
+    math(EXPR value "${whole} * 1000000 + ${CMAKE_MATCH_1}")
+    set(${result} ${value} PARENT_SCOPE)
+  else()
+    set(${result} "" PARENT_SCOPE)
+  endif()
+endfunction()
+
+function(regex_escape text result)
+  string(REGEX REPLACE "([][.*+?^$()|\\\\])" "\\\\\\1" text "${text}")
+  set(${result} "${text}" PARENT_SCOPE)
+endfunction()
+
+if(FAIL_LINE)
+  set(clip_regex "[^ ]+")
+  set(joint_regex "[^ ]+")
+  set(expected_time "")
+  if(make_command STREQUAL "rotate-key")
+    if(NOT made MATCHES "^clip (.+) joint (.+) key [0-9]+ t = ([^ ]+) s\n$")
+      message(FATAL_ERROR "make_diff_cases.py rotate-key printed something else:\n${made}")
+    endif()
+    regex_escape("${CMAKE_MATCH_1}" clip_regex)
+    regex_escape("${CMAKE_MATCH_2}" joint_regex)
+    microseconds("${CMAKE_MATCH_3}" expected_time)
+  endif()
+  string(REPLACE ";" "," lines "${out}")  # one list item per line
+  string(REPLACE "\n" ";" lines "${lines}")
+  set(found OFF)
+  foreach(line IN LISTS lines)
+    if(line MATCHES "clip ${clip_regex}([^A-Za-z0-9_]|$)" AND line MATCHES "at ${joint_regex}([^A-Za-z0-9_]|$)"
+       AND line MATCHES "t = ([0-9.eE+-]+) s")
+      if(expected_time STREQUAL "")
+        set(found ON)
+      else()
+        microseconds("${CMAKE_MATCH_1}" time)
+        if(NOT time STREQUAL "")
+          math(EXPR off "${time} - ${expected_time}")
+          if(off GREATER_EQUAL -1000 AND off LESS_EQUAL 1000)
+            set(found ON)
+          endif()
+        endif()
+      endif()
+    endif()
+  endforeach()
+  if(NOT found)
+    report("no line of stdout holds \"clip ${clip_regex}\", \"at ${joint_regex}\" and \"t = <seconds> s\""
+           " (expected time in microseconds: '${expected_time}', within 1000)")
+  endif()
+endif()
+
+if(EXACT_JSON)
+  string(JSON status ERROR_VARIABLE problem GET "${out}" status)
+  if(problem)
+    report("stdout is not the JSON report: ${problem}")
+  endif()
+  if(NOT status STREQUAL "PASS")
+    report("status is '${status}', not PASS")
+  endif()
+  string(JSON clips ERROR_VARIABLE problem LENGTH "${out}" clips)
+  if(problem OR clips LESS 1)
+    report("no clips in the report ${problem}")
+  endif()
+  math(EXPR last "${clips} - 1")
+  foreach(i RANGE ${last})
+    string(JSON name ERROR_VARIABLE problem GET "${out}" clips ${i} name)
+    foreach(key max_error max_error_relative)
+      string(JSON value ERROR_VARIABLE problem GET "${out}" clips ${i} ${key})
+      if(problem OR NOT value EQUAL 0)
+        report("clip ${i} (${name}): ${key} is '${value}', not exactly 0 ${problem}")
+      endif()
+    endforeach()
+  endforeach()
+endif()
