@@ -17,6 +17,8 @@ using diff_detail::number;
 using diff_detail::percent;
 using diff_detail::xml;
 
+constexpr size_t kNotesShown = 10;
+
 Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
 // A length with the SI prefix that suits it: "3.1 mm"; "0 m" for zero.
@@ -88,10 +90,15 @@ std::string geometry_text(const GeometryDiffReport& r) {
     if (!c.heat_map.empty()) t += "      heat map " + c.heat_map + "\n";
   }
   if (!r.findings.empty()) {
+    // Failures and warnings all; notes (an optimizer drops and resamples tracks by the dozen) the first ten.
     t += "animations:\n";
-    for (const AnimationFinding& f : r.findings)
+    size_t notes = 0;
+    for (const AnimationFinding& f : r.findings) {
+      if (f.severity == DiffStatus::kPass && ++notes > kNotesShown) continue;
       t += std::string("  ") + (f.severity == DiffStatus::kPass ? "note" : status_name(f.severity)) + "  clip " + f.clip +
            ": " + f.text + "\n";
+    }
+    if (notes > kNotesShown) t += "  ... and " + std::to_string(notes - kNotesShown) + " more notes (--json lists them all)\n";
   }
   if (!r.contact_sheet.empty()) t += "worst frames: " + r.contact_sheet + "\n";
   size_t counts[3] = {0, 0, 0};
