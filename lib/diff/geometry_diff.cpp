@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <thread>
 
@@ -105,16 +106,62 @@ struct FrameResult {
 
 glm::vec3 at(const std::vector<float>& a, size_t v) { return {a[3 * v], a[3 * v + 1], a[3 * v + 2]}; }
 
+// The `keep` largest of the values added, as a min-heap: the smallest of them is the percentile that
+// leaves `keep` − 1 values above it. Most values are below the heap's least and cost one comparison, so
+// this is cheaper than keeping every value for a selection. NaNs are not kept (they fail the frame anyway).
+class LargestErrors {
+public:
+  void reset(size_t keep) { keep_ = keep, heap_.clear(); }
+  void add(float e) {
+    if (heap_.size() < keep_) {
+      if (!(e == e)) return;
+      heap_.push_back(e);
+      std::push_heap(heap_.begin(), heap_.end(), std::greater<float>());
+    } else if (e > heap_.front()) {
+      std::pop_heap(heap_.begin(), heap_.end(), std::greater<float>());
+      heap_.back() = e;
+      std::push_heap(heap_.begin(), heap_.end(), std::greater<float>());
+    }
+  }
+  float least() const { return heap_.empty() ? 0.0f : heap_.front(); }
+
+private:
+  size_t keep_ = 1;
+  std::vector<float> heap_;
+};
+
 // One direction of one frame: `from`'s compared vertices against the surface points of `onto`. Errors go
-// to `errors` from `offset` on (for the frame's percentile). The normal angle is found through the
+// to `largest`, which keeps the frame's largest errors (for its percentile). The normal angle is found through the
 // smallest cosine, then measured exactly once (atan2 of |m × n| and m · n: an acos of a rounded cosine
 // reads 1e-5 degrees for equal normals).
 void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Correspondence& c, double warn, double fail,
-             char side, FrameResult& r, std::vector<float>& errors, size_t offset, double& direction_max) {
+             char side, FrameResult& r, LargestErrors& largest, double& direction_max) {
   const float* P = onto_frame.positions.data();
   const float* N = onto_frame.normals.data();
   const float* A = from_frame.positions.data();
   const float* M = from_frame.normals.data();
+  // Two passes: the distances and normal cosines without a branch, so that the fetches of many samples
+  // are in flight at once; then the reductions over them.
+  const size_t count = c.vertices.size();
+  thread_local std::vector<float> distance, cosine;
+  distance.resize(count);
+  cosine.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const size_t a = 3 * size_t(c.vertices[i]);
+    const SurfacePoint& s = c.points[i];
+    float p[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const size_t o = 3 * size_t(s.vertex[k]);
+      for (int j = 0; j < 3; ++j) p[j] += s.weight[k] * P[o + size_t(j)], n[j] += s.weight[k] * N[o + size_t(j)];
+    }
+    const float dx = A[a] - p[0], dy = A[a + 1] - p[1], dz = A[a + 2] - p[2];
+    distance[i] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const float mm = M[a] * M[a] + M[a + 1] * M[a + 1] + M[a + 2] * M[a + 2];
+    const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const float dot = M[a] * n[0] + M[a + 1] * n[1] + M[a + 2] * n[2];
+    // 2 (no angle) where either normal is missing: never the smallest cosine.
+    cosine[i] = mm > 0 && nn > 1e-12f ? dot / std::sqrt(mm * nn) : 2.0f;
+  }
   float worst = -1;
   size_t worst_i = 0;
   bool nan = false;
@@ -123,18 +170,9 @@ void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Cor
   double sum = 0;
   uint64_t over_warn = 0, over_fail = 0;
   const float w = float(warn), f = float(fail);
-  for (size_t i = 0; i < c.vertices.size(); ++i) {
-    const uint32_t v = c.vertices[i];
-    const SurfacePoint& s = c.points[i];
-    float p[3] = {0, 0, 0}, n[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) {
-      const size_t o = 3 * size_t(s.vertex[k]);
-      for (int j = 0; j < 3; ++j) p[j] += s.weight[k] * P[o + size_t(j)], n[j] += s.weight[k] * N[o + size_t(j)];
-    }
-    const size_t a = 3 * size_t(v);
-    const float dx = A[a] - p[0], dy = A[a + 1] - p[1], dz = A[a + 2] - p[2];
-    const float e = std::sqrt(dx * dx + dy * dy + dz * dz);
-    errors[offset + i] = e;
+  for (size_t i = 0; i < count; ++i) {
+    const float e = distance[i];
+    largest.add(e);
     sum += double(e);
     over_warn += e > w;
     over_fail += e > f;
@@ -142,12 +180,7 @@ void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Cor
     nan |= std::isnan(e);
     float& joint = r.joint_max[c.joint[i]];
     joint = std::max(joint, e);
-    const float mm = M[a] * M[a] + M[a + 1] * M[a + 1] + M[a + 2] * M[a + 2];
-    const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    if (mm > 0 && nn > 1e-12f) {
-      const float cosine = (M[a] * n[0] + M[a + 1] * n[1] + M[a + 2] * n[2]) / std::sqrt(mm * nn);
-      if (cosine < min_cosine) min_cosine = cosine, min_cosine_i = i;
-    }
+    if (cosine[i] < min_cosine) min_cosine = cosine[i], min_cosine_i = i;
   }
   r.sum += sum, r.over_warn += over_warn, r.over_fail += over_fail;
   // A NaN is the worst error there is: it must fail whatever the thresholds.
@@ -337,18 +370,17 @@ private:
   FrameResult measure_frame(const SideFrame& fa, const SideFrame& fb, const Thresholds& abs) const {
     FrameResult r;
     r.joint_max.assign(joint_names_.size(), -1.0f);
-    thread_local std::vector<float> errors;
-    const size_t na = a_to_b_.vertices.size();
-    errors.resize(na + b_to_a_.vertices.size());
-    measure(fa, fb, a_to_b_, abs.warn, abs.fail, 'A', r, errors, 0, r.max_a_to_b);
-    measure(fb, fa, b_to_a_, abs.warn, abs.fail, 'B', r, errors, na, r.max_b_to_a);
-    r.samples = errors.size();
-    if (!errors.empty()) {
-      r.figures.mean_error = r.sum / double(errors.size());
-      const size_t k = std::min(errors.size() - 1, size_t(std::ceil(0.99 * double(errors.size()))) - 1);
-      std::nth_element(errors.begin(), errors.begin() + std::ptrdiff_t(k), errors.end());
-      r.figures.p99_error = errors[k];
-    }
+    // The 99th percentile (the value at index ceil(0.99 n) − 1 in increasing order) is the least of the
+    // n − that index largest errors.
+    const size_t na = a_to_b_.vertices.size(), n = na + b_to_a_.vertices.size();
+    const size_t index = std::min(n - 1, size_t(std::ceil(0.99 * double(n))) - 1);
+    thread_local LargestErrors largest;
+    largest.reset(n - index);
+    measure(fa, fb, a_to_b_, abs.warn, abs.fail, 'A', r, largest, r.max_a_to_b);
+    measure(fb, fa, b_to_a_, abs.warn, abs.fail, 'B', r, largest, r.max_b_to_a);
+    r.samples = n;
+    r.figures.mean_error = r.sum / double(n);
+    r.figures.p99_error = double(largest.least());
     const DiffSide& side = r.worst_side == 'A' ? a_ : b_;
     r.figures.worst_joint = side.joint_names[side.joint[r.worst_vertex]];
     for (size_t v = 0; v < a_.vertices; ++v) {
