@@ -3,7 +3,11 @@
 // loading the result gives the Asset the uncompressed file gives.
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
+#include "source_document.hpp"
 
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
 #include <gtest/gtest.h>
 #include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
@@ -556,6 +560,202 @@ TEST(Meshopt, DecodedSizesCountTowardMaxMemoryBeforeAnythingIsDecoded) {
   }();
   EXPECT_GT(decoded, 0u);
   EXPECT_NE(load_error(file, tight).find(" decoded, "), std::string::npos) << load_error(file, tight);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// KHR_draco_mesh_compression, as gltf-transform writes it: each primitive's attributes and indices one
+// Draco mesh in a view of buffer 0; the accessors keep count and type but lose their bufferView.
+
+struct DracoOptions {
+  int method = draco::MESH_SEQUENTIAL_ENCODING;  // keeps the points in order (edgebreaker reorders them)
+  int position_bits = 0, normal_bits = 0, texcoord_bits = 0;  // 0: not quantized (lossless)
+};
+
+draco::DataType draco_type(int component_type) {
+  switch (component_type) {
+    case 5120: return draco::DT_INT8;
+    case 5121: return draco::DT_UINT8;
+    case 5122: return draco::DT_INT16;
+    case 5123: return draco::DT_UINT16;
+    case 5125: return draco::DT_UINT32;
+    default: return draco::DT_FLOAT32;
+  }
+}
+
+// The rig with every primitive's attributes (not its morph targets) and indices Draco-compressed.
+Rig draco_rig(const Rig& rig, const DracoOptions& o = {}) {
+  Rig out{rig.doc, rig.bin};
+  json& doc = out.doc;
+  auto element_at = [&](const json& a, size_t i) {
+    const json& v = rig.doc["bufferViews"][size_t(a["bufferView"])];
+    const size_t size = component_size(a["componentType"]) * components(a["type"]);
+    const size_t stride = v.value("byteStride", size);
+    return rig.bin.data() + v.value("byteOffset", size_t(0)) + a.value("byteOffset", size_t(0)) + i * stride;
+  };
+  for (json& mesh : doc["meshes"])
+    for (json& p : mesh["primitives"]) {
+      draco::Mesh dm;
+      const json& ia = doc["accessors"][size_t(p["indices"])];
+      const size_t corners = ia["count"];
+      const json& pa = doc["accessors"][size_t(p["attributes"]["POSITION"])];
+      const size_t points = pa["count"];
+      dm.set_num_points(uint32_t(points));
+      for (size_t f = 0; f < corners / 3; ++f) {
+        draco::Mesh::Face face;
+        for (size_t c = 0; c < 3; ++c) {
+          uint32_t v = 0;
+          std::memcpy(&v, element_at(ia, 3 * f + c), component_size(ia["componentType"]));
+          face[c] = draco::PointIndex(v);
+        }
+        dm.AddFace(face);
+      }
+      json ids = json::object();
+      for (auto& [name, index] : p["attributes"].items()) {
+        json& a = doc["accessors"][size_t(index)];
+        const auto type = name == "POSITION" ? draco::GeometryAttribute::POSITION
+                          : name == "NORMAL" ? draco::GeometryAttribute::NORMAL
+                          : name.rfind("TEXCOORD_", 0) == 0 ? draco::GeometryAttribute::TEX_COORD
+                          : name.rfind("COLOR_", 0) == 0 ? draco::GeometryAttribute::COLOR
+                                                           : draco::GeometryAttribute::GENERIC;
+        const size_t n = components(a["type"]), size = component_size(a["componentType"]) * n;
+        draco::GeometryAttribute ga;
+        ga.Init(type, nullptr, uint8_t(n), draco_type(a["componentType"]), a.value("normalized", false), int64_t(size), 0);
+        const int id = dm.AddAttribute(ga, true, uint32_t(points));
+        for (size_t i = 0; i < points; ++i) dm.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), element_at(a, i));
+        ids[name] = dm.attribute(id)->unique_id();
+        a.erase("bufferView");
+        a.erase("byteOffset");
+      }
+      draco::Encoder encoder;
+      encoder.SetEncodingMethod(o.method);
+      if (o.position_bits) encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, o.position_bits);
+      if (o.normal_bits) encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, o.normal_bits);
+      if (o.texcoord_bits) encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, o.texcoord_bits);
+      draco::EncoderBuffer encoded;
+      const draco::Status status = encoder.EncodeMeshToBuffer(dm, &encoded);
+      EXPECT_TRUE(status.ok()) << status.error_msg_string();
+      pad4(out.bin);
+      doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", out.bin.size()}, {"byteLength", encoded.size()}});
+      out.bin.insert(out.bin.end(), encoded.data(), encoded.data() + encoded.size());
+      doc["accessors"][size_t(p["indices"])].erase("bufferView");
+      doc["accessors"][size_t(p["indices"])].erase("byteOffset");
+      p["extensions"]["KHR_draco_mesh_compression"] = {{"bufferView", doc["bufferViews"].size() - 1}, {"attributes", ids}};
+    }
+  pad4(out.bin);
+  doc["buffers"][0]["byteLength"] = out.bin.size();
+  add_extension(doc, "KHR_draco_mesh_compression", true);
+  return out;
+}
+
+TEST(Draco, LosslessSequentialMeshesLoadExactlyTheUncompressedAsset) {
+  for (const char* name : kRigs) {
+    SCOPED_TRACE(name);
+    const Rig rig = read_rig(name);
+    expect_same_asset(load_rig(rig), load_rig(draco_rig(rig)));
+  }
+}
+
+// Quantized attributes come back on the quantization grid: Draco spreads 2^bits - 1 steps over the
+// largest extent of the attribute's bounding box, so each component is off by at most half a step (the
+// vector by sqrt(3) / 2 steps). Normals are octahedral with `normal_bits` per coordinate: a step of
+// 2 / (2^bits - 1) in the octahedron's square; half a step in each coordinate, stretched by up to sqrt(2)
+// where the square folds onto the sphere, is within one step of the direction (a quarter more for the
+// float rounding of the renormalised result).
+TEST(Draco, QuantizedAttributesDecodeWithinTheirStep) {
+  for (const char* name : {"textured_cylinder.gltf", "morph_skin.gltf"}) {
+    SCOPED_TRACE(name);
+    const Rig rig = read_rig(name);
+    const Asset want = load_rig(rig);
+    DracoOptions o;
+    o.position_bits = 14;
+    o.normal_bits = 12;
+    o.texcoord_bits = 12;
+    const Asset got = load_rig(draco_rig(rig, o));
+    float extent = 0, uv_extent = 0;
+    for (const Mesh& m : want.meshes)
+      for (const Primitive& p : m.primitives) {
+        glm::vec3 lo(1e30f), hi(-1e30f);
+        for (const glm::vec3& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
+        extent = std::max({extent, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+        glm::vec2 ulo(1e30f), uhi(-1e30f);
+        for (const glm::vec2& v : p.uv0) ulo = glm::min(ulo, v), uhi = glm::max(uhi, v);
+        if (!p.uv0.empty()) uv_extent = std::max({uv_extent, uhi.x - ulo.x, uhi.y - ulo.y});
+      }
+    Tolerance t;
+    t.positions = extent / float((1 << 14) - 1) * 0.87f * 1.01f;
+    t.uv = uv_extent / float((1 << 12) - 1) * 0.71f * 1.01f;
+    t.normals = 1.25f * 2.0f / float((1 << 12) - 1);
+    expect_same_asset(want, got, t);
+  }
+}
+
+TEST(Draco, MalformedDataIsAOneLineInputError) {
+  const Rig compressed = draco_rig(read_rig("bending_arm.gltf"));
+  const json& ext0 = compressed.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"];
+  const size_t view = ext0["bufferView"];
+  const size_t position = compressed.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+  const std::string prefix = "mesh 0 primitive 0: KHR_draco_mesh_compression ";
+  auto error = [](const Rig& r) { return load_error(glb(r.doc, r.bin)); };
+  {  // garbage after the header
+    Rig r = compressed;
+    const size_t at = r.doc["bufferViews"][view]["byteOffset"], n = r.doc["bufferViews"][view]["byteLength"];
+    for (size_t k = 11; k < n; ++k) r.bin[at + k] = uint8_t(k * 131 + 7);
+    EXPECT_EQ(error(r).rfind(prefix + "data is malformed (", 0), 0u) << error(r);
+  }
+  {  // not Draco at all
+    Rig r = compressed;
+    const size_t at = r.doc["bufferViews"][view]["byteOffset"];
+    std::memcpy(&r.bin[at], "GARBAGE!", 8);
+    EXPECT_EQ(error(r).rfind(prefix + "data is malformed (", 0), 0u) << error(r);
+  }
+  {  // truncated
+    Rig r = compressed;
+    r.doc["bufferViews"][view]["byteLength"] = size_t(r.doc["bufferViews"][view]["byteLength"]) / 2;
+    EXPECT_EQ(error(r).rfind(prefix + "data is malformed (", 0), 0u) << error(r);
+  }
+  {  // a unique id the data does not have
+    Rig r = compressed;
+    r.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["POSITION"] = 99;
+    EXPECT_EQ(error(r), prefix + "attribute POSITION: unique id 99 is not in the compressed data");
+  }
+  {  // the accessor's count is not the decoded point count
+    Rig r = compressed;
+    r.doc["accessors"][position]["count"] = size_t(r.doc["accessors"][position]["count"]) + 1;
+    EXPECT_NE(error(r).find("attribute POSITION: accessor " + std::to_string(position) + " has count"), std::string::npos) << error(r);
+  }
+  {  // the accessor's type does not match the data's components
+    Rig r = compressed;
+    r.doc["accessors"][position]["type"] = "VEC4";
+    EXPECT_EQ(error(r), prefix + "attribute POSITION has 3 components in the compressed data, its accessor 4");
+  }
+  {  // an attribute name the primitive does not have
+    Rig r = compressed;
+    r.doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["TEXCOORD_3"] = 0;
+    EXPECT_EQ(error(r), prefix + "attribute TEXCOORD_3 is not an attribute of the primitive");
+  }
+}
+
+// The frame writer copies TEXCOORD_n and COLOR_n from the source: decoded, they are there to copy.
+TEST(Draco, KeptSourceHasTheDecodedTexcoordsAndColors) {
+  const Rig rig = read_rig("textured_cylinder.gltf");
+  LoadOptions keep;
+  keep.keep_source = true;
+  const Asset want = load_bytes(glb(rig.doc, rig.bin), keep);
+  const Rig compressed = draco_rig(rig);
+  const Asset got = load_bytes(glb(compressed.doc, compressed.bin), keep);
+  ASSERT_TRUE(want.source && got.source);
+  ASSERT_EQ(want.source->meshes.size(), got.source->meshes.size());
+  for (size_t m = 0; m < want.source->meshes.size(); ++m)
+    for (size_t p = 0; p < want.source->meshes[m].size(); ++p) {
+      const SourcePrimitive& a = want.source->meshes[m][p];
+      const SourcePrimitive& b = got.source->meshes[m][p];
+      EXPECT_EQ(b.error, "");
+      ASSERT_EQ(a.attributes.size(), b.attributes.size());
+      for (size_t k = 0; k < a.attributes.size(); ++k) {
+        EXPECT_EQ(a.attributes[k].name, b.attributes[k].name);
+        EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
+      }
+    }
 }
 
 }  // namespace

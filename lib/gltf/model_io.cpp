@@ -150,6 +150,8 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& folde
   if (!ok) throw InputError(err.empty() ? std::string("not a glTF file") : first_line(err));
   // Compressed views (precheck counted what they decode to against max_memory).
   decode_meshopt(out.model, checked.doc, checked.dataless);
+  for (size_t a : checked.unviewed_indices) out.model.accessors[a].bufferView = -1;  // decode_draco fills them
+  for (size_t a : checked.unviewed_indices) checked.doc["accessors"][a].erase("bufferView");
   out.doc = std::move(checked.doc);
   out.warnings = std::move(checked.warnings);
   out.json_bytes = checked.json_bytes;

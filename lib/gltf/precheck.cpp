@@ -201,6 +201,24 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
            std::to_string(view) + " (byte " + std::to_string(in_buffer) + " of its buffer), not a multiple of " +
            std::to_string(size) + ", the size of its components");
   }
+  // tinygltf 2.7 refuses a primitive's indices accessor without bufferView, which KHR_draco_mesh_compression
+  // prescribes: tinygltf gets the Draco view for it, and parse_model takes it away again (draco.hpp).
+  for (size_t m = 0; m < array_size("meshes"); ++m) {
+    const nlohmann::json& mesh = doc["meshes"][m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (const nlohmann::json& p : mesh["primitives"]) {
+      if (!p.is_object() || !p.contains("indices") || !p.contains("extensions") || !p["extensions"].is_object()) continue;
+      const auto draco = p["extensions"].find("KHR_draco_mesh_compression");
+      if (draco == p["extensions"].end() || !draco->is_object() || !draco->contains("bufferView")) continue;
+      const uint64_t view = (*draco)["bufferView"].get<uint64_t>(), indices = p["indices"].get<uint64_t>();
+      if (view >= view_count || indices >= array_size("accessors") || !doc["accessors"][indices].is_object() ||
+          doc["accessors"][indices].contains("bufferView"))
+        continue;
+      doc["accessors"][indices]["bufferView"] = view;
+      out.unviewed_indices.push_back(size_t(indices));
+      out.changed = true;
+    }
+  }
   // Images: each is copied once (from its buffer view, its data URI or its file). One whose URI leaves the
   // root is not read, like a missing one: the renderer then has no texture, bake drops it from its glbs.
   for (size_t i = 0; i < array_size("images"); ++i) {

@@ -50,6 +50,7 @@ struct CheckedJson {
   uint64_t data_bytes = 0;            // what tinygltf will read or copy: buffers, and images once per image
   uint64_t decoded_bytes = 0;         // what decoding EXT_meshopt_compression views allocates
   std::vector<bool> dataless;         // per buffer: holds no data (meshopt.hpp); doc has a placeholder instead
+  std::vector<size_t> unviewed_indices;  // Draco primitives' indices accessors given a bufferView for tinygltf
 };
 
 // Parses the JSON (after scan_json, and refusing a text whose parse would take more than
