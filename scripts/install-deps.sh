@@ -9,6 +9,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF loading (tinygltf's header needs json + stb)
   libopenimageio-dev                           # EXR/PNG/GIF images
   libssl-dev                                   # SHA-256 (libcrypto) for bake manifests
+  libmeshoptimizer-dev libdraco-dev            # compressed glTF: EXT_meshopt_compression, KHR_draco_mesh_compression
   libcli11-dev                                 # command line
   libnanoflann-dev                             # k-d tree of the geometric diff
   libegl-dev libgl-dev libosmesa6-dev          # headless GL headers: EGL, GL, OSMesa

@@ -561,6 +561,128 @@ def edit(base, change):
     return a
 
 
+def meshopt_attributes(data, stride):
+    """data compressed as an EXT_meshopt_compression ATTRIBUTES stream (the extension's Appendix A, mode 0),
+    every group of 16 byte deltas stored whole (header bits 3): larger than meshoptimizer's encoder makes
+    it, and as valid."""
+    count = len(data) // stride
+    assert count * stride == len(data) and stride % 4 == 0
+    block = min((8192 // stride) & ~15, 256)
+    out = bytearray([0xA0])
+    last = bytearray(data[0:stride])  # the baseline: the first element, stored in the tail
+    for start in range(0, count, block):
+        n = min(block, count - start)
+        groups = (n + 15) // 16
+        for k in range(stride):
+            header = bytearray((groups + 3) // 4)
+            body = bytearray()
+            previous = last[k]
+            for g in range(groups):
+                header[g // 4] |= 3 << (g % 4 * 2)
+                for i in range(g * 16, g * 16 + 16):
+                    delta = 0  # elements past the block's end: ignored by the decoder
+                    if i < n:
+                        value = data[(start + i) * stride + k]
+                        delta = (value - previous) & 0xFF
+                        previous = value
+                    body.append((~(delta << 1) if delta & 0x80 else delta << 1) & 0xFF)
+            out += header + body
+        last = bytearray(data[(start + n - 1) * stride:(start + n) * stride])
+    out += bytes(max(32 - stride, 0)) + bytes(data[0:stride])
+    return bytes(out)
+
+
+def meshopt_asset(base, fallback_flag=True):
+    """base with every buffer view compressed (ATTRIBUTES, stride: the accessor's element size, else 4)
+    into buffer 0, the BIN chunk; the views' uncompressed layout in buffer 1, a fallback without data, as
+    gltfpack writes it."""
+    a = base.copy()
+    g = a.gltf
+    sizes = {}
+    for acc in g["accessors"]:
+        size = {BYTE: 1, UBYTE: 1, SHORT: 2, USHORT: 2}.get(acc["componentType"], 4)
+        sizes[acc["bufferView"]] = size * {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}[acc["type"]]
+    packed = bytearray()
+    fallback_length = 0
+    for i, view in enumerate(g["bufferViews"]):
+        data = bytes(a.bin[view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]])
+        stride = sizes[i] if sizes[i] % 4 == 0 else 4
+        stream = meshopt_attributes(data, stride)
+        packed += bytes(-len(packed) % 4)
+        view["extensions"] = {"EXT_meshopt_compression": {
+            "buffer": 0, "byteOffset": len(packed), "byteLength": len(stream), "byteStride": stride,
+            "count": len(data) // stride, "mode": "ATTRIBUTES"}}
+        packed += stream
+        fallback_length += -fallback_length % 4
+        view["buffer"] = 1
+        view["byteOffset"] = fallback_length
+        fallback_length += len(data)
+    fallback = {"byteLength": fallback_length}
+    if fallback_flag:
+        fallback["extensions"] = {"EXT_meshopt_compression": {"fallback": True}}
+    g["buffers"] = [{"byteLength": 0}, fallback]
+    g["extensionsUsed"] = ["EXT_meshopt_compression"]
+    g["extensionsRequired"] = ["EXT_meshopt_compression"]
+    return Asset(g, packed)
+
+
+def meshopt_cases(cat, base):
+    """EXT_meshopt_compression: two valid files (buffer 1 a fallback with and without the flag: tinygltf
+    alone copies the BIN chunk into any GLB buffer without uri) and one broken thing each."""
+    cat.write("valid_meshopt.glb", meshopt_asset(base).glb_bytes())
+    cat.write("valid_meshopt_placeholder.glb", meshopt_asset(base, fallback_flag=False).glb_bytes())
+    cat.valid += ["valid_meshopt.glb", "valid_meshopt_placeholder.glb"]
+    ext = lambda a, view: a.gltf["bufferViews"][view]["extensions"]["EXT_meshopt_compression"]
+    prefix = "bufferView %d: EXT_meshopt_compression "
+
+    def case(name, change, message):
+        a = meshopt_asset(base)
+        change(a)
+        cat.case("meshopt_%s.glb" % name, a.glb_bytes(), regex_escape(message))
+
+    def truncated(a):
+        ext(a, POSITION)["byteLength"] -= 20
+    case("truncated", truncated, prefix % POSITION + "data is malformed (ATTRIBUTES decoder error")
+
+    def header(a):
+        a.bin[ext(a, POSITION)["byteOffset"]] = 0x50
+    case("header_byte", header, prefix % POSITION + "data is malformed (header byte 0x50 does not start ATTRIBUTES data")
+
+    def wrong_mode(a):  # the index view (12 bytes, stride 4) declared as an index sequence
+        ext(a, INDICES)["mode"] = "INDICES"
+    case("wrong_mode", wrong_mode, prefix % INDICES + "data is malformed (header byte 0xa0 does not start INDICES data")
+
+    def count(a):
+        ext(a, POSITION)["count"] = 3
+    case("count_mismatch", count, prefix % POSITION + "holds 3 elements of 12 bytes, but the view's byteLength is 48")
+
+    def bad_filter(a):
+        ext(a, POSITION)["filter"] = "OCTAHEDRAL"
+    case("filter_stride", bad_filter, prefix % POSITION + "filter OCTAHEDRAL does not allow byteStride 12 (4 or 8)")
+
+    def odd_stride(a):
+        ext(a, POSITION)["byteStride"] = 6
+        ext(a, POSITION)["count"] = 8
+    case("stride_6", odd_stride, prefix % POSITION + "byteStride 6 must be a multiple of 4 (up to 256) in ATTRIBUTES mode")
+
+    def unknown_filter(a):
+        ext(a, NORMAL)["filter"] = "ZIGZAG"
+    case("unknown_filter", unknown_filter, 'bufferView %d: EXT_meshopt_compression.filter "ZIGZAG" must be' % NORMAL)
+
+    def past_buffer(a):
+        ext(a, NORMAL)["byteOffset"] = 1 << 20
+    case("past_buffer", past_buffer, prefix % NORMAL + "data (offset 1048576")
+
+    def uncompressed_in_fallback(a):
+        del a.gltf["bufferViews"][WEIGHTS]["extensions"]
+    case("uncompressed_view_in_fallback", uncompressed_in_fallback,
+         "bufferView %d: buffer 1 has no data (an EXT_meshopt_compression fallback" % WEIGHTS)
+
+    def source_is_fallback(a):
+        ext(a, JOINTS)["buffer"] = 1
+    case("source_is_fallback", source_is_fallback, prefix % JOINTS + "buffer 1 has no data")
+
+
 MARKER = ".written-by-make_malformed"
 
 
@@ -776,10 +898,10 @@ def main():
     cat.gltf("mesh_weights_count_differs", edit(base, f), r"mesh 0: has 2 weights for 1 morph targets")
 
     def f(a):
-        a.gltf["extensionsUsed"] = ["KHR_draco_mesh_compression"]
-        a.gltf["extensionsRequired"] = ["KHR_draco_mesh_compression"]
-    cat.gltf("required_extension_draco", edit(base, f),
-             r"requires extension KHR_draco_mesh_compression, which dqskin does not support")
+        a.gltf["extensionsUsed"] = ["EXT_mesh_gpu_instancing"]
+        a.gltf["extensionsRequired"] = ["EXT_mesh_gpu_instancing"]
+    cat.gltf("required_extension_gpu_instancing", edit(base, f),
+             r"requires extension EXT_mesh_gpu_instancing, which dqskin does not support")
 
     # ---- Nodes and scenes (§3.5) ---------------------------------------------------------------------
     # JSON has no infinity; 1e400 overflows a double. Written into the text after serialisation.
@@ -965,6 +1087,7 @@ def main():
 
     schema_value_cases(cat, base)
     hostile_cases(cat, base, glb, outdir)
+    meshopt_cases(cat, base)
 
     # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
     # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.

@@ -5,6 +5,7 @@
 #include "accessor.hpp"
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "draco.hpp"
 #include "materials.hpp"
 #include "memory_estimate.hpp"
 #include "mesh.hpp"
@@ -32,6 +33,8 @@ std::string at(const char* kind, size_t index) { return std::string(kind) + " " 
 bool is_supported_extension(const std::string& name) {
   static const std::set<std::string> supported = {
       "KHR_mesh_quantization",  // integer attributes: the accessor reader decodes every component type
+      "EXT_meshopt_compression",  // compressed buffer views: decoded when the file is read (meshopt.hpp)
+      "KHR_draco_mesh_compression",  // compressed primitives: decoded before the meshes are read (draco.hpp)
       // Appearance only: the deformation does not depend on them.
       "KHR_materials_emissive_strength", "KHR_materials_unlit", "KHR_materials_pbrSpecularGlossiness",
       "KHR_materials_clearcoat", "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_transmission",
@@ -282,16 +285,19 @@ void check_memory(const tinygltf::Model& m, uint64_t json_bytes, const LoadOptio
   if (need.total() > options.max_memory)
     fail("loading it needs about " + byte_size(need.total()) + " (" + byte_size(need.asset) + " decoded by " +
          std::to_string(need.accessor_uses) + " accessor reads, " + byte_size(need.transient) +
-         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images, " + byte_size(need.json) +
+         " while the largest is decoded, " + byte_size(need.file) + " of buffers and images, " +
+         (need.decoded ? byte_size(need.decoded) + " of compressed data decoded, " : std::string()) +
+         byte_size(need.json) +
          " for its JSON" +
          (need.images ? ", " + byte_size(need.images) + " of decoded images" : std::string()) +
          "), more than --max-memory " + byte_size(options.max_memory));
 }
 
-Asset convert(const tinygltf::Model& m, uint64_t json_bytes, const std::string& path, const LoadOptions& options) {
+Asset convert(tinygltf::Model& m, uint64_t json_bytes, const std::string& path, const LoadOptions& options) {
   for (const std::string& ext : m.extensionsRequired)
     if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
   check_memory(m, json_bytes, options);
+  gltf::decode_draco(m);  // into ordinary accessors, within the estimate just checked
 
   Asset asset;
   asset.path = path;

@@ -1,6 +1,7 @@
 #include "memory_estimate.hpp"
 
 #include "dqskin/asset.hpp"
+#include "draco.hpp"
 #include "image_size.hpp"
 #include "../io/saturating.hpp"
 
@@ -68,6 +69,13 @@ public:
 
   MemoryEstimate finish() {
     for (const tinygltf::Buffer& b : model_.buffers) e.file = add(e.file, b.data.size());
+    // Decoded views are buffers of their own by now (decode_meshopt); named apart, not counted twice.
+    for (const tinygltf::BufferView& v : model_.bufferViews)
+      if (v.extensions.count("EXT_meshopt_compression")) e.decoded = add(e.decoded, v.byteLength);
+    e.file = e.file > e.decoded ? e.file - e.decoded : 0;
+    const DracoEstimate draco = estimate_draco(model_);  // accessors written from KHR_draco_mesh_compression
+    e.decoded = add(e.decoded, draco.decoded);
+    e.transient = std::max(e.transient, draco.transient);
     for (const tinygltf::Image& i : model_.images) {
       e.file = add(e.file, i.image.size());
       e.asset = add(e.asset, i.image.size());  // EncodedImage keeps a copy
@@ -84,7 +92,7 @@ private:
 
 }  // namespace
 
-uint64_t MemoryEstimate::total() const { return add(add(add(add(file, json), asset), transient), images); }
+uint64_t MemoryEstimate::total() const { return add(add(add(add(add(file, decoded), json), asset), transient), images); }
 
 MemoryEstimate estimate_memory(const tinygltf::Model& model, bool decoded_images, bool kept_source) {
   Tally tally(model);

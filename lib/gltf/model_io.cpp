@@ -2,6 +2,7 @@
 
 #include "dqskin/error.hpp"
 #include "../io/file_kind.hpp"
+#include "meshopt.hpp"
 #include "precheck.hpp"
 
 #include <fcntl.h>
@@ -117,7 +118,7 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& folde
   const std::string base_dir = folder.empty() ? "." : folder;
   const ResourceRoot root(base_dir, options.resource_roots);
   const std::span<const uint8_t> json = json_chunk(bytes, glb);
-  CheckedJson checked = precheck_json(json, options, root);
+  CheckedJson checked = precheck_json(json, options, root, glb);
 
   // When the checks removed bad appearance values, tinygltf reads the document without them.
   std::vector<uint8_t> rewritten;
@@ -147,6 +148,10 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& folde
     throw InputError(std::string("cannot be parsed (") + e.what() + ")");
   }
   if (!ok) throw InputError(err.empty() ? std::string("not a glTF file") : first_line(err));
+  // Compressed views (precheck counted what they decode to against max_memory).
+  decode_meshopt(out.model, checked.doc, checked.dataless);
+  for (size_t a : checked.unviewed_indices) out.model.accessors[a].bufferView = -1;  // decode_draco fills them
+  for (size_t a : checked.unviewed_indices) checked.doc["accessors"][a].erase("bufferView");
   out.doc = std::move(checked.doc);
   out.warnings = std::move(checked.warnings);
   out.json_bytes = checked.json_bytes;

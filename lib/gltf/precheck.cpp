@@ -3,6 +3,7 @@
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "../io/saturating.hpp"
+#include "meshopt.hpp"
 #include "schema_values.hpp"
 
 #include <cstring>
@@ -92,7 +93,8 @@ uint64_t json_memory(const JsonShape& shape, uint64_t text_bytes) {
   return add(add(mul(shape.values, 320), mul(shape.objects, 700)), mul(text_bytes, 2));
 }
 
-CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& options, const ResourceRoot& root) {
+CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& options, const ResourceRoot& root,
+                          bool glb) {
   const JsonShape shape = scan_json(text);
   CheckedJson out;
   out.json_bytes = json_memory(shape, text.size());
@@ -141,15 +143,18 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
   };
 
   std::vector<uint64_t> buffer_lengths;
+  for (size_t i = 0; i < array_size("buffers"); ++i) object_at("buffers", i, "buffer " + std::to_string(i));
+  out.dataless = dataless_buffers(doc, glb);
   for (size_t i = 0; i < array_size("buffers"); ++i) {
     const std::string what = "buffer " + std::to_string(i);
-    const nlohmann::json& buffer = object_at("buffers", i, what);
+    const nlohmann::json& buffer = doc["buffers"][i];
     const uint64_t length = size_of("buffers", i, "byteLength", 0);
     if (length == 0) fail(what + ": byteLength must be at least 1");
+    buffer_lengths.push_back(length);
+    if (out.dataless[i]) continue;  // not read: its views are decoded from other buffers, and counted there
     if (length > options.max_file_bytes)
       fail(what + ": byteLength " + std::to_string(length) + " is more than dqskin reads (" +
            std::to_string(options.max_file_bytes) + ")");
-    buffer_lengths.push_back(length);
     out.data_bytes = saturating::add(out.data_bytes, length);  // decoded, read or copied out of the GLB once
     if (const auto uri = buffer.find("uri"); uri != buffer.end() && uri->is_string()) {
       const std::string u = uri->get<std::string>();
@@ -170,6 +175,15 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
       fail(what + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
            ") runs past the end of buffer " + std::to_string(buffer) + " (" + std::to_string(buffer_lengths[buffer]) +
            " bytes)");
+    out.decoded_bytes = saturating::add(out.decoded_bytes, check_meshopt_view(doc, i, buffer_lengths, out.dataless));
+  }
+  // tinygltf reads every buffer (meshopt.hpp): a dataless one gets a byte that nothing reads.
+  for (size_t i = 0; i < out.dataless.size(); ++i) {
+    if (!out.dataless[i]) continue;
+    nlohmann::json& buffer = doc["buffers"][i];
+    buffer["byteLength"] = 1;
+    buffer["uri"] = "data:application/octet-stream;base64,AA==";
+    out.changed = true;
   }
   // §3.6.2.4: an accessor's offset into its view, and into its buffer, is a multiple of its component size
   // (typed-array readers such as WebGL's depend on it).
@@ -187,6 +201,24 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
            std::to_string(view) + " (byte " + std::to_string(in_buffer) + " of its buffer), not a multiple of " +
            std::to_string(size) + ", the size of its components");
   }
+  // tinygltf 2.7 refuses a primitive's indices accessor without bufferView, which KHR_draco_mesh_compression
+  // prescribes: tinygltf gets the Draco view for it, and parse_model takes it away again (draco.hpp).
+  for (size_t m = 0; m < array_size("meshes"); ++m) {
+    const nlohmann::json& mesh = doc["meshes"][m];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (const nlohmann::json& p : mesh["primitives"]) {
+      if (!p.is_object() || !p.contains("indices") || !p.contains("extensions") || !p["extensions"].is_object()) continue;
+      const auto draco = p["extensions"].find("KHR_draco_mesh_compression");
+      if (draco == p["extensions"].end() || !draco->is_object() || !draco->contains("bufferView")) continue;
+      const uint64_t view = (*draco)["bufferView"].get<uint64_t>(), indices = p["indices"].get<uint64_t>();
+      if (view >= view_count || indices >= array_size("accessors") || !doc["accessors"][indices].is_object() ||
+          doc["accessors"][indices].contains("bufferView"))
+        continue;
+      doc["accessors"][indices]["bufferView"] = view;
+      out.unviewed_indices.push_back(size_t(indices));
+      out.changed = true;
+    }
+  }
   // Images: each is copied once (from its buffer view, its data URI or its file). One whose URI leaves the
   // root is not read, like a missing one: the renderer then has no texture, bake drops it from its glbs.
   for (size_t i = 0; i < array_size("images"); ++i) {
@@ -194,7 +226,14 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
     const nlohmann::json& image = object_at("images", i, what);
     const uint64_t view = size_of("images", i, "bufferView", UINT64_MAX);
     if (view != UINT64_MAX && view >= view_count) fail(what + ": bufferView " + std::to_string(view) + " does not exist");
-    if (view != UINT64_MAX) out.data_bytes = saturating::add(out.data_bytes, size_of("bufferViews", size_t(view), "byteLength", 0));
+    if (view != UINT64_MAX) {
+      // tinygltf copies the image out of its view while it parses, before any view is decoded.
+      const uint64_t buffer = size_of("bufferViews", size_t(view), "buffer", 0);
+      if (buffer < out.dataless.size() && out.dataless[buffer])
+        fail(what + ": bufferView " + std::to_string(view) + " is EXT_meshopt_compression data without a fallback; " +
+             "dqskin reads images only from uncompressed views");
+      out.data_bytes = saturating::add(out.data_bytes, size_of("bufferViews", size_t(view), "byteLength", 0));
+    }
     const auto uri = image.find("uri");
     if (uri == image.end() || !uri->is_string()) continue;
     const std::string u = uri->get<std::string>();
@@ -209,9 +248,10 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
     }
     keep_plus(doc["images"][i]);
   }
-  const uint64_t total = saturating::add(out.json_bytes, out.data_bytes);
+  const uint64_t total = saturating::add(saturating::add(out.json_bytes, out.data_bytes), out.decoded_bytes);
   if (total > options.max_memory)
     fail("reading it needs about " + byte_size(total) + " (" + byte_size(out.data_bytes) + " of buffers and images, " +
+         (out.decoded_bytes ? byte_size(out.decoded_bytes) + " of EXT_meshopt_compression views decoded, " : std::string()) +
          byte_size(out.json_bytes) + " for its JSON), more than --max-memory " + byte_size(options.max_memory));
   out.doc = std::move(doc);
   return out;

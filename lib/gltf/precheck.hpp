@@ -48,6 +48,9 @@ struct CheckedJson {
   bool changed = false;               // doc differs from the text: tinygltf must read doc, not the text
   uint64_t json_bytes = 0;            // json_memory() of the text
   uint64_t data_bytes = 0;            // what tinygltf will read or copy: buffers, and images once per image
+  uint64_t decoded_bytes = 0;         // what decoding EXT_meshopt_compression views allocates
+  std::vector<bool> dataless;         // per buffer: holds no data (meshopt.hpp); doc has a placeholder instead
+  std::vector<size_t> unviewed_indices;  // Draco primitives' indices accessors given a bufferView for tinygltf
 };
 
 // Parses the JSON (after scan_json, and refusing a text whose parse would take more than
@@ -56,7 +59,12 @@ struct CheckedJson {
 // and image view lies inside the byteLength its buffer declares, that every buffer's URI stays inside
 // `root` (ResourceRoot::check; missing is an error too), and that the JSON and the data tinygltf will read
 // fit options.max_memory. An image URI that leaves the root is not read: a warning. URIs with '+' are
-// rewritten so that tinygltf, which decodes '+' as a space, finds the file they name. Throws InputError.
-CheckedJson precheck_json(std::span<const uint8_t> json, const LoadOptions& options, const ResourceRoot& root);
+// rewritten so that tinygltf, which decodes '+' as a space, finds the file they name.
+// EXT_meshopt_compression views are checked (meshopt.hpp check_meshopt_view) and their decoded bytes
+// counted; buffers without data (meshopt.hpp) are neither checked against max_file_bytes nor read: each is
+// replaced in doc by a one-byte data URI for tinygltf. `glb`: the text is a .glb's JSON chunk. Throws
+// InputError.
+CheckedJson precheck_json(std::span<const uint8_t> json, const LoadOptions& options, const ResourceRoot& root,
+                          bool glb = false);
 
 }  // namespace dqskin::gltf

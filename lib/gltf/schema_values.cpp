@@ -77,6 +77,16 @@ const Rule kRules[] = {
     {"bufferViews/*/target", {0, INT_MAX, 1, {34962, 34963}}},
     {"buffers/*/byteLength", kCount},
     {"images/*/bufferView", kIndex},
+    // EXT_meshopt_compression: the compressed range and its layout (meshopt.hpp checks how they fit).
+    {"bufferViews/*/extensions/EXT_meshopt_compression/buffer", kIndex},
+    {"bufferViews/*/extensions/EXT_meshopt_compression/byteOffset", kOffset},
+    {"bufferViews/*/extensions/EXT_meshopt_compression/byteLength", kCount},
+    {"bufferViews/*/extensions/EXT_meshopt_compression/byteStride", {1, 256}},
+    {"bufferViews/*/extensions/EXT_meshopt_compression/count", kCount},
+    {"buffers/*/extensions/EXT_meshopt_compression/fallback", kBoolean},
+    // KHR_draco_mesh_compression: the compressed view and the attributes' unique ids in it.
+    {"meshes/*/primitives/*/extensions/KHR_draco_mesh_compression/bufferView", kIndex},
+    {"meshes/*/primitives/*/extensions/KHR_draco_mesh_compression/attributes/*", kIndex},
     // Appearance.
     {"nodes/*/camera", kIndex, "the node has no camera"},
     {"nodes/*/extensions/KHR_lights_punctual/light", kIndex, "the node has no light", 1},
