@@ -8,6 +8,7 @@ layout(location = 3) in vec2 uv;        // the TEXCOORD_n set of the base color 
 layout(location = 4) in vec4 vertex_color;  // COLOR_0, linear; (1, 1, 1, 1) when the primitive has none
 
 uniform mat4 view_projection;
+uniform mat3 uv_transform;  // the base color texture's KHR_texture_transform (T · R · S), or the identity
 
 out vec3 world_position;
 out vec3 world_normal;
@@ -19,7 +20,8 @@ void main() {
   world_position = position;
   world_normal = normal;
   vertex_scalar = scalar;
-  texture_uv = uv;
+  // Affine, so transforming at the vertices equals transforming the interpolated UV.
+  texture_uv = (uv_transform * vec3(uv, 1.0)).xy;
   color_0 = vertex_color;
   gl_Position = view_projection * vec4(position, 1.0);
 }

@@ -1,6 +1,7 @@
 #include "materials.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace dqskin::gltf {
 namespace {
@@ -22,6 +23,45 @@ TextureRef read_texture_ref(const tinygltf::TextureInfo& info, size_t textures, 
   ref.texture = info.index;
   ref.texcoord = info.texCoord;
   return ref;
+}
+
+// A number that stays finite as a float: JSON holds no infinity, but 1e39 is one as a float.
+bool finite_float(const tinygltf::Value& v) {
+  return v.IsNumber() && std::abs(v.GetNumberAsDouble()) <= double(std::numeric_limits<float>::max());
+}
+
+glm::vec2 read_vec2(const tinygltf::Value& ext, const char* name, glm::vec2 fallback, const std::string& what) {
+  if (!ext.Has(name)) return fallback;
+  const tinygltf::Value& v = ext.Get(name);
+  // tinygltf leaves out null elements (and an empty array), so [null, 1] arrives as one number.
+  if (!v.IsArray() || v.ArrayLen() != 2 || !finite_float(v.Get(0)) || !finite_float(v.Get(1)))
+    drop(what + ": KHR_texture_transform " + name + " must be 2 finite numbers");
+  return {float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble())};
+}
+
+// KHR_texture_transform of `info`, into `ref` (left as it is when a value is bad). Its texCoord was
+// checked on the JSON (schema_values.cpp: a bad one is removed with the whole transform and a warning).
+void read_texture_transform(const tinygltf::TextureInfo& info, const std::string& what, TextureRef& ref) {
+  const auto found = info.extensions.find("KHR_texture_transform");
+  if (found == info.extensions.end()) return;
+  // tinygltf keeps an extension only when it is a JSON object, and an empty object arrives as null.
+  const tinygltf::Value& ext = found->second;
+  if (!ext.IsObject()) return;
+  TextureTransform t;
+  t.offset = read_vec2(ext, "offset", t.offset, what);
+  t.scale = read_vec2(ext, "scale", t.scale, what);
+  if (ext.Has("rotation")) {
+    if (!finite_float(ext.Get("rotation"))) drop(what + ": KHR_texture_transform rotation must be a finite number");
+    t.rotation = float(ext.Get("rotation").GetNumberAsDouble());
+  }
+  int texcoord = ref.texcoord;
+  if (ext.Has("texCoord")) {
+    const tinygltf::Value& v = ext.Get("texCoord");
+    if (!v.IsInt() || v.GetNumberAsInt() < 0) drop(what + ": KHR_texture_transform texCoord must be an index");
+    texcoord = v.GetNumberAsInt();
+  }
+  ref.transform = t;
+  ref.texcoord = texcoord;
 }
 
 // Runs `read`; a Problem becomes a warning ending in `consequence`, and is returned (empty when none).
@@ -54,10 +94,11 @@ void read_materials(const tinygltf::Model& m, Asset& asset) {
       out.base_color_texture =
           read_texture_ref(mat.pbrMetallicRoughness.baseColorTexture, m.textures.size(), what + " baseColorTexture");
     });
-    if (out.base_color_texture.texture >= 0 &&
-        mat.pbrMetallicRoughness.baseColorTexture.extensions.count("KHR_texture_transform"))
-      asset.warnings.push_back(what + ": its base color texture has KHR_texture_transform, which dqskin does not " +
-                               "apply; it is drawn untransformed");
+    if (out.base_color_texture.texture >= 0)
+      or_warn(asset, "the transform is ignored", [&] {
+        read_texture_transform(mat.pbrMetallicRoughness.baseColorTexture, what + " baseColorTexture",
+                               out.base_color_texture);
+      });
     if (out.base_color_texture.texcoord > 1)
       asset.warnings.push_back(what + ": its base color texture reads TEXCOORD_" +
                                std::to_string(out.base_color_texture.texcoord) +
@@ -190,3 +231,15 @@ void read_appearance(const tinygltf::Model& model, Asset& asset) {
 }
 
 }  // namespace dqskin::gltf
+
+namespace dqskin {
+
+glm::mat3 TextureTransform::matrix() const {
+  const double c = std::cos(double(rotation)), s = std::sin(double(rotation));
+  const double sx = double(scale.x), sy = double(scale.y);
+  return glm::mat3(float(c * sx), float(-s * sx), 0.0f,  // column 0
+                   float(s * sy), float(c * sy), 0.0f,   // column 1
+                   offset.x, offset.y, 1.0f);            // column 2
+}
+
+}  // namespace dqskin

@@ -89,6 +89,7 @@ namespace dqskin::gpu {
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                      \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                      \
   X(PFNGLDRAWELEMENTSPROC, DrawElements)                                \
+  X(PFNGLUNIFORMMATRIX3FVPROC, UniformMatrix3fv)                        \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                        \
   X(PFNGLUNIFORM1FPROC, Uniform1f)                                      \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                      \

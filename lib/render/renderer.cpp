@@ -46,6 +46,7 @@ struct Renderer::Impl {
     GLsizei index_count = 0;  // 0: not drawn (points, lines, or no triangles)
     glm::vec4 base_color{1.0f};
     GLuint texture = 0;       // the base color texture (owned by `textures`), or 0
+    glm::mat3 uv_transform{1.0f};  // its KHR_texture_transform
     AlphaMode alpha_mode = AlphaMode::kOpaque;
     float alpha_cutoff = 0.5f;
     GLuint vao = 0, indices = 0, positions = 0, normals = 0, scalars = 0, uvs = 0, colors = 0;
@@ -181,6 +182,7 @@ struct Renderer::Impl {
     const Texture& texture = asset.textures[size_t(ref.texture)];
     if (texture.image < 0) return;  // only an extension's image (KTX2): the factor alone, as without a texture
     attribute(p.uvs, kUvLocation, 2, {&(*uv)[0].x, uv->size() * 2});
+    p.uv_transform = ref.transform.matrix();
     if (const auto found = textures.find(ref.texture); found != textures.end()) {
       p.texture = found->second;
       return;
@@ -255,6 +257,7 @@ struct Renderer::Impl {
     const GLint has_texture = gl.GetUniformLocation(program, "has_texture");
     const GLint alpha_mode = gl.GetUniformLocation(program, "alpha_mode");
     const GLint alpha_cutoff = gl.GetUniformLocation(program, "alpha_cutoff");
+    const GLint uv_transform = gl.GetUniformLocation(program, "uv_transform");
     gl.Uniform1i(gl.GetUniformLocation(program, "base_color_texture"), 0);
     gl.ActiveTexture(GL_TEXTURE0);
 
@@ -286,6 +289,7 @@ struct Renderer::Impl {
         gl.Uniform1i(has_normals, view.normals.empty() ? 0 : 1);
         gl.Uniform1i(has_texture, p.texture ? 1 : 0);
         gl.BindTexture(GL_TEXTURE_2D, p.texture);
+        gl.UniformMatrix3fv(uv_transform, 1, GL_FALSE, glm::value_ptr(p.uv_transform));
         gl.Uniform1i(alpha_mode, int(p.alpha_mode));
         gl.Uniform1f(alpha_cutoff, p.alpha_cutoff);
         gl.DrawElements(GL_TRIANGLES, p.index_count, GL_UNSIGNED_INT, nullptr);

@@ -1,12 +1,14 @@
 // Materials in the renderer: glTF images decoded from memory (PNG and JPEG, every PNG color type, errors
 // named), and drawn as glTF says: UV (0, 0) at the image's top-left, sRGB texels decoded to linear,
-// base color = factor × texture × COLOR_0, alpha MASK cuts out and BLEND blends. Tests that need an
-// OpenGL context skip with the reason when the machine has none.
+// base color = factor × texture × COLOR_0, alpha MASK cuts out and BLEND blends, KHR_texture_transform
+// moves the UVs. Tests that need an OpenGL context skip with the reason when the machine has none.
 #include "texture_image.hpp"
 
 #include "dqskin/camera.hpp"
+#include "dqskin/deformer.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/image_output.hpp"
+#include "dqskin/load.hpp"
 #include "dqskin/renderer.hpp"
 #include "dqskin/skinning.hpp"
 #include "../test_support/gpu_context.hpp"
@@ -14,8 +16,13 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 
 namespace dqskin {
 namespace {
@@ -265,6 +272,160 @@ TEST(RenderMaterials, UndecodableTextureIsAnInputErrorNamingTheImage) {
   RendererOptions normals;
   normals.shade = Shade::kNormals;
   EXPECT_NO_THROW(Renderer(*context, asset, {{0, 0, -1}}, normals));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// KHR_texture_transform: uv' = T · R · S · uv, applied to the UVs the base color texture is read with.
+
+// A 4x4 RGBA8 texture, NEAREST and clamped: its lower-left quadrant red, green (top row), blue, yellow
+// (bottom row); the rest white.
+void add_quadrant_texture(Asset& asset) {
+  std::vector<uint8_t> texels(4 * 4 * 4, 255);
+  auto set = [&](int x, int y, uint8_t r, uint8_t g, uint8_t b) {
+    uint8_t* t = &texels[size_t(y * 4 + x) * 4];
+    t[0] = r, t[1] = g, t[2] = b;
+  };
+  set(0, 2, 255, 0, 0);
+  set(1, 2, 0, 255, 0);
+  set(0, 3, 0, 0, 255);
+  set(1, 3, 255, 255, 0);
+  asset.images.push_back(encode("png", 4, 4, 4, OIIO::TypeDesc::UINT8, texels.data()));
+  Texture texture;
+  texture.image = 0;
+  texture.sampler = {9728, 9728, 33071, 33071};
+  asset.textures.push_back(texture);
+  asset.materials[0].base_color_texture.texture = 0;
+}
+
+enum class Hue { kRed, kGreen, kBlue, kYellow, kWhite, kOther };
+Hue hue(glm::vec4 c) {
+  const float m = std::max({c.r, c.g, c.b});
+  auto on = [&](float x) { return x > 0.5f * m; };
+  if (m < 0.05f) return Hue::kOther;
+  if (on(c.r) && on(c.g) && on(c.b)) return Hue::kWhite;
+  if (on(c.r) && on(c.g)) return Hue::kYellow;
+  if (on(c.r) && !on(c.b)) return Hue::kRed;
+  if (on(c.g) && !on(c.r) && !on(c.b)) return Hue::kGreen;
+  if (on(c.b) && !on(c.r) && !on(c.g)) return Hue::kBlue;
+  return Hue::kOther;
+}
+
+// The extension's own example: offset (0, 1), rotation 90°, scale 0.5 "utilizes only the lower left
+// quadrant of the source image, rotated clockwise 90°". The quadrant [[red, green], [blue, yellow]] turned
+// clockwise is [[blue, red], [yellow, green]] on the square. With the rotation's sign flipped (the GLSL
+// listing of the extension's README read literally) the UVs leave the image and the clamp shows blue
+// everywhere; without the transform the square's corners show white.
+TEST(RenderTextureTransform, RotationTurnsTheImageClockwiseAsTheExtensionsExampleSays) {
+  const std::unique_ptr<GpuContext> context = context_or_null();
+  if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
+  Asset asset = square(Material{});
+  add_quadrant_texture(asset);
+  TextureTransform& t = asset.materials[0].base_color_texture.transform;
+  t.offset = {0.0f, 1.0f};
+  t.rotation = 1.57079632679f;
+  t.scale = {0.5f, 0.5f};
+  const Image image = draw(*context, asset);
+  EXPECT_EQ(hue(pixel(image, 16, 16)), Hue::kBlue) << "top-left";
+  EXPECT_EQ(hue(pixel(image, 48, 16)), Hue::kRed) << "top-right";
+  EXPECT_EQ(hue(pixel(image, 16, 48)), Hue::kYellow) << "bottom-left";
+  EXPECT_EQ(hue(pixel(image, 48, 48)), Hue::kGreen) << "bottom-right";
+
+  // The same through TEXCOORD_1 (KHR_texture_transform's texCoord override, resolved by the loader),
+  // with TEXCOORD_0 mirrored so that reading the wrong set shows.
+  Primitive& p = asset.meshes[0].primitives[0];
+  p.uv1 = p.uv0;
+  for (glm::vec2& uv : p.uv0) uv.x = 1 - uv.x;
+  asset.materials[0].base_color_texture.texcoord = 1;
+  const Image second = draw(*context, asset);
+  EXPECT_EQ(0, std::memcmp(image.rgba.data(), second.rgba.data(), image.rgba.size() * sizeof(float)));
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The asset's first clip at `time`, deformed on the GPU, drawn 256x256 with the automatic camera.
+Image render_at(GpuContext& context, const Asset& asset, double time) {
+  const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
+  DeformerOptions deformer_options;
+  deformer_options.backend = testing_support::backend_of(context);
+  const std::unique_ptr<Deformer> deformer = make_deformer(&context, asset, instances, deformer_options);
+  std::vector<DeformedBatch> batches;
+  const std::vector<double> times = {time};
+  deformer->run(&asset.clips.at(0), times, [&](const DeformedBatch& b) { batches.push_back(b); });
+  const FrameView frame = frame_view(batches.at(0), 0);
+  Bounds box;
+  box.add(frame);
+  RendererOptions options;
+  options.width = options.height = 256;
+  Renderer renderer(context, asset, instances, options);
+  return renderer.render(frame, frame_camera(box, {}, 1.0));
+}
+
+struct ImageDifference {
+  float largest = 0;       // largest channel difference
+  double over_2_255 = 0;   // share of pixels with a channel more than 2/255 apart
+};
+ImageDifference difference(const Image& a, const Image& b) {
+  ImageDifference d;
+  size_t over = 0;
+  for (size_t p = 0; p < a.rgba.size() / 4; ++p) {
+    float worst = 0;
+    for (size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(a.rgba[p * 4 + c] - b.rgba[p * 4 + c]));
+    d.largest = std::max(d.largest, worst);
+    over += worst > 2.0f / 255.0f ? 1 : 0;
+  }
+  d.over_2_255 = double(over) / double(a.rgba.size() / 4);
+  return d;
+}
+
+// The textured cylinder with a transform of offset, rotation and non-uniform scale in its file renders as
+// the same file whose TEXCOORD_0 was transformed on the CPU (uv' = T · R · S · uv) and has no extension.
+// The two differ only by float rounding (in the shader or here), which moves a few texel edges of the
+// NEAREST-magnified checker by a pixel: at most 0.5 % of the pixels differ by more than 2/255. The same
+// with the rotation's sign flipped differs on a large share of the pixels, so the comparison would catch it.
+TEST(RenderTextureTransform, TransformInTheFileEqualsUvsTransformedOnTheCpu) {
+  const std::unique_ptr<GpuContext> context = context_or_null();
+  if (!context) GTEST_SKIP() << "no OpenGL context on this machine";
+  const std::string dir = DQSKIN_TESTDATA_DIR;
+  const std::string path = dir + "/textured_cylinder.gltf";
+  const glm::vec2 offset(0.2f, 0.3f), scale(1.5f, 0.7f);
+  const float rotation = 0.3f;
+
+  nlohmann::json doc = nlohmann::json::parse(read_text(path));
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = {
+      {"offset", {offset.x, offset.y}}, {"rotation", rotation}, {"scale", {scale.x, scale.y}}};
+  doc["extensionsUsed"] = {"KHR_texture_transform"};
+  const std::string text = doc.dump();
+  const Asset in_file = load_asset_from_memory(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()),
+                                               "textured_cylinder+KHR_texture_transform", dir);
+  ASSERT_TRUE(in_file.warnings.empty()) << in_file.warnings[0];
+  ASSERT_EQ(in_file.materials[0].base_color_texture.transform.rotation, rotation);
+
+  // uv' = T · R · S · uv, written out: R turns (1, 0) towards -v, counter-clockwise as seen on the image.
+  auto on_cpu = [&](float sign) {
+    Asset asset = load_asset(path);
+    const double c = std::cos(double(rotation)), s = double(sign) * std::sin(double(rotation));
+    for (glm::vec2& uv : asset.meshes.at(0).primitives.at(0).uv0) {
+      const double u = double(scale.x) * double(uv.x), v = double(scale.y) * double(uv.y);
+      uv = glm::vec2(float(c * u + s * v + double(offset.x)), float(-s * u + c * v + double(offset.y)));
+    }
+    return asset;
+  };
+  const Image a = render_at(*context, in_file, 0.5);
+  const Image b = render_at(*context, on_cpu(1.0f), 0.5);
+  const ImageDifference same = difference(a, b);
+  std::printf("transform in the file vs UVs transformed on the CPU: largest channel difference %g, %.3f %% of "
+              "pixels differ by more than 2/255\n", double(same.largest), 100 * same.over_2_255);
+  EXPECT_LE(same.over_2_255, 0.005);
+
+  const ImageDifference flipped = difference(a, render_at(*context, on_cpu(-1.0f), 0.5));
+  std::printf("... vs the rotation's sign flipped: %.1f %% of pixels differ by more than 2/255\n",
+              100 * flipped.over_2_255);
+  EXPECT_GE(flipped.over_2_255, 0.05);
+  const ImageDifference untransformed = difference(a, render_at(*context, load_asset(path), 0.5));
+  EXPECT_GE(untransformed.over_2_255, 0.05);
 }
 
 }  // namespace

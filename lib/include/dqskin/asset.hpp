@@ -105,10 +105,30 @@ struct Clip {
   double last_key = 0;   // largest key time: the clip's duration, as glTF time 0 is the clip's start
 };
 
+// KHR_texture_transform on a textureInfo: the texture is read at uv' = T · R · S · uv, T translating by
+// `offset`, S scaling by `scale`, R turning the UVs `rotation` radians counter-clockwise as seen on the
+// image (u right, v down), so that the image appears turned clockwise on the surface, as the extension
+// says. The defaults are the identity.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0;
+  glm::vec2 scale{1.0f};
+
+  // T · R · S as a 3x3 matrix (glm, column-major) for homogeneous UVs (u, v, 1):
+  //   u' =  cos(r) sx u + sin(r) sy v + offset.x
+  //   v' = -sin(r) sx u + cos(r) sy v + offset.y
+  // R is the turn of three.js's Matrix3.setUvTransform and the one the extension's example JSON needs
+  // (offset (0, 1), rotation 90°, scale 0.5 reads the lower-left quadrant); the GLSL listing in the
+  // extension's README, read as column-major GLSL, is its transpose, the opposite turn (KhronosGroup/glTF
+  // issue #1563, open).
+  glm::mat3 matrix() const;
+};
+
 // glTF textureInfo (§5.30): a texture and the TEXCOORD_n set it is read with.
 struct TextureRef {
   int texture = -1;  // index into Asset::textures, or -1 for none
-  int texcoord = 0;  // n of TEXCOORD_n
+  int texcoord = 0;  // n of TEXCOORD_n: the textureInfo's, or its KHR_texture_transform's texCoord, which overrides it
+  TextureTransform transform;  // KHR_texture_transform, or the identity
 };
 
 enum class AlphaMode { kOpaque, kMask, kBlend };
