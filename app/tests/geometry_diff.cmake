@@ -81,21 +81,34 @@ geometry_diff_test(reorder_morph_skin 0 A ${PROJECT_SOURCE_DIR}/testdata/morph_s
   ARGS --fail 1e-6 --relative)
 
 # -- optimizers -------------------------------------------------------------------------------------------
-# The largest error, relative to the animation's bounding-box diagonal, that each model may show after
-# gltfpack (default and -c) and gltf-transform optimize. PLACEHOLDERS: 1e-2 until the diff has measured
-# each model; then set each a little above what it measured (gltfpack 1.3.0, gltf-transform 4.5.1).
-set(geometry_diff_budget_CesiumMan 1e-2)
-set(geometry_diff_budget_Fox 1e-2)
-set(geometry_diff_budget_BrainStem 1e-2)
+# The largest error, relative to the clip's bounding-box diagonal, that each model may show after gltfpack
+# 1.3.0 (default and -c: the same tracks) and gltf-transform 4.5.1 optimize (defaults), set about 1.3 to 3
+# times what `dqskin diff` measured (docs/PERFORMANCE.md "Geometric diff" has every figure):
+#   CesiumMan  gltfpack 3.07e-3 (t = 1 s, left arm)        gltf-transform 1.94e-2 (t = 2 s, left arm)
+#   Fox        gltfpack 1.56e-2 (Walk, t = 0.458 s, hand)  gltf-transform 6.01e-2 (Run, t = 1.12 s, upper arm)
+#   BrainStem  gltfpack 2.90e-2 (t = 9.15 s)               gltf-transform 3.47e-4 (t = 21.3 s)
+# gltfpack resamples every track at 30 Hz: the error is largest at the source's own keys between its
+# samples (Fox is keyed at 24 Hz, BrainStem irregularly). gltf-transform simplifies the mesh at rest, which
+# merges vertices of different weights: Fox's armpits stretch when the arms move.
+set(geometry_diff_budget_gltfpack_CesiumMan 5e-3)
+set(geometry_diff_budget_gltfpack_Fox 2.5e-2)
+set(geometry_diff_budget_gltfpack_BrainStem 4e-2)
+set(geometry_diff_budget_gltf_transform_CesiumMan 3e-2)
+set(geometry_diff_budget_gltf_transform_Fox 8e-2)
+set(geometry_diff_budget_gltf_transform_BrainStem 1e-3)
 foreach(model CesiumMan Fox BrainStem)
   set(a ${geometry_diff_shared}/${model}/${model}.glb)
-  set(budget ARGS --relative --fail ${geometry_diff_budget_${model}} --warn ${geometry_diff_budget_${model}})
-  geometry_diff_test(gltfpack_${model} 0 A ${a} TOOL gltfpack TOOL_ARGS -i <A> -o <B> ${budget})
-  geometry_diff_test(gltfpack_compressed_${model} 0 A ${a} TOOL gltfpack TOOL_ARGS -i <A> -o <B> -c ${budget})
-  geometry_diff_test(gltf_transform_${model} 0 A ${a} TOOL gltf-transform TOOL_ARGS optimize <A> <B> ${budget})
-  # 4-bit translations and rotations (gltfpack's smallest: -at 1..24, -ar 4..16) break the animation.
-  geometry_diff_test(gltfpack_coarse_${model} 2 A ${a} TOOL gltfpack TOOL_ARGS -i <A> -o <B> -at 4 -ar 4
-    ${budget} FAIL_LINE)
+  set(pack ARGS --relative --fail ${geometry_diff_budget_gltfpack_${model}} --warn ${geometry_diff_budget_gltfpack_${model}})
+  set(transform ARGS --relative --fail ${geometry_diff_budget_gltf_transform_${model}}
+                     --warn ${geometry_diff_budget_gltf_transform_${model}})
+  geometry_diff_test(gltfpack_${model} 0 A ${a} TOOL gltfpack TOOL_ARGS -i <A> -o <B> ${pack})
+  geometry_diff_test(gltfpack_compressed_${model} 0 A ${a} TOOL gltfpack TOOL_ARGS -i <A> -o <B> -c ${pack})
+  geometry_diff_test(gltf_transform_${model} 0 A ${a} TOOL gltf-transform TOOL_ARGS optimize <A> <B> ${transform})
+  # 4-bit translations and rotations (gltfpack's smallest: -at 1..24, -ar 4..16; they take effect with -cc,
+  # its higher compression, where the keys are quantized through the meshopt filters) break the animation:
+  # 0.113, 0.157 and 0.094 of the diagonal, far over the model's gltfpack budget.
+  geometry_diff_test(gltfpack_coarse_${model} 2 A ${a} TOOL gltfpack TOOL_ARGS -i <A> -o <B> -cc -at 4 -ar 4
+    ${pack} FAIL_LINE)
 endforeach()
 
 # -- unrelated models: an input error ---------------------------------------------------------------------
