@@ -32,7 +32,7 @@ std::map<std::string, std::string> baked_files(const std::string& root) {
 
 // The figures of one pair of files of the same length.
 void measure(const diff_detail::BakedPoints& a, const diff_detail::BakedPoints& b, const GeometryDiffOptions& options,
-             ClipGeometryDiff& c) {
+             bool texels, ClipGeometryDiff& c) {
   glm::vec3 low(INFINITY), high(-INFINITY);
   for (const glm::vec3& p : a.positions) low = glm::min(low, p), high = glm::max(high, p);
   c.diagonal = a.positions.empty() ? 0 : double(glm::length(high - low));
@@ -75,7 +75,7 @@ void measure(const diff_detail::BakedPoints& a, const diff_detail::BakedPoints& 
   const uint64_t over = failed ? c.over_fail : c.over_warn;
   c.reason = !std::isfinite(c.max_error)
                  ? "an error is not finite"
-                 : std::to_string(over) + (a.normals.empty() ? " texels (" : " vertices (") +
+                 : std::to_string(over) + (texels ? " texels (" : " vertices (") +
                        diff_detail::percent(over, c.samples) + ") over " + (failed ? "--fail " : "--warn ") +
                        diff_detail::number(failed ? t.fail : t.warn) + unit;
 }
@@ -111,7 +111,7 @@ GeometryDiffReport diff_bakes(const std::string& a, const std::string& b, const 
       if (points_a.positions.size() != points_b.positions.size())
         throw InputError(std::to_string(points_a.positions.size()) + " vertices or texels in A, " +
                          std::to_string(points_b.positions.size()) + " in B");
-      measure(points_a, points_b, options, c);
+      measure(points_a, points_b, options, fs::path(name).extension() == ".exr", c);
       report.vertices_a += points_a.positions.size();
       report.vertices_b += points_b.positions.size();
     } catch (const InputError& e) {

@@ -89,7 +89,16 @@ Correspondence closest_points(const DiffSide& from, const DiffSide& onto, unsign
     for (size_t i = block * kBlock; i < end; ++i) c.points[i] = index.closest(from.rest[c.vertices[i]], from.rest_normals[c.vertices[i]]);
   });
   for (const SurfacePoint& p : c.points) c.max_rest_distance = std::max(c.max_rest_distance, double(p.distance));
-  return c;
+  // Measured in the order of the surface points' first vertex: the three vertices fetched per sample on
+  // the other side then come in near order, which is most of the memory traffic of a frame.
+  std::vector<uint32_t> order(c.vertices.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t x, uint32_t y) { return c.points[x].vertex[0] < c.points[y].vertex[0]; });
+  Correspondence sorted;
+  sorted.max_rest_distance = c.max_rest_distance;
+  for (uint32_t i : order) sorted.vertices.push_back(c.vertices[i]), sorted.points.push_back(c.points[i]);
+  return sorted;
 }
 
 // The figures of one frame, with what the clip accumulates from it.

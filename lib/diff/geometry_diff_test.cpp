@@ -168,6 +168,24 @@ TEST(GeometryDiff, SurfacesThatDoNotOverlapAreAnInputError) {
   }
 }
 
+// Each file goes through the loader's every check, and the message names the file that failed.
+TEST(GeometryDiff, AMalformedFileOnEitherSideIsAnInputErrorNamingIt) {
+  const testing_support::ScratchDir dir("geometry_diff");
+  nlohmann::json doc;
+  std::ifstream(kArm) >> doc;
+  doc["accessors"][0]["count"] = 100000;  // more positions than the buffer view holds
+  const std::string bad = (dir.path() / "bad.gltf").string();
+  std::ofstream(bad) << doc.dump();
+  for (const auto& [a, b] : {std::pair{kArm, bad}, std::pair{bad, kArm}}) {
+    try {
+      diff_geometry(a, b, cpu_options());
+      FAIL() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(bad + ": ", 0), 0u) << e.what();
+    }
+  }
+}
+
 TEST(GeometryDiff, RelativeThresholdsScaleWithTheDiagonal) {
   const testing_support::ScratchDir dir("geometry_diff");
   GeometryDiffOptions o = cpu_options();
@@ -176,6 +194,44 @@ TEST(GeometryDiff, RelativeThresholdsScaleWithTheDiagonal) {
   EXPECT_EQ(diff_geometry(kArm, moved_copy(dir, 0.01), o).status(), DiffStatus::kPass);
   o.thresholds.fail = o.thresholds.warn = 0.001 / 4.0;
   EXPECT_EQ(diff_geometry(kArm, moved_copy(dir, 0.01), o).status(), DiffStatus::kFail);
+}
+
+// Two bake folders of OBJ frames written here: per vertex, missing and mismatched files fail.
+TEST(BakeDiff, PairsFilesByPathAndComparesVertexByVertex) {
+  const testing_support::ScratchDir dir("bake_diff");
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::filesystem::create_directories((dir.path() / name).parent_path());
+    std::ofstream(dir.path() / name) << text;
+  };
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 2 0\nf 1 2 3\n";
+  for (const char* side : {"a", "b"}) write(std::string(side) + "/manifest.json", "{}");
+  write("a/m/walk/frame_0000.obj", tri);
+  write("b/m/walk/frame_0000.obj", tri);
+  write("a/m/walk/frame_0001.obj", tri);
+  write("b/m/walk/frame_0001.obj", "v 0 0 0\nv 1 0.5 0\nv 0 2 0\nf 1 2 3\n");
+  write("a/m/walk/frame_0002.obj", tri);
+  write("b/m/walk/frame_0002.obj", "v 0 0 0\nv 1 0 0\nf 1 2 2\n");
+  write("a/m/walk/frame_0003.obj", tri);
+  write("a/m/walk/notes.txt", "not a frame");
+  const std::string a = (dir.path() / "a").string(), b = (dir.path() / "b").string();
+  EXPECT_TRUE(is_bake_folder(a));
+  EXPECT_FALSE(is_bake_folder(a + "/m"));
+  GeometryDiffOptions o;
+  o.thresholds.fail = 0.1;
+  const GeometryDiffReport r = diff_bakes(a, b, o);
+  ASSERT_EQ(r.clips.size(), 4u);  // notes.txt is not a frame
+  EXPECT_EQ(r.clips[0].name, "m/walk/frame_0000.obj");
+  EXPECT_EQ(r.clips[0].status, DiffStatus::kPass);
+  EXPECT_EQ(r.clips[1].status, DiffStatus::kFail);
+  EXPECT_FLOAT_EQ(float(r.clips[1].max_error), 0.5f);
+  EXPECT_EQ(r.clips[1].worst.vertex, 1u);
+  EXPECT_NE(r.clips[1].reason.find("1 vertices (33.3%) over --fail 0.1"), std::string::npos) << r.clips[1].reason;
+  EXPECT_EQ(r.clips[2].status, DiffStatus::kFail);
+  EXPECT_EQ(r.clips[2].reason, "3 vertices or texels in A, 2 in B");
+  EXPECT_EQ(r.clips[3].reason, "missing in B");
+  EXPECT_EQ(r.status(), DiffStatus::kFail);
+  EXPECT_NE(geometry_text(r).find("FAIL  m/walk/frame_0001.obj, max 50 cm at vertex 1"), std::string::npos)
+      << geometry_text(r);
 }
 
 }  // namespace
