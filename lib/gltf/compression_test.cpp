@@ -4,6 +4,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "source_document.hpp"
+#include "../test_support/base64.hpp"
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
@@ -79,19 +80,7 @@ Bytes glb(const json& doc, Bytes bin) {
   return out;
 }
 
-std::string base64(const Bytes& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[n >> 18 & 63];
-    out += table[n >> 12 & 63];
-    out += i + 1 < bytes.size() ? table[n >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
+using testing_support::base64;
 
 Asset load_bytes(const Bytes& bytes, const LoadOptions& options = {}) {
   return load_asset_from_memory(bytes, "compressed", ".", options);

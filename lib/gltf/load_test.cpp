@@ -2,6 +2,7 @@
 #include "dqskin/info.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
+#include "../test_support/base64.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -22,19 +23,7 @@ using nlohmann::json;
 // ---------------------------------------------------------------------------------------------------
 // A tiny glTF writer: raw bytes into one buffer, accessors described in JSON, embedded as a data URI.
 
-std::string base64(const std::vector<uint8_t>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[n >> 18 & 63];
-    out += table[n >> 12 & 63];
-    out += i + 1 < bytes.size() ? table[n >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
+using testing_support::base64;
 
 struct GltfBuilder {
   std::vector<uint8_t> bytes;
