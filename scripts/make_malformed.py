@@ -778,6 +778,16 @@ def draco_cases(cat, base):
         ext(a)["bufferView"] = 99
     case("view_out_of_range", view_out_of_range, prefix + "bufferView 99 does not exist")
 
+    # An edgebreaker stream (method 1, traversal 0) whose connectivity header claims 1431655765 triangles
+    # and as many vertices and symbols, which passes libdraco's own checks of those counts: libdraco would
+    # allocate its corner table for them (17 GB, past the tests' 4 GiB cap) before it reads a symbol. The
+    # loader refuses the count first.
+    faces = 0x55555555
+    huge = (DRACO_QUAD[:8] + bytes([1]) + DRACO_QUAD[9:DRACO_FACES_OFFSET] + bytes([0]) + varint(faces) + varint(faces) +
+            bytes([0]) + varint(faces) + varint(0) + bytes(64))
+    case("huge_face_count", lambda a: None,
+         prefix + "indices: accessor %d has count 6, the compressed data %d triangles (%d indices)" % (INDICES, faces, 3 * faces),
+         stream=huge)
 
 
 MARKER = ".written-by-make_malformed"
