@@ -22,6 +22,10 @@
 #include <map>
 #include <set>
 
+#include <unistd.h>
+
+#include "../io/glb_output_check.hpp"
+
 namespace dqskin {
 namespace {
 
@@ -826,6 +830,24 @@ TEST(Draco, KeptSourceHasTheDecodedTexcoordsAndColors) {
         EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
       }
     }
+}
+
+// A frame of each compressed input goes through the frame writer's checks and into glb_samples (named
+// GlbOutput.* for that test's filter), for the glb_validator test: the writer copies TEXCOORD_n and COLOR_n
+// from what the codecs decoded.
+TEST(GlbOutput, CompressedInputsRoundTrip) {
+  const fs::path dir = fs::temp_directory_path() / ("dqskin_compressed_frames_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Rig rig = read_rig("textured_cylinder.gltf");
+  const Rig draco = draco_rig(rig);
+  const std::vector<std::pair<std::string, Bytes>> inputs = {{"draco_textured_cylinder", glb(draco.doc, draco.bin)},
+                                                             {"meshopt_textured_cylinder", meshopt_glb(rig)}};
+  for (const auto& [name, bytes] : inputs) {
+    const fs::path path = dir / (name + ".glb");
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    check_glb_frame(path.string(), name);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
