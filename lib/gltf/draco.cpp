@@ -134,6 +134,8 @@ constexpr uint64_t kBytesPerComponent = 12;
 // An attribute's connectivity when its seams differ from the positions' (edgebreaker): its corner table,
 // seam flags and value maps, about 5 ints a corner.
 constexpr uint64_t kBytesPerAttributeCorner = 20;
+// Draco metadata, a stream byte's worth at most (see estimate_draco()).
+constexpr uint64_t kBytesPerMetadataByte = 64;
 
 // libdraco's two mesh decoders (what draco::Decoder picks by the header's method), each checking the
 // stream's counts against `declared` where libdraco has read them and not yet allocated for them:
@@ -303,6 +305,19 @@ DracoEstimate estimate_draco(const tinygltf::Model& model) {
         mesh_bytes = add(mesh_bytes, add(mul(corners, 4 + 32), mul(points, 16)));
         mesh_bytes = add(mesh_bytes, mul(mul(corners, kBytesPerAttributeCorner), ext.attributes.size()));
         if (!counted[p.indices]) counted[p.indices] = true, e.decoded = add(e.decoded, bytes_of(p.indices));
+      }
+      // Draco metadata (header flag 0x8000) is decoded before the connectivity, into maps of named entries
+      // and nested metadata; libdraco bounds each of its counts by the bytes left, so it takes at most a
+      // few dozen bytes a byte of the stream (measured: 22 for one-byte entries, 40 for empty attribute
+      // metadata). Streams without it, as glTF encoders write them, are not charged.
+      if (ext.view >= 0 && size_t(ext.view) < model.bufferViews.size()) {
+        const tinygltf::BufferView& v = model.bufferViews[size_t(ext.view)];
+        if (v.buffer >= 0 && size_t(v.buffer) < model.buffers.size()) {
+          const std::vector<unsigned char>& data = model.buffers[size_t(v.buffer)].data;
+          if (v.byteOffset <= data.size() && v.byteLength <= data.size() - v.byteOffset && v.byteLength >= 11 &&
+              (data[v.byteOffset + 10] & 0x80))
+            mesh_bytes = add(mesh_bytes, mul(v.byteLength, kBytesPerMetadataByte));
+        }
       }
       e.transient = std::max(e.transient, mesh_bytes);
     }
