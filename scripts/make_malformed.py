@@ -19,6 +19,7 @@ behaviour. Only the Python standard library is used (and scripts/gltf_builder.py
 every run.
 """
 
+import base64
 import copy
 import json
 import math
@@ -683,6 +684,112 @@ def meshopt_cases(cat, base):
     case("source_is_fallback", source_is_fallback, prefix % JOINTS + "buffer 1 has no data")
 
 
+# The base asset's quad (POSITION, NORMAL, JOINTS_0, WEIGHTS_0 with unique ids 0-3 in that order, the two
+# triangles 0 1 2 and 2 1 3) as a KHR_draco_mesh_compression stream: made once with libdraco 1.5.5's
+# draco::Encoder (MESH_SEQUENTIAL_ENCODING, no quantization, so the values decode exactly; JOINTS_0 as
+# DT_UINT8, the others as DT_FLOAT32), from a draco::Mesh built with AddFace and AddAttribute, and written
+# here as base64 so that this script needs no Draco. Its layout (Draco bitstream 2.2): "DRACO", version 2 2,
+# encoder type 1 (mesh), method 0 (sequential), flags 0 0; then the connectivity: varints faces (2) and
+# points (4) at offsets 11 and 12, method 1 (raw) and the six indices as bytes; then the attributes.
+DRACO_QUAD = base64.b64decode(
+    "RFJBQ08CAgEAAAACBAEAAQICAQMBBAAJAwAAAQkDAAEEAgQAAgQJBAADAAABAAAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAA"
+    "AIA/AAAAAAAAgD8AAIA/AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwABAQACAwFA"
+    "AQACAwAAAAABAAAAAABAPwAAgD4AAAAAAAAAAAAAAD8AAAA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAACAPgAAQD8AAAAAAAAA"
+    "AA==")
+DRACO_FACES_OFFSET = 11
+
+
+def varint(value):
+    """value as Draco writes an unsigned varint: 7 bits a byte, low bits first, the high bit set on all
+    bytes but the last."""
+    out = bytearray()
+    while True:
+        out.append((value & 0x7F) | (0x80 if value > 0x7F else 0))
+        value >>= 7
+        if not value:
+            return bytes(out)
+
+
+def draco_asset(base, stream=DRACO_QUAD):
+    """base with the quad's primitive KHR_draco_mesh_compression-compressed: its attribute and index
+    accessors keep count and type but lose their bufferView (as gltf-transform writes them), the stream is
+    the last view of buffer 0, and the other accessors' views are as they were, renumbered."""
+    a = base.copy()
+    g = a.gltf
+    old_views, old_bin = g["bufferViews"], bytes(a.bin)
+    g["bufferViews"] = []
+    del a.bin[:]
+    for i, acc in enumerate(g["accessors"]):
+        v = old_views[acc.pop("bufferView")]
+        if i <= INDICES:
+            continue
+        start = v.get("byteOffset", 0)
+        acc["bufferView"] = a.add_view(old_bin[start:start + v["byteLength"]], v.get("target"))
+    primitive = g["meshes"][0]["primitives"][0]
+    primitive["extensions"] = {"KHR_draco_mesh_compression": {
+        "bufferView": a.add_view(stream),
+        "attributes": {"POSITION": 0, "NORMAL": 1, "JOINTS_0": 2, "WEIGHTS_0": 3}}}
+    a.pad()
+    g["buffers"][0]["byteLength"] = len(a.bin)
+    g["extensionsUsed"] = ["KHR_draco_mesh_compression"]
+    g["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    return a
+
+
+def draco_cases(cat, base):
+    """KHR_draco_mesh_compression: one valid file and one broken thing each."""
+    cat.write("valid_draco.glb", draco_asset(base).glb_bytes())
+    cat.valid.append("valid_draco.glb")
+    ext = lambda a: a.gltf["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]
+    prefix = "mesh 0 primitive 0: KHR_draco_mesh_compression "
+
+    def case(name, change, message, stream=DRACO_QUAD):
+        a = draco_asset(base, stream)
+        change(a)
+        cat.case("draco_%s.glb" % name, a.glb_bytes(), regex_escape(message))
+
+    def view_bytes(a):
+        v = a.gltf["bufferViews"][ext(a)["bufferView"]]
+        return v["byteOffset"], v["byteLength"]
+
+    def garbage(a):  # not a Draco stream at all
+        at, n = view_bytes(a)
+        a.bin[at:at + n] = bytes((k * 131 + 7) & 0xFF for k in range(n))
+    case("garbage", garbage, prefix + "data is malformed (")
+
+    def truncated(a):
+        a.gltf["bufferViews"][ext(a)["bufferView"]]["byteLength"] = len(DRACO_QUAD) // 2
+    case("truncated", truncated, prefix + "data is malformed (")
+
+    def unknown_id(a):
+        ext(a)["attributes"]["WEIGHTS_0"] = 7
+    case("unknown_unique_id", unknown_id, prefix + "attribute WEIGHTS_0: unique id 7 is not in the compressed data")
+
+    def count(a):
+        a.gltf["accessors"][POSITION]["count"] = 5
+    case("count_mismatch", count,
+         prefix + "attribute POSITION: accessor %d has count 5, the compressed data 4 points" % POSITION)
+
+    def lines(a):
+        a.gltf["meshes"][0]["primitives"][0]["mode"] = 1
+    case("mode_lines", lines, prefix + "is on a primitive of mode 1; dqskin decodes triangle lists (mode 4)")
+
+    def view_out_of_range(a):
+        ext(a)["bufferView"] = 99
+    case("view_out_of_range", view_out_of_range, prefix + "bufferView 99 does not exist")
+
+    # An edgebreaker stream (method 1, traversal 0) whose connectivity header claims 1431655765 triangles
+    # and as many vertices and symbols, which passes libdraco's own checks of those counts: libdraco would
+    # allocate its corner table for them (17 GB, past the tests' 4 GiB cap) before it reads a symbol. The
+    # loader refuses the count first.
+    faces = 0x55555555
+    huge = (DRACO_QUAD[:8] + bytes([1]) + DRACO_QUAD[9:DRACO_FACES_OFFSET] + bytes([0]) + varint(faces) + varint(faces) +
+            bytes([0]) + varint(faces) + varint(0) + bytes(64))
+    case("huge_face_count", lambda a: None,
+         prefix + "indices: accessor %d has count 6, the compressed data %d triangles (%d indices)" % (INDICES, faces, 3 * faces),
+         stream=huge)
+
+
 MARKER = ".written-by-make_malformed"
 
 
@@ -1088,6 +1195,7 @@ def main():
     schema_value_cases(cat, base)
     hostile_cases(cat, base, glb, outdir)
     meshopt_cases(cat, base)
+    draco_cases(cat, base)
 
     # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
     # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.

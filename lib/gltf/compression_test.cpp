@@ -23,6 +23,10 @@
 #include <map>
 #include <set>
 
+#include <unistd.h>
+
+#include "../io/glb_output_check.hpp"
+
 namespace dqskin {
 namespace {
 
@@ -558,6 +562,7 @@ TEST(Meshopt, DecodedSizesCountTowardMaxMemoryBeforeAnythingIsDecoded) {
 struct DracoOptions {
   int method = draco::MESH_SEQUENTIAL_ENCODING;  // keeps the points in order (edgebreaker reorders them)
   int position_bits = 0, normal_bits = 0, texcoord_bits = 0;  // 0: not quantized (lossless)
+  int unlisted_components = 0;  // > 0: one more float attribute, of so many components, that the extension does not list
 };
 
 draco::DataType draco_type(int component_type) {
@@ -614,6 +619,14 @@ Rig draco_rig(const Rig& rig, const DracoOptions& o = {}) {
         ids[name] = dm.attribute(id)->unique_id();
         a.erase("bufferView");
         a.erase("byteOffset");
+      }
+      if (o.unlisted_components > 0) {
+        draco::GeometryAttribute ga;
+        ga.Init(draco::GeometryAttribute::GENERIC, nullptr, uint8_t(o.unlisted_components), draco::DT_FLOAT32, false,
+                int64_t(4 * o.unlisted_components), 0);
+        const int id = dm.AddAttribute(ga, true, uint32_t(points));
+        const std::vector<float> zeros(size_t(o.unlisted_components), 0.0f);
+        for (size_t i = 0; i < points; ++i) dm.attribute(id)->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), zeros.data());
       }
       draco::Encoder encoder;
       encoder.SetEncodingMethod(o.method);
@@ -685,10 +698,17 @@ TEST(Draco, MalformedDataIsAOneLineInputError) {
   const size_t position = compressed.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
   const std::string prefix = "mesh 0 primitive 0: KHR_draco_mesh_compression ";
   auto error = [](const Rig& r) { return load_error(glb(r.doc, r.bin)); };
-  {  // garbage after the header
+  {  // garbage after the header: the counts it claims are checked first
     Rig r = compressed;
     const size_t at = r.doc["bufferViews"][view]["byteOffset"], n = r.doc["bufferViews"][view]["byteLength"];
     for (size_t k = 11; k < n; ++k) r.bin[at + k] = uint8_t(k * 131 + 7);
+    EXPECT_EQ(error(r).rfind(prefix + "indices: accessor ", 0), 0u) << error(r);
+    EXPECT_NE(error(r).find(", the compressed data "), std::string::npos) << error(r);
+  }
+  {  // garbage after the connectivity's counts (faces and points, 2-byte varints here, and its method byte)
+    Rig r = compressed;
+    const size_t at = r.doc["bufferViews"][view]["byteOffset"], n = r.doc["bufferViews"][view]["byteLength"];
+    for (size_t k = 16; k < n; ++k) r.bin[at + k] = uint8_t(k * 131 + 7);
     EXPECT_EQ(error(r).rfind(prefix + "data is malformed (", 0), 0u) << error(r);
   }
   {  // not Draco at all
@@ -724,6 +744,60 @@ TEST(Draco, MalformedDataIsAOneLineInputError) {
   }
 }
 
+// A stream's counts are checked against the accessors before libdraco allocates for them: a header that
+// claims 1.4 billion triangles (libdraco would allocate a 17 GB corner table for them, before it reads
+// a symbol) is refused by its count alone.
+TEST(Draco, HugeCountsInTheStreamAreRefusedBeforeDecoding) {
+  DracoOptions edgebreaker;
+  edgebreaker.method = draco::MESH_EDGEBREAKER_ENCODING;
+  const Rig compressed = draco_rig(read_rig("bending_arm.gltf"), edgebreaker);
+  EXPECT_EQ(load_error(glb(compressed.doc, compressed.bin)), "(loaded)");  // the stream as the encoder wrote it
+  const json& p = compressed.doc["meshes"][0]["primitives"][0];
+  const size_t view = p["extensions"]["KHR_draco_mesh_compression"]["bufferView"];
+  const size_t indices = p["indices"];
+  const size_t at = compressed.doc["bufferViews"][view]["byteOffset"];
+  ASSERT_EQ(compressed.bin[at + 8], draco::MESH_EDGEBREAKER_ENCODING);
+  auto varint = [](Bytes& out, uint32_t v) {
+    for (; v > 0x7F; v >>= 7) out.push_back(uint8_t(v | 0x80));
+    out.push_back(uint8_t(v));
+  };
+  // The header (11 bytes) and the traversal type, then vertices, faces, attribute connectivities, symbols
+  // and split symbols as libdraco checks them (vertices <= 3 faces, symbols <= faces <= 4/3 symbols).
+  Bytes stream(compressed.bin.begin() + long(at), compressed.bin.begin() + long(at) + 12);
+  const uint32_t faces = 0x55555555;
+  varint(stream, faces);
+  varint(stream, faces);
+  stream.push_back(0);
+  varint(stream, faces);
+  varint(stream, 0);
+  stream.resize(stream.size() + 64, 0);
+  Rig r = compressed;
+  pad4(r.bin);
+  r.doc["bufferViews"][view]["byteOffset"] = r.bin.size();
+  r.doc["bufferViews"][view]["byteLength"] = stream.size();
+  r.bin.insert(r.bin.end(), stream.begin(), stream.end());
+  pad4(r.bin);
+  r.doc["buffers"][0]["byteLength"] = r.bin.size();
+  const size_t index_count = compressed.doc["accessors"][indices]["count"];
+  EXPECT_EQ(load_error(glb(r.doc, r.bin)),
+            "mesh 0 primitive 0: KHR_draco_mesh_compression indices: accessor " + std::to_string(indices) +
+                " has count " + std::to_string(index_count) + ", the compressed data 1431655765 triangles (4294967295 indices)");
+}
+
+// Attributes the extension does not list are decoded too: within what the listed ones leave, they load;
+// beyond it (as many components as a hostile stream likes, up to 255 each) they are refused.
+TEST(Draco, UnlistedAttributesAreBoundedByTheListedOnes) {
+  const Rig rig = read_rig("bending_arm.gltf");
+  DracoOptions small, large;
+  small.unlisted_components = 2;
+  large.unlisted_components = 64;
+  expect_same_asset(load_rig(rig), load_rig(draco_rig(rig, small)));
+  const Rig r = draco_rig(rig, large);
+  const std::string error = load_error(glb(r.doc, r.bin));
+  EXPECT_EQ(error.rfind("mesh 0 primitive 0: KHR_draco_mesh_compression data is malformed (its 5 attributes take ", 0), 0u) << error;
+  EXPECT_NE(error.find("of the attributes the extension lists)"), std::string::npos) << error;
+}
+
 // The frame writer copies TEXCOORD_n and COLOR_n from the source: decoded, they are there to copy.
 TEST(Draco, KeptSourceHasTheDecodedTexcoordsAndColors) {
   const Rig rig = read_rig("textured_cylinder.gltf");
@@ -745,6 +819,24 @@ TEST(Draco, KeptSourceHasTheDecodedTexcoordsAndColors) {
         EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
       }
     }
+}
+
+// A frame of each compressed input goes through the frame writer's checks and into glb_samples (named
+// GlbOutput.* for that test's filter), for the glb_validator test: the writer copies TEXCOORD_n and COLOR_n
+// from what the codecs decoded.
+TEST(GlbOutput, CompressedInputsRoundTrip) {
+  const fs::path dir = fs::temp_directory_path() / ("dqskin_compressed_frames_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Rig rig = read_rig("textured_cylinder.gltf");
+  const Rig draco = draco_rig(rig);
+  const std::vector<std::pair<std::string, Bytes>> inputs = {{"draco_textured_cylinder", glb(draco.doc, draco.bin)},
+                                                             {"meshopt_textured_cylinder", meshopt_glb(rig)}};
+  for (const auto& [name, bytes] : inputs) {
+    const fs::path path = dir / (name + ".glb");
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    check_glb_frame(path.string(), name);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

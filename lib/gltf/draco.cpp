@@ -4,11 +4,17 @@
 #include "../io/saturating.hpp"
 
 #include <draco/compression/decode.h>
+#include <draco/compression/mesh/mesh_edgebreaker_decoder.h>
+#include <draco/compression/mesh/mesh_sequential_decoder.h>
+#include <draco/compression/point_cloud/point_cloud_decoder.h>
+#include <draco/core/varint_decoding.h>
 
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace dqskin::gltf {
@@ -96,6 +102,170 @@ void attach(tinygltf::Model& model, int buffer, int index, const std::vector<uin
   a.byteOffset = 0;
 }
 
+// What the document declares for one Draco mesh. libdraco allocates for the counts its stream claims
+// (faces, points, attributes and their components) before it reads the data they describe, and a few bytes
+// can claim billions; so the decoder below checks those counts against these as soon as it has read them,
+// before it allocates for them, and every allocation that follows is bounded by what estimate_draco()
+// counted from the same accessors (and --max-memory allowed).
+struct Declared {
+  std::string prefix;  // "mesh 0 primitive 1: KHR_draco_mesh_compression "
+  int indices = -1;
+  uint64_t index_count = 0;
+  struct Attribute {
+    std::string name;
+    int id = 0, accessor = 0, components = 0;
+    uint64_t count = 0;
+  };
+  std::vector<Attribute> attributes;  // every attribute the extension lists
+
+  std::string count_mismatch(const Attribute& a, uint64_t points) const {
+    return prefix + "attribute " + a.name + ": accessor " + std::to_string(a.accessor) + " has count " +
+           std::to_string(a.count) + ", the compressed data " + std::to_string(points) + " points";
+  }
+  std::string face_mismatch(uint64_t faces) const {
+    return prefix + "indices: accessor " + std::to_string(indices) + " has count " + std::to_string(index_count) +
+           ", the compressed data " + std::to_string(faces) + " triangles (" + std::to_string(faces * 3) + " indices)";
+  }
+};
+
+// Bytes a decoded component may take in libdraco at once: its value (up to 8 bytes, for 64-bit types)
+// and the int32 of its portable (quantized or predicted) form. estimate_draco() counts as much.
+constexpr uint64_t kBytesPerComponent = 12;
+// An attribute's connectivity when its seams differ from the positions' (edgebreaker): its corner table,
+// seam flags and value maps, about 5 ints a corner.
+constexpr uint64_t kBytesPerAttributeCorner = 20;
+// Draco metadata, a stream byte's worth at most (see estimate_draco()).
+constexpr uint64_t kBytesPerMetadataByte = 64;
+
+// libdraco's two mesh decoders (what draco::Decoder picks by the header's method), each checking the
+// stream's counts against `declared` where libdraco has read them and not yet allocated for them:
+// - the connectivity's header (faces; points for the sequential method, attribute connectivities for
+//   edgebreaker), read ahead from a copy of the buffer before libdraco reads it;
+// - the attributes' descriptions (unique ids, components, data types) and the final point count, once
+//   libdraco has read them and before it decodes any value.
+// A refusal is kept in `refusal` and stops the decoding (libdraco then reports a failure).
+template <typename Base>
+class CheckedDecoder : public Base {
+public:
+  explicit CheckedDecoder(const Declared& declared) : declared_(declared) {}
+  std::string refusal;
+
+protected:
+  bool DecodeConnectivity() override {
+    draco::DecoderBuffer peek(*this->buffer());
+    if (!check_connectivity(peek)) return false;
+    return Base::DecodeConnectivity();
+  }
+
+  bool DecodeAllAttributes() override {
+    if (!check_attributes()) return false;
+    return Base::DecodeAllAttributes();
+  }
+
+private:
+  static constexpr bool kSequential = std::is_same_v<Base, draco::MeshSequentialDecoder>;
+
+  bool refuse(std::string message) {
+    refusal = std::move(message);
+    return false;
+  }
+
+  // One uint32 count: fixed-size before bitstream 2.0, a varint since.
+  bool read_count(draco::DecoderBuffer& b, uint32_t& out, uint16_t varint_since) const {
+    if (this->bitstream_version() < varint_since) return b.Decode(&out);
+    return draco::DecodeVarint(&out, &b);
+  }
+
+  // Reads what libdraco's DecodeConnectivity() reads first (draco 1.5.5, bitstreams 1.x to 2.2). A stream
+  // too short for it is left to libdraco, which fails on it the same way.
+  bool check_connectivity(draco::DecoderBuffer& b) {
+    uint32_t faces = 0, points = 0;
+    if constexpr (kSequential) {
+      // Fixed-size counts before 2.2. libdraco then bounds points by 3 × faces, and faces by the bytes left.
+      if (!read_count(b, faces, DRACO_BITSTREAM_VERSION(2, 2)) || !read_count(b, points, DRACO_BITSTREAM_VERSION(2, 2)))
+        return true;
+    } else {
+      uint32_t skipped = 0;
+      if (this->bitstream_version() < DRACO_BITSTREAM_VERSION(2, 2) &&
+          !read_count(b, skipped, DRACO_BITSTREAM_VERSION(2, 0)))  // new vertices, before 2.2
+        return true;
+      uint32_t vertices = 0;
+      uint8_t attribute_connectivities = 0;
+      if (!read_count(b, vertices, DRACO_BITSTREAM_VERSION(2, 0)) || !read_count(b, faces, DRACO_BITSTREAM_VERSION(2, 0)) ||
+          !b.Decode(&attribute_connectivities))
+        return true;
+      // libdraco allocates its corner table for `faces` (and bounds the vertices by 3 × faces), and one
+      // connectivity a corner for each attribute whose seams differ from the positions'.
+      if (uint64_t(faces) * 3 != declared_.index_count) return refuse(declared_.face_mismatch(faces));
+      if (attribute_connectivities > declared_.attributes.size())
+        return refuse(declared_.prefix + "data is malformed (" + std::to_string(attribute_connectivities) +
+                      " attribute connectivities for " + std::to_string(declared_.attributes.size()) + " attributes)");
+    }
+    if (uint64_t(faces) * 3 != declared_.index_count) return refuse(declared_.face_mismatch(faces));
+    if constexpr (kSequential)
+      for (const Declared::Attribute& a : declared_.attributes)
+        if (a.count != points) return refuse(declared_.count_mismatch(a, points));
+    return true;
+  }
+
+  bool check_attributes() {
+    const draco::PointCloud& pc = *this->point_cloud();
+    const uint64_t points = pc.num_points();
+    uint64_t allowed = 0;
+    for (const Declared::Attribute& a : declared_.attributes) {
+      if (a.count != points) return refuse(declared_.count_mismatch(a, points));
+      const draco::PointAttribute* attribute = pc.GetAttributeByUniqueId(uint32_t(a.id));
+      if (!attribute)
+        return refuse(declared_.prefix + "attribute " + a.name + ": unique id " + std::to_string(a.id) +
+                      " is not in the compressed data");
+      if (a.components == 0 || a.components > 4 || attribute->num_components() != a.components)
+        return refuse(declared_.prefix + "attribute " + a.name + " has " + std::to_string(attribute->num_components()) +
+                      " components in the compressed data, its accessor " + std::to_string(a.components));
+      allowed += points * uint64_t(a.components) * kBytesPerComponent;
+    }
+    // Attributes the extension does not list are decoded too: allowed within what the listed ones leave
+    // (their values are rarely 8 bytes), and refused beyond it.
+    uint64_t need = 0;
+    for (int i = 0; i < pc.num_attributes(); ++i) {
+      const draco::PointAttribute& attribute = *pc.attribute(i);
+      need += points * uint64_t(attribute.num_components()) * (uint64_t(draco::DataTypeLength(attribute.data_type())) + 4);
+    }
+    if (need > allowed)
+      return refuse(declared_.prefix + "data is malformed (its " + std::to_string(pc.num_attributes()) +
+                    " attributes take " + std::to_string(need) + " bytes to decode, more than the " +
+                    std::to_string(allowed) + " of the attributes the extension lists)");
+    return true;
+  }
+
+  const Declared& declared_;
+};
+
+// Decodes the Draco mesh in `data`; throws InputError when it is malformed or disagrees with `declared`.
+std::unique_ptr<draco::Mesh> decode_mesh(const unsigned char* data, size_t size, const Declared& declared) {
+  draco::DecoderBuffer buffer;
+  buffer.Init(reinterpret_cast<const char*>(data), size);
+  draco::DracoHeader header;
+  {
+    draco::DecoderBuffer peek(buffer);
+    const draco::Status status = draco::PointCloudDecoder::DecodeHeader(&peek, &header);
+    if (!status.ok()) fail(declared.prefix + "data is malformed (" + status.error_msg_string() + ")");
+  }
+  if (header.encoder_type != draco::TRIANGULAR_MESH) fail(declared.prefix + "data is a point cloud, not a triangle mesh");
+  auto decode = [&](auto decoder) {
+    auto mesh = std::make_unique<draco::Mesh>();
+    const draco::DecoderOptions options;
+    const draco::Status status = decoder->Decode(options, &buffer, mesh.get());
+    if (!decoder->refusal.empty()) fail(decoder->refusal);
+    if (!status.ok()) fail(declared.prefix + "data is malformed (" + status.error_msg_string() + ")");
+    return mesh;
+  };
+  if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING)
+    return decode(std::make_unique<CheckedDecoder<draco::MeshSequentialDecoder>>(declared));
+  if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING)
+    return decode(std::make_unique<CheckedDecoder<draco::MeshEdgebreakerDecoder>>(declared));
+  fail(declared.prefix + "data is malformed (unknown encoding method " + std::to_string(header.encoder_method) + ")");
+}
+
 }  // namespace
 
 DracoEstimate estimate_draco(const tinygltf::Model& model) {
@@ -121,16 +291,33 @@ DracoEstimate estimate_draco(const tinygltf::Model& model) {
         const auto it = p.attributes.find(name);
         if (it == p.attributes.end()) continue;
         const uint64_t b = bytes_of(it->second);
-        // Draco holds every value as its own type, at most 4 bytes a component: as many bytes, or 4× for bytes.
-        mesh_bytes = add(mesh_bytes, mul(b, 4));
-        if (size_t(it->second) < model.accessors.size()) points = std::max<uint64_t>(points, model.accessors[size_t(it->second)].count);
+        if (size_t(it->second) >= model.accessors.size()) continue;
+        const tinygltf::Accessor& a = model.accessors[size_t(it->second)];
+        // libdraco's values and their portable form (what CheckedDecoder lets the stream's attributes take).
+        mesh_bytes = add(mesh_bytes, mul(mul(a.count, uint64_t(components(a.type))), kBytesPerComponent));
+        points = std::max<uint64_t>(points, a.count);
         if (!counted[it->second]) counted[it->second] = true, e.decoded = add(e.decoded, b);
       }
       if (p.indices >= 0 && size_t(p.indices) < model.accessors.size()) {
         const uint64_t corners = model.accessors[size_t(p.indices)].count;
-        // Faces (3 × 4 bytes), and the decoder's corner table and its vertex maps (about 8 ints a corner).
+        // Faces (3 × 4 bytes), and the decoder's corner table and its vertex maps (about 8 ints a corner),
+        // and an attribute connectivity for each listed attribute at most (edgebreaker).
         mesh_bytes = add(mesh_bytes, add(mul(corners, 4 + 32), mul(points, 16)));
+        mesh_bytes = add(mesh_bytes, mul(mul(corners, kBytesPerAttributeCorner), ext.attributes.size()));
         if (!counted[p.indices]) counted[p.indices] = true, e.decoded = add(e.decoded, bytes_of(p.indices));
+      }
+      // Draco metadata (header flag 0x8000) is decoded before the connectivity, into maps of named entries
+      // and nested metadata; libdraco bounds each of its counts by the bytes left, so it takes at most a
+      // few dozen bytes a byte of the stream (measured: 22 for one-byte entries, 40 for empty attribute
+      // metadata). Streams without it, as glTF encoders write them, are not charged.
+      if (ext.view >= 0 && size_t(ext.view) < model.bufferViews.size()) {
+        const tinygltf::BufferView& v = model.bufferViews[size_t(ext.view)];
+        if (v.buffer >= 0 && size_t(v.buffer) < model.buffers.size()) {
+          const std::vector<unsigned char>& data = model.buffers[size_t(v.buffer)].data;
+          if (v.byteOffset <= data.size() && v.byteLength <= data.size() - v.byteOffset && v.byteLength >= 11 &&
+              (data[v.byteOffset + 10] & 0x80))
+            mesh_bytes = add(mesh_bytes, mul(v.byteLength, kBytesPerMetadataByte));
+        }
       }
       e.transient = std::max(e.transient, mesh_bytes);
     }
@@ -181,15 +368,17 @@ void decode_draco(tinygltf::Model& model) {
       const std::vector<unsigned char>& source = model.buffers[size_t(view.buffer)].data;
       if (view.byteOffset > source.size() || view.byteLength > source.size() - view.byteOffset)
         fail(prefix + "bufferView " + std::to_string(ext.view) + " runs past the end of its buffer");
-      draco::DecoderBuffer buffer;
-      buffer.Init(reinterpret_cast<const char*>(source.data() + view.byteOffset), view.byteLength);
-      const auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
-      if (!type.ok()) fail(prefix + "data is malformed (" + type.status().error_msg_string() + ")");
-      if (type.value() != draco::TRIANGULAR_MESH) fail(prefix + "data is a point cloud, not a triangle mesh");
-      draco::Decoder decoder;
-      auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-      if (!decoded.ok()) fail(prefix + "data is malformed (" + decoded.status().error_msg_string() + ")");
-      const draco::Mesh& mesh = *decoded.value();
+      Declared declared;
+      declared.prefix = prefix;
+      declared.indices = p.indices;
+      declared.index_count = model.accessors[size_t(p.indices)].count;
+      for (const auto& [name, id] : ext.attributes) {
+        const int index = p.attributes.at(name);
+        const tinygltf::Accessor& a = model.accessors[size_t(index)];
+        declared.attributes.push_back({name, id, index, components(a.type), a.count});
+      }
+      const std::unique_ptr<draco::Mesh> decoded = decode_mesh(source.data() + view.byteOffset, view.byteLength, declared);
+      const draco::Mesh& mesh = *decoded;
       const size_t points = mesh.num_points(), faces = mesh.num_faces();
 
       // The decoded data goes to a buffer of its own.

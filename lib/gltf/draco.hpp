@@ -20,7 +20,9 @@ struct DracoEstimate {
   uint64_t transient = 0;  // the largest Draco mesh while it is decoded
 };
 
-// What decode_draco() will allocate, from the accessors' declared counts.
+// What decode_draco() will allocate, from the accessors' declared counts: decode_draco() holds libdraco to
+// it, refusing a stream whose counts (faces, points, attributes and their components) exceed what the
+// accessors declare before libdraco allocates for them.
 DracoEstimate estimate_draco(const tinygltf::Model& model);
 
 // Decodes every primitive with the extension. Its `attributes` map names the unique ids of the Draco

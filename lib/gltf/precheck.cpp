@@ -206,12 +206,19 @@ CheckedJson precheck_json(std::span<const uint8_t> text, const LoadOptions& opti
   for (size_t m = 0; m < array_size("meshes"); ++m) {
     const nlohmann::json& mesh = doc["meshes"][m];
     if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
-    for (const nlohmann::json& p : mesh["primitives"]) {
+    for (size_t pi = 0; pi < mesh["primitives"].size(); ++pi) {
+      const nlohmann::json& p = mesh["primitives"][pi];
       if (!p.is_object() || !p.contains("indices") || !p.contains("extensions") || !p["extensions"].is_object()) continue;
       const auto draco = p["extensions"].find("KHR_draco_mesh_compression");
       if (draco == p["extensions"].end() || !draco->is_object() || !draco->contains("bufferView")) continue;
-      const uint64_t view = (*draco)["bufferView"].get<uint64_t>(), indices = p["indices"].get<uint64_t>();
-      if (view >= view_count || indices >= array_size("accessors") || !doc["accessors"][indices].is_object() ||
+      const nlohmann::json& view_value = (*draco)["bufferView"];
+      if (!view_value.is_number_unsigned() || !p["indices"].is_number_unsigned()) continue;  // decode_draco reports it
+      const uint64_t view = view_value.get<uint64_t>(), indices = p["indices"].get<uint64_t>();
+      // Said here: tinygltf would otherwise report the indices accessor's view, which the file does not have.
+      if (view >= view_count)
+        fail("mesh " + std::to_string(m) + " primitive " + std::to_string(pi) +
+             ": KHR_draco_mesh_compression bufferView " + std::to_string(view) + " does not exist");
+      if (indices >= array_size("accessors") || !doc["accessors"][indices].is_object() ||
           doc["accessors"][indices].contains("bufferView"))
         continue;
       doc["accessors"][indices]["bufferView"] = view;

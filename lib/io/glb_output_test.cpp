@@ -6,6 +6,7 @@
 #include "dqskin/glb_output.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/version.hpp"
+#include "glb_output_check.hpp"
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -591,4 +592,7 @@ TEST(GlbOutput, WriterDoesNotReadTheFileAgain) {
 }
 
 }  // namespace
+
+void check_glb_frame(const std::string& path, const std::string& sample_name) { check_model(path, sample_name); }
+
 }  // namespace dqskin
