@@ -89,16 +89,7 @@ Correspondence closest_points(const DiffSide& from, const DiffSide& onto, unsign
     for (size_t i = block * kBlock; i < end; ++i) c.points[i] = index.closest(from.rest[c.vertices[i]], from.rest_normals[c.vertices[i]]);
   });
   for (const SurfacePoint& p : c.points) c.max_rest_distance = std::max(c.max_rest_distance, double(p.distance));
-  // Measured in the order of the surface points' first vertex: the three vertices fetched per sample on
-  // the other side then come in near order, which is most of the memory traffic of a frame.
-  std::vector<uint32_t> order(c.vertices.size());
-  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](uint32_t x, uint32_t y) { return c.points[x].vertex[0] < c.points[y].vertex[0]; });
-  Correspondence sorted;
-  sorted.max_rest_distance = c.max_rest_distance;
-  for (uint32_t i : order) sorted.vertices.push_back(c.vertices[i]), sorted.points.push_back(c.points[i]);
-  return sorted;
+  return c;
 }
 
 // The figures of one frame, with what the clip accumulates from it.
@@ -149,12 +140,12 @@ void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Cor
   const float* N = onto_frame.normals.data();
   const float* A = from_frame.positions.data();
   const float* M = from_frame.normals.data();
-  // Three passes: the other side's interpolated point and normal, fetched per sample; then the distances
-  // and cosines over those arrays, which the compiler vectorizes (square roots and divisions four or eight
-  // at a time: this file is built with -fno-math-errno); then the reductions.
+  // Two passes: the distances and normal cosines without a branch, so that the fetches of many samples
+  // are in flight at once; then the reductions over them.
   const size_t count = c.vertices.size();
-  thread_local std::vector<float> dx, dy, dz, dot, mm, nn, distance, cosine;
-  for (std::vector<float>* v : {&dx, &dy, &dz, &dot, &mm, &nn, &distance, &cosine}) v->resize(count);
+  thread_local std::vector<float> distance, cosine;
+  distance.resize(count);
+  cosine.resize(count);
   for (size_t i = 0; i < count; ++i) {
     const size_t a = 3 * size_t(c.vertices[i]);
     const SurfacePoint& s = c.points[i];
@@ -163,16 +154,13 @@ void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Cor
       const size_t o = 3 * size_t(s.vertex[k]);
       for (int j = 0; j < 3; ++j) p[j] += s.weight[k] * P[o + size_t(j)], n[j] += s.weight[k] * N[o + size_t(j)];
     }
-    dx[i] = A[a] - p[0], dy[i] = A[a + 1] - p[1], dz[i] = A[a + 2] - p[2];
-    dot[i] = M[a] * n[0] + M[a + 1] * n[1] + M[a + 2] * n[2];
-    mm[i] = M[a] * M[a] + M[a + 1] * M[a + 1] + M[a + 2] * M[a + 2];
-    nn[i] = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-  }
-  for (size_t i = 0; i < count; ++i) {
-    distance[i] = std::sqrt(dx[i] * dx[i] + dy[i] * dy[i] + dz[i] * dz[i]);
+    const float dx = A[a] - p[0], dy = A[a + 1] - p[1], dz = A[a + 2] - p[2];
+    distance[i] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const float mm = M[a] * M[a] + M[a + 1] * M[a + 1] + M[a + 2] * M[a + 2];
+    const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const float dot = M[a] * n[0] + M[a + 1] * n[1] + M[a + 2] * n[2];
     // 2 (no angle) where either normal is missing: never the smallest cosine.
-    const bool both = mm[i] > 0 && nn[i] > 1e-12f;
-    cosine[i] = both ? dot[i] / std::sqrt(both ? mm[i] * nn[i] : 1.0f) : 2.0f;
+    cosine[i] = mm > 0 && nn > 1e-12f ? dot / std::sqrt(mm * nn) : 2.0f;
   }
   float worst = -1;
   size_t worst_i = 0;
