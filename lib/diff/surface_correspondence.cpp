@@ -44,8 +44,8 @@ glm::dvec3 closest_point_weights(const glm::dvec3& p, const glm::dvec3& a, const
 namespace {
 
 // Points this close to the closest (as a fraction of the surface's diagonal) are ties, decided by normals:
-// a vertex on a crease or seam is as close to the faces on either side, and positions quantized to 16
-// bits (KHR_mesh_quantization, gltfpack's default) move by up to 1.5e-5 of the extent per axis, enough to
+// a vertex on a crease or seam is as close to the faces on either side, and positions quantized to 14
+// bits (KHR_mesh_quantization, gltfpack's default) move by up to 3e-5 of the extent per axis, enough to
 // put the other side of a thin part, or a coincident inner surface, nearest.
 constexpr double kTieWindow = 1e-4;
 
