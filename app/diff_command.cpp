@@ -15,6 +15,7 @@
 #include "dqskin/image_diff.hpp"
 #include "interrupt.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -36,6 +37,7 @@ struct DiffSettings {
   double fps = 0;  // 0: key times and midpoints
   std::string times;
   int image_size = 512;
+  bool verbose = false;
   LoadSettings load;
 };
 
@@ -70,6 +72,9 @@ int run_geometry_diff(const DiffSettings& s) {
   o.cancel = catch_interrupts("diff");
   const GeometryDiffReport report = is_gltf_name(s.a) ? diff_geometry(s.a, s.b, o) : diff_bakes(s.a, s.b, o);
   std::cout << (s.json ? geometry_json(report) : geometry_text(report)) << std::flush;
+  if (s.verbose)
+    std::fprintf(stderr, "dqskin: diff: correspondence %.3g s, whole diff %.3g s\n", report.correspondence_seconds,
+                 report.wall_seconds);
   write_junit(s.junit, geometry_junit(report));
   return exit_status(report.status());
 }
@@ -167,6 +172,8 @@ Command add_diff_command(CLI::App& app) {
   diff_cmd->add_option("--image-size", diff.image_size, "glTF: pixels of the heat maps --out writes")
       ->type_name("PX")
       ->capture_default_str();
+  diff_cmd->add_flag("-v,--verbose", diff.verbose,
+                     "glTF and bakes: also print, on stderr, how long the correspondence and the whole diff took");
   add_load_settings(*diff_cmd, diff.load);
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--junit", diff.junit, "Also write a JUnit XML report, one testcase per pair, to FILE")

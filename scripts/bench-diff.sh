@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The geometric diff benchmark: `dqskin diff MODEL.glb OPTIMIZED.glb` of a whole clip beside
 # `dqskin bake MODEL.glb --format ply` of the same clip, run in turn, the median of RUNS runs each, with
-# their ratio; and the diff's own split: the correspondence's build time (printed in its report) and the
+# their ratio; and the diff's own split: the correspondence's build time (printed by --verbose) and the
 # number of times compared (every key time of both files and the midpoints: the diff deforms both files
 # at each, the bake one file at 30 fps).
 #
@@ -55,10 +55,10 @@ for model in "${models[@]}"; do
   packed="$TMP/$model.gltfpack.glb"
   "$GLTFPACK" -i "$input" -o "$packed" >/dev/null
   report=$("$DQSKIN" diff "$input" "$packed" --json "${EXTRA[@]}" || true)
-  text=$("$DQSKIN" diff "$input" "$packed" "${EXTRA[@]}" || true)
+  timing=$("$DQSKIN" diff "$input" "$packed" --verbose "${EXTRA[@]}" 2>&1 >/dev/null || true)
   vertices=$(echo "$report" | python3 -c 'import json, sys; print(json.load(sys.stdin)["vertices"]["a"])')
   times=$(echo "$report" | python3 -c 'import json, sys; print(sum(len(c["frames"]) for c in json.load(sys.stdin)["clips"]))')
-  corr=$(echo "$text" | sed -n 's/.*built in \([0-9.e-]*\) s.*/\1/p')
+  corr=$(echo "$timing" | sed -n 's/.*correspondence \([0-9.e-]*\) s.*/\1/p')
   diff_s=$(median_seconds "$DQSKIN" diff "$input" "$packed" "${EXTRA[@]}")
   rm -rf "$TMP/bake"
   bake_s=$(median_seconds bash -c "rm -rf '$TMP/bake' && '$DQSKIN' bake '$input' --format ply -o '$TMP/bake'")

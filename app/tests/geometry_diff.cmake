@@ -22,16 +22,20 @@ set(geometry_diff_tests "")
 #                    [ARGS diff options…] [STDOUT regex] [STDERR regex] [ONE_LINE] [FAIL_LINE] [EXACT_JSON] [CONTROL])
 # The flags are geometry_diff_case.cmake's.
 function(geometry_diff_test name expected)
-  cmake_parse_arguments(T "ONE_LINE;FAIL_LINE;EXACT_JSON;CONTROL" "A;SOURCE;TOOL;STDOUT;STDERR" "MAKE;TOOL_ARGS;ARGS" ${ARGN})
+  cmake_parse_arguments(T "ONE_LINE;FAIL_LINE;EXACT_JSON;CONTROL" "A;SOURCE;TOOL;STDOUT;STDERR;HEAT_MAP_SIZE"
+                        "MAKE;TOOL_ARGS;ARGS;OUT_FILES" ${ARGN})
   set(script_args -DDQSKIN=$<TARGET_FILE:dqskin_cli> -DPYTHON=${Python3_EXECUTABLE}
       -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/make_diff_cases.py -DWORK=${geometry_diff_scratch}/${name}
       -DA=${T_A} -DEXPECTED=${expected} -DTIMEOUT=600)
-  foreach(list MAKE TOOL_ARGS ARGS)
+  foreach(list MAKE TOOL_ARGS ARGS OUT_FILES)
     if(DEFINED T_${list})
       string(REPLACE ";" "\\;" value "${T_${list}}")  # one -D argument, not one per word
       list(APPEND script_args "-D${list}=${value}")
     endif()
   endforeach()
+  if(DEFINED T_HEAT_MAP_SIZE)
+    list(APPEND script_args -DHEAT_MAP_SIZE=${T_HEAT_MAP_SIZE})
+  endif()
   if(DEFINED T_SOURCE)
     list(APPEND script_args -DSOURCE=${T_SOURCE})
   endif()
@@ -69,6 +73,10 @@ geometry_diff_test(defect_bending_arm_lbs 2 A ${arm} MAKE rotate-key --joint elb
 geometry_diff_test(defect_cesium_man 2 A ${cesium} MAKE rotate-key --joint Skeleton_neck_joint_2
   ARGS --relative --fail 1e-4 FAIL_LINE)
 geometry_diff_test(copy_bending_arm 0 A ${arm} MAKE copy ARGS --json EXACT_JSON)
+# --out: the failing clip's heat map (with its legend) and the contact sheet of worst frames, as PNGs.
+geometry_diff_test(defect_bending_arm_out 2 A ${arm} MAKE rotate-key --joint elbow
+  ARGS --relative --fail 1e-4 --out ${geometry_diff_scratch}/defect_bending_arm_out/out --image-size 256
+  OUT_FILES bend.error.png worst_frames.png HEAT_MAP_SIZE 256 FAIL_LINE)
 geometry_diff_test(copy_cesium_man 0 A ${cesium} MAKE copy ARGS --json EXACT_JSON)
 
 # -- reorder: the same surface in another order -------------------------------------------------------------

@@ -72,14 +72,21 @@ Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int si
   Renderer renderer(context, side.asset, side.instances, options);
   Bounds box;
   box.add(view);
-  Image image = renderer.render(view, frame_camera(box, CameraOptions{}, 1.0), scalars);
+  const Image frame = renderer.render(view, frame_camera(box, CameraOptions{}, 1.0), scalars);
 
-  // The legend, right side: a bar from 0 (bottom) to top, labels at 0, half and top, the unit's scale
-  // chosen from the top so that all three read in one unit.
+  // The legend in a panel of its own on the right, so that it never hides the surface: a bar from 0
+  // (bottom) to top, labels at 0, half and top, in the unit the top suits.
   const int scale = std::max(1, size / 256);
-  const int bar_w = 8 * scale, bar_top = 24 * scale, bar_bottom = size - 16 * scale;
+  const int bar_w = 8 * scale, margin = 6 * scale;
   const int text_w = font::text_width(legend_length(map.top, map.top), scale);
-  const int bar_x = size - bar_w - text_w - 8 * scale;
+  const int panel = margin + bar_w + 3 * scale + text_w + 2 * margin;
+  Image image{size + panel, size, std::vector<float>(size_t(size + panel) * size_t(size) * 4)};
+  for (int y = 0; y < size; ++y) {
+    std::copy_n(frame.rgba.data() + size_t(y) * size_t(size) * 4, size_t(size) * 4,
+                image.rgba.data() + size_t(y) * size_t(image.width) * 4);
+    fill(image, size, y, panel, 1, glm::vec3(options.background));
+  }
+  const int bar_top = 24 * scale, bar_bottom = size - 16 * scale, bar_x = size + margin;
   if (bar_bottom > bar_top) {
     for (int y = bar_top; y < bar_bottom; ++y)
       fill(image, bar_x, y, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));

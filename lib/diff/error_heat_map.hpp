@@ -27,9 +27,10 @@ glm::vec3 heat_color(float t);
 // A length as the legend prints it, in the SI prefix that suits `scale`: "3.1 mm", "250 um", "1.2 m".
 std::string legend_length(double value, double scale);
 
-// Renders the heat map (square, `size` pixels, the automatic camera framed on the frame) and draws the
-// legend: a vertical color bar on the right from 0 to `top`, labelled at 0, half and top in scene units
-// (glTF's meters), and the caption.
+// Renders the heat map (`size` pixels square, the automatic camera framed on the frame) and draws the
+// legend in a panel to its right: a vertical color bar from 0 to `top`, labelled at 0, half and top in
+// scene units (glTF's meters); and the caption at the top left. The image is `size` high and wider by
+// the panel.
 Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int size);
 
 // A file name for a clip's heat map: "<clip>.error.png" with characters other than letters, digits, '-',

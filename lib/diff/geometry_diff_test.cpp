@@ -158,6 +158,18 @@ TEST(GeometryDiff, ARigidMoveIsMeasuredAtEveryFrame) {
   EXPECT_NE(text.find("WARN  clip bend, t = "), std::string::npos) << text;
 }
 
+// The reports hold nothing of the run: the same files give the same bytes, on any number of threads.
+TEST(GeometryDiff, ReportsAreTheSameBytesRunAfterRunAndThreadsApart) {
+  const testing_support::ScratchDir dir("geometry_diff");
+  const std::string moved = moved_copy(dir, 0.01);
+  GeometryDiffOptions one = cpu_options(), two = cpu_options();
+  one.threads = 1;
+  const GeometryDiffReport first = diff_geometry(kArm, moved, one), second = diff_geometry(kArm, moved, two);
+  EXPECT_EQ(geometry_json(first), geometry_json(second));
+  EXPECT_EQ(geometry_text(first), geometry_text(second));
+  EXPECT_EQ(geometry_junit(first), geometry_junit(second));
+}
+
 TEST(GeometryDiff, SurfacesThatDoNotOverlapAreAnInputError) {
   const testing_support::ScratchDir dir("geometry_diff");
   try {

@@ -59,8 +59,6 @@ std::string threshold_unit(const GeometryDiffReport& r) { return r.relative ? " 
 }  // namespace
 
 std::string geometry_text(const GeometryDiffReport& r) {
-  char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3g s", r.correspondence_seconds);
   if (r.bake) {
     std::string t = "A " + r.a + ", B " + r.b + ": bakes, " + std::to_string(r.clips.size()) + " files paired by path\n";
     size_t counts[3] = {0, 0, 0};
@@ -76,7 +74,7 @@ std::string geometry_text(const GeometryDiffReport& r) {
   std::string t = "A " + r.a + " (" + std::to_string(r.vertices_a) + " vertices), B " + r.b + " (" +
                   std::to_string(r.vertices_b) + " vertices); " + to_string(r.mode) + " on " + r.deformer + "\n";
   t += r.identity ? "correspondence: the same vertices in the same order\n"
-                  : "correspondence: closest surface points, built in " + std::string(seconds) + "; at rest A to B max " +
+                  : "correspondence: closest surface points; at rest A to B max " +
                         length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
   for (const ClipGeometryDiff& c : r.clips) {
     t += clip_line(r, c);

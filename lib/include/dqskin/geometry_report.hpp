@@ -1,7 +1,7 @@
 // The reports of a geometric `dqskin diff` (text, JSON, JUnit XML), as dqskin/diff_report.hpp's are for
 // images: formatting only. Lengths are in scene units (glTF's meters): the text prints them with an SI
-// prefix ("3.1 mm"), JSON and JUnit as plain numbers in scene units. JSON and JUnit hold no times of the
-// run, so the same inputs give the same bytes.
+// prefix ("3.1 mm"), JSON and JUnit as plain numbers in scene units. None holds a time of the run, so the
+// same inputs give the same bytes (the command prints timings with --verbose, on stderr).
 #pragma once
 
 #include "dqskin/geometry_diff.hpp"
