@@ -158,6 +158,7 @@ std::string geometry_json(const GeometryDiffReport& r) {
     for (const FrameDiff& f : c.frames)
       frames.push_back({{"time", f.time},
                         {"max_error", finite_or_null(f.max_error)},
+                        {"max_error_relative", finite_or_null(relative(f.max_error, c.diagonal))},
                         {"p99_error", finite_or_null(f.p99_error)},
                         {"mean_error", finite_or_null(f.mean_error)},
                         {"max_normal_degrees", f.max_normal_degrees},
