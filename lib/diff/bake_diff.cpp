@@ -11,11 +11,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <map>
 
 namespace dqskin {
 namespace {
+
+constexpr float kInfF = std::numeric_limits<float>::infinity();
+
 
 namespace fs = std::filesystem;
 
@@ -33,7 +37,7 @@ std::map<std::string, std::string> baked_files(const std::string& root) {
 // The figures of one pair of files of the same length.
 void measure(const diff_detail::BakedPoints& a, const diff_detail::BakedPoints& b, const GeometryDiffOptions& options,
              bool texels, ClipGeometryDiff& c) {
-  glm::vec3 low(INFINITY), high(-INFINITY);
+  glm::vec3 low(kInfF), high(-kInfF);
   for (const glm::vec3& p : a.positions) low = glm::min(low, p), high = glm::max(high, p);
   c.diagonal = a.positions.empty() ? 0 : double(glm::length(high - low));
   const double k = options.relative ? c.diagonal : 1.0;
@@ -55,7 +59,7 @@ void measure(const diff_detail::BakedPoints& a, const diff_detail::BakedPoints& 
       f.max_normal_degrees = std::max(f.max_normal_degrees, std::atan2(glm::length(glm::cross(m, n)), glm::dot(m, n)) * 180.0 / M_PI);
     }
   }
-  if (nan) c.max_error = NAN;
+  if (nan) c.max_error = std::numeric_limits<double>::quiet_NaN();
   c.samples = errors.size();
   c.mean_error = c.samples ? sum / double(c.samples) : 0;
   if (!errors.empty()) {

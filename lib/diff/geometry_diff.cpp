@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -33,6 +34,10 @@ using diff_detail::SurfacePoint;
 
 namespace {
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr float kInfF = std::numeric_limits<float>::infinity();
+
+
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -45,12 +50,12 @@ struct Correspondence {
 };
 
 glm::dvec3 lower(const std::vector<glm::dvec3>& p) {
-  glm::dvec3 m(INFINITY);
+  glm::dvec3 m(kInf);
   for (const glm::dvec3& v : p) m = glm::min(m, v);
   return m;
 }
 glm::dvec3 upper(const std::vector<glm::dvec3>& p) {
-  glm::dvec3 m(-INFINITY);
+  glm::dvec3 m(-kInf);
   for (const glm::dvec3& v : p) m = glm::max(m, v);
   return m;
 }
@@ -101,7 +106,7 @@ struct FrameResult {
   double sum = 0;
   uint64_t samples = 0, over_warn = 0, over_fail = 0;
   std::vector<float> joint_max;  // per joint name of the clip's table
-  glm::vec3 low{INFINITY}, high{-INFINITY};  // A's bounding box
+  glm::vec3 low{kInfF}, high{-kInfF};  // A's bounding box
 };
 
 glm::vec3 at(const std::vector<float>& a, size_t v) { return {a[3 * v], a[3 * v + 1], a[3 * v + 2]}; }
@@ -184,7 +189,7 @@ void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Cor
   }
   r.sum += sum, r.over_warn += over_warn, r.over_fail += over_fail;
   // A NaN is the worst error there is: it must fail whatever the thresholds.
-  const double max = nan ? double(NAN) : double(std::max(worst, 0.0f));
+  const double max = nan ? std::numeric_limits<double>::quiet_NaN() : double(std::max(worst, 0.0f));
   direction_max = std::max(direction_max, max);
   if (nan) direction_max = max;
   if (worst >= 0 && !std::isnan(r.figures.max_error) && (nan || max > r.figures.max_error)) {
@@ -284,7 +289,7 @@ public:
     const Thresholds abs = absolute(options_.thresholds, options_.relative, c.diagonal);
 
     std::vector<double> joint_max(joint_names_.size(), -1.0), joint_time(joint_names_.size(), 0.0);
-    glm::vec3 low(INFINITY), high(-INFINITY);
+    glm::vec3 low(kInfF), high(-kInfF);
     double sum = 0;
     constexpr size_t kChunk = 32;
     std::vector<SideFrame> frames_a(kChunk), frames_b(kChunk);
@@ -349,7 +354,7 @@ private:
   }
 
   double diagonal_of(const Clip* clip, const std::vector<double>& times) {
-    glm::vec3 low(INFINITY), high(-INFINITY);
+    glm::vec3 low(kInfF), high(-kInfF);
     deform_a_->run(clip, times, [&](const DeformedBatch& batch) {
       for (const DeformedBatch::Primitive& p : batch.primitives)
         for (size_t i = 0; i + 2 < p.positions.size(); i += 3) {

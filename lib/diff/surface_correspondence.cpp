@@ -43,6 +43,9 @@ glm::dvec3 closest_point_weights(const glm::dvec3& p, const glm::dvec3& a, const
 
 namespace {
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+
 // Points this close to the closest (as a fraction of the surface's diagonal) are ties, decided by normals:
 // a vertex on a crease or seam is as close to the faces on either side, and positions quantized to 14
 // bits (KHR_mesh_quantization, gltfpack's default) move by up to 3e-5 of the extent per axis, enough to
@@ -91,7 +94,7 @@ SurfaceIndex::SurfaceIndex(std::span<const glm::dvec3> positions, std::span<cons
   Impl& m = *impl_;
   m.positions.assign(positions.begin(), positions.end());
   if (normals.size() == positions.size()) m.normals.assign(normals.begin(), normals.end());
-  glm::dvec3 low(INFINITY), high(-INFINITY);
+  glm::dvec3 low(kInf), high(-kInf);
   for (const glm::dvec3& p : m.positions) low = glm::min(low, p), high = glm::max(high, p);
   m.tie = m.positions.empty() ? 0 : kTieWindow * glm::length(high - low);
   // Triangles without area have no face of their own: their edges belong to their neighbours, and the
@@ -165,7 +168,7 @@ SurfacePoint SurfaceIndex::closest(const glm::dvec3& query, const glm::dvec3& no
   };
   std::vector<Candidate> near;
   near.reserve(candidates.size());
-  double best_distance = INFINITY;
+  double best_distance = kInf;
   for (uint32_t t : candidates) {
     const auto [weights, sq] = m.closest_on(t, query);
     near.push_back({t, weights, std::sqrt(sq)});
@@ -175,7 +178,7 @@ SurfacePoint SurfaceIndex::closest(const glm::dvec3& query, const glm::dvec3& no
   // within 1e-3 (flat regions, or no normals), the nearest, then the triangle listed first.
   const bool by_normal = !m.normals.empty() && glm::length(normal) > 0;
   std::vector<double> agreement(near.size(), 0.0);
-  double best_agreement = -INFINITY;
+  double best_agreement = -kInf;
   for (size_t i = 0; i < near.size(); ++i) {
     const Candidate& c = near[i];
     if (c.distance > best_distance + m.tie) continue;
