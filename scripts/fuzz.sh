@@ -27,7 +27,8 @@ cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j "${FUZZ_JOBS:-1}"
 fuzzer=$build/fuzz/dqskin_fuzz_load
 
-# Seed corpus: the valid files of the malformed catalogue and the project's test data, each at most 1 MiB.
+# Seed corpus: the valid files of the malformed catalogue (the compressed ones too, so that the meshopt and
+# Draco decoders are reached) and the project's test data, each at most 1 MiB.
 seeds=$build/seeds
 corpus=$build/corpus
 artifacts=${FUZZ_ARTIFACTS:-$build/artifacts}
@@ -36,7 +37,8 @@ rm -rf "$seeds"
 python3 scripts/make_malformed.py "$build/malformed" >/dev/null
 mkdir -p "$seeds"
 cp "$build/malformed/valid.gltf" "$build/malformed/valid.glb" "$build/malformed/valid_json_nested_100_deep.gltf" \
-  "$build/malformed/value_sampler_wrap_t.gltf" "$build/malformed/value_variant_material.gltf" "$seeds/"
+  "$build/malformed/value_sampler_wrap_t.gltf" "$build/malformed/value_variant_material.gltf" \
+  "$build/malformed/valid_meshopt.glb" "$build/malformed/valid_draco.glb" "$seeds/"
 shopt -s nullglob
 for f in testdata/*.gltf testdata/*.glb; do
   [ "$(stat -c %s "$f")" -le 1048576 ] && cp "$f" "$seeds/"
