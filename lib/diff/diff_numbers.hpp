@@ -27,4 +27,23 @@ inline std::string percent(uint64_t count, uint64_t pixels) {
   return text;
 }
 
+// A length in scene units (glTF's meters) with the SI prefix that suits `scale`, as the geometric diff's
+// reports and heat-map legends print it: "3.1 mm", "250 um", "1.2 m".
+inline std::string length_with_unit(double value, double scale) {
+  struct Unit {
+    double size;
+    const char* name;
+  };
+  static const Unit units[] = {{1, "m"}, {1e-2, "cm"}, {1e-3, "mm"}, {1e-6, "um"}};
+  const Unit* unit = &units[3];
+  for (const Unit& u : units)
+    if (scale >= u.size) {
+      unit = &u;
+      break;
+    }
+  char text[48];
+  std::snprintf(text, sizeof text, "%.3g %s", value / unit->size, unit->name);
+  return text;
+}
+
 }  // namespace dqskin::diff_detail

@@ -69,13 +69,15 @@ DiffSide make_diff_side(Asset asset, BlendMode mode) {
 
 void gather_frame(const DiffSide& side, const DeformedBatch& batch, size_t frame, SideFrame& out) {
   out.positions.resize(3 * side.vertices);
-  out.normals.assign(3 * side.vertices, 0.0f);
+  out.normals.resize(3 * side.vertices);
   for (size_t p = 0; p < batch.primitives.size(); ++p) {
     const DeformedBatch::Primitive& prim = batch.primitives[p];
     const size_t n = 3 * prim.vertices, at = 3 * side.first_vertex[p];
     std::copy_n(prim.positions.begin() + std::ptrdiff_t(frame * n), n, out.positions.begin() + std::ptrdiff_t(at));
     if (side.file_normals[p])
       std::copy_n(prim.normals.begin() + std::ptrdiff_t(frame * n), n, out.normals.begin() + std::ptrdiff_t(at));
+    else
+      std::fill_n(out.normals.begin() + std::ptrdiff_t(at), n, 0.0f);
   }
 }
 

@@ -1,4 +1,5 @@
 #include "error_heat_map.hpp"
+#include "diff_numbers.hpp"
 #include "../render/bitmap_font.hpp"
 
 #include "dqskin/camera.hpp"
@@ -35,23 +36,6 @@ glm::vec3 heat_color(float t) {
   return glm::mix(stops[i], stops[i + 1], x - float(i));
 }
 
-std::string legend_length(double value, double scale) {
-  struct Unit {
-    double size;
-    const char* name;
-  };
-  static const Unit units[] = {{1, "m"}, {1e-2, "cm"}, {1e-3, "mm"}, {1e-6, "um"}};
-  const Unit* unit = &units[3];
-  for (const Unit& u : units)
-    if (scale >= u.size) {
-      unit = &u;
-      break;
-    }
-  char text[48];
-  std::snprintf(text, sizeof text, "%.3g %s", value / unit->size, unit->name);
-  return text;
-}
-
 Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int size) {
   const DiffSide& side = map.side;
   FrameView view;
@@ -78,7 +62,7 @@ Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int si
   // (bottom) to top, labels at 0, half and top, in the unit the top suits.
   const int scale = std::max(1, size / 256);
   const int bar_w = 8 * scale, margin = 6 * scale;
-  const int text_w = font::text_width(legend_length(map.top, map.top), scale);
+  const int text_w = font::text_width(length_with_unit(map.top, map.top), scale);
   const int panel = margin + bar_w + 3 * scale + text_w + 2 * margin;
   Image image{size + panel, size, std::vector<float>(size_t(size + panel) * size_t(size) * 4)};
   for (int y = 0; y < size; ++y) {
@@ -91,9 +75,9 @@ Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int si
     for (int y = bar_top; y < bar_bottom; ++y)
       fill(image, bar_x, y, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));
     const int x = bar_x + bar_w + 3 * scale, half = font::kGlyphHeight * scale / 2;
-    label(image, legend_length(map.top, map.top), x, bar_top - half, scale);
-    label(image, legend_length(map.top / 2, map.top), x, (bar_top + bar_bottom) / 2 - half, scale);
-    label(image, legend_length(0, map.top), x, bar_bottom - 1 - half, scale);
+    label(image, length_with_unit(map.top, map.top), x, bar_top - half, scale);
+    label(image, length_with_unit(map.top / 2, map.top), x, (bar_top + bar_bottom) / 2 - half, scale);
+    label(image, length_with_unit(0, map.top), x, bar_bottom - 1 - half, scale);
   }
   label(image, map.caption, 3 * scale, 3 * scale, scale);
   return image;

@@ -24,9 +24,6 @@ struct ErrorHeatMap {
 // The render's heat colors (glsl/render.frag heat(), unlit): dark blue at 0, cyan, yellow, red at 1.
 glm::vec3 heat_color(float t);
 
-// A length as the legend prints it, in the SI prefix that suits `scale`: "3.1 mm", "250 um", "1.2 m".
-std::string legend_length(double value, double scale);
-
 // Renders the heat map (`size` pixels square, the automatic camera framed on the frame) and draws the
 // legend in a panel to its right: a vertical color bar from 0 to `top`, labelled at 0, half and top in
 // scene units (glTF's meters); and the caption at the top left. The image is `size` high and wider by

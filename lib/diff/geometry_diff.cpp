@@ -388,10 +388,11 @@ private:
     r.figures.p99_error = double(largest.least());
     const DiffSide& side = r.worst_side == 'A' ? a_ : b_;
     r.figures.worst_joint = side.joint_names[side.joint[r.worst_vertex]];
-    for (size_t v = 0; v < a_.vertices; ++v) {
-      const glm::vec3 p = at(fa.positions, v);
-      r.low = glm::min(r.low, p), r.high = glm::max(r.high, p);
-    }
+    if (!options_.relative)  // with --relative, diagonal_of measured the box before the samples
+      for (size_t v = 0; v < a_.vertices; ++v) {
+        const glm::vec3 p = at(fa.positions, v);
+        r.low = glm::min(r.low, p), r.high = glm::max(r.high, p);
+      }
     return r;
   }
 
@@ -408,6 +409,8 @@ private:
       for (int k = 0; k < 3; ++k) p += s.weight[k] * at(fb[0].positions, s.vertex[k]);
       error[a_to_b_.vertices[i]] = glm::length(at(fa[0].positions, a_to_b_.vertices[i]) - p);
     }
+    // Made with the first image, so that a diff that stops before one (an input error) leaves nothing.
+    std::filesystem::create_directories(options_.out_dir);
     const std::string file = diff_detail::heat_map_file_name(c.name);
     diff_detail::ErrorHeatMap map{a_, fa[0], error, c.max_error,
                                   "t = " + diff_detail::number(c.worst.time) + " s"};
@@ -484,7 +487,6 @@ GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, con
       report.findings.insert(report.findings.end(), notes.begin(), notes.end());
     }
 
-  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
   GeometryDiffer differ(side_a, side_b, options, report);
   differ.correspond();
   for (const diff_detail::ClipPair& pair : match.pairs) report.clips.push_back(differ.compare(pair));

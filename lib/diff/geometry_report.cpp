@@ -1,7 +1,6 @@
 // The reports of a GeometryDiffReport (include/dqskin/geometry_report.hpp). Formatting only.
 #include "dqskin/geometry_report.hpp"
 #include "diff_numbers.hpp"
-#include "error_heat_map.hpp"
 #include "xml_escape.hpp"
 
 #include <nlohmann/json.hpp>
@@ -24,7 +23,7 @@ Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : 
 // A length with the SI prefix that suits it: "3.1 mm"; "0 m" for zero.
 std::string length(double value) {
   if (!std::isfinite(value)) return number(value);
-  return value == 0 ? "0 m" : diff_detail::legend_length(value, value);
+  return value == 0 ? "0 m" : diff_detail::length_with_unit(value, value);
 }
 
 double relative(double value, double diagonal) { return diagonal > 0 ? value / diagonal : 0; }
