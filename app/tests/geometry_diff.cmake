@@ -122,6 +122,13 @@ foreach(model CesiumMan Fox BrainStem)
     ${pack} FAIL_LINE)
 endforeach()
 
+# --out with several failing clips whose heat maps have legends of different lengths (gltf-transform's Fox
+# at 1e-2: Survey 2.2 m, Walk 7.16 m, Run 11.7 m): one heat map each, and the contact sheet of all three.
+geometry_diff_test(gltf_transform_out_Fox 2 A ${geometry_diff_shared}/Fox/Fox.glb TOOL gltf-transform
+  TOOL_ARGS optimize <A> <B>
+  ARGS --relative --fail 1e-2 --out ${geometry_diff_scratch}/gltf_transform_out_Fox/out
+  OUT_FILES Survey.error.png Walk.error.png Run.error.png worst_frames.png HEAT_MAP_SIZE 512 FAIL_LINE)
+
 # -- unrelated models: an input error ---------------------------------------------------------------------
 # bending_arm (clip "bend") against twisted_cylinder (clip "twist") or CesiumMan (clip "animation0"), moved
 # 1000 units away so that not even their bounding boxes meet. Each file first compares equal to itself

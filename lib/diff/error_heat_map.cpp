@@ -62,7 +62,9 @@ Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int si
   // (bottom) to top, labels at 0, half and top, in the unit the top suits.
   const int scale = std::max(1, size / 256);
   const int bar_w = 8 * scale, margin = 6 * scale;
-  const int text_w = font::text_width(length_with_unit(map.top, map.top), scale);
+  // The panel is as wide as the longest label length_with_unit can give ("1.23e-05 um"), not this map's:
+  // every heat map of one size has one width, which the contact sheet of several clips needs.
+  const int text_w = font::text_width("1.23e-05 um", scale);
   const int panel = margin + bar_w + 3 * scale + text_w + 2 * margin;
   Image image{size + panel, size, std::vector<float>(size_t(size + panel) * size_t(size) * 4)};
   for (int y = 0; y < size; ++y) {
