@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -40,7 +41,27 @@ struct BakeSettings {
   unsigned jobs = 0;
   size_t gpu_memory_mb = 512;
   bool dry_run = false, quiet = false, json_progress = false, force = false, verbose = false;
+  TextureOptions textures;
+  std::string max_error;  // "0.001" (scene units) or "0.1%" (of the clip's bounding-box diagonal)
+  bool no_check = false;
 };
+
+// --max-error: a length in scene units, or a percentage of the clip's bounding-box diagonal.
+void parse_max_error(const std::string& text, TextureOptions& t) {
+  if (text.empty()) return;
+  const bool relative = text.back() == '%';
+  const std::string number = relative ? text.substr(0, text.size() - 1) : text;
+  size_t used = 0;
+  double value = -1;
+  try {
+    value = std::stod(number, &used);
+  } catch (const std::exception&) {
+  }
+  if (used != number.size() || !(value > 0) || !std::isfinite(value))
+    throw InputError("--max-error '" + text + "' is not a positive length or percentage (0.001, 0.1%)");
+  t.max_error = relative ? value / 100 : value;
+  t.max_error_relative = relative;
+}
 
 BakeOptions to_options(const BakeSettings& s) {
   BakeOptions o;
@@ -57,6 +78,9 @@ BakeOptions to_options(const BakeSettings& s) {
   o.jobs = s.jobs;
   o.dry_run = s.dry_run;
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
+  o.textures = s.textures;
+  o.textures.check = !s.no_check;
+  parse_max_error(s.max_error, o.textures);
   return o;
 }
 
@@ -83,7 +107,8 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                                 {"renderer", r.gpu.renderer},
                                 {"wall_s", r.wall_seconds},
                                 {"stage_s", {{"load", t.load}, {"sample", t.sample}, {"deform", t.deform},
-                                             {"readback", t.readback}, {"encode", t.encode}, {"write", t.write}}},
+                                             {"readback", t.readback}, {"encode", t.encode}, {"write", t.write},
+                                             {"check", t.check}}},
                                 {"failures", failures}})
               << std::endl;
   }
@@ -97,8 +122,9 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                r.deformer.empty() ? "nothing" : r.deformer.c_str(),
                r.wall_seconds > 0 ? double(r.frames_total) / r.wall_seconds : 0.0, written, unchanged, double(bytes) / 1e6);
   std::fprintf(stderr,
-               "stages (thread-seconds): load %.2f, sample %.2f, deform %.2f, readback %.2f, encode %.2f, write %.2f\n",
-               t.load, t.sample, t.deform, t.readback, t.encode, t.write);
+               "stages (thread-seconds): load %.2f, sample %.2f, deform %.2f, readback %.2f, encode %.2f, write %.2f, "
+               "check %.2f\n",
+               t.load, t.sample, t.deform, t.readback, t.encode, t.write, t.check);
   if (s.verbose)
     std::fprintf(stderr, "deformer: %s; backend: %s, %s\n", r.deformer.c_str(), r.gpu.backend.c_str(), r.gpu.renderer.c_str());
   std::fprintf(stderr, "manifest: %s\n", printable(r.manifest).c_str());
@@ -155,6 +181,36 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_option("--format", bake.formats, "Outputs, any of glb,ply,obj,vat,bones (comma-separated)")
       ->type_name("LIST")
       ->capture_default_str();
+  bake_cmd->add_option("--vat-profile", bake.textures.vat_profile,
+                       "Vertex-animation texture layout: dqskin (absolute positions, DESIGN.md), openvat (OpenVAT's "
+                       "Blender add-on and engine kits), houdini (SideFX Labs VAT 3, soft body)")
+      ->type_name("NAME")
+      ->capture_default_str();
+  bake_cmd->add_option("--bones-profile", bake.textures.bones_profile,
+                       "Bone texture layout: dq (DESIGN.md), dq-cocos (Cocos Creator), mat3x4 (rows of the joint "
+                       "matrix, PlayCanvas), mat4 (columns, Babylon.js and three.js)")
+      ->type_name("NAME")
+      ->capture_default_str();
+  bake_cmd->add_option("--encoding", bake.textures.encoding,
+                       "Texel type: float or half (EXR), png16 or png8 (remapped to recorded bounds). Default: the "
+                       "profile's")
+      ->type_name("TYPE");
+  bake_cmd->add_option("--normals", bake.textures.normals,
+                       "VAT normals: none, separate (an image of their own), packed (as the profile packs them), "
+                       "oct8 or oct16 (dqskin: octahedral in a PNG). Default: the profile's")
+      ->type_name("MODE");
+  bake_cmd->add_option("--max-size", bake.textures.max_size,
+                       "Largest side of a texture, in texels (4096 fits every WebGL2 device, 8192 many, 16384 desktops)")
+      ->type_name("TEXELS")
+      ->check(CLI::Range(size_t(1), size_t(1) << 20));
+  bake_cmd->add_flag("--pot", bake.textures.pot, "Pad textures to power-of-two sizes");
+  bake_cmd->add_option("--max-error", bake.max_error,
+                       "Fail a clip whose textures decode further than this from the deformed mesh, at a frame or "
+                       "between two: a length in scene units, or a percentage of the clip's bounding-box diagonal")
+      ->type_name("LENGTH|P%");
+  bake_cmd->add_flag("--no-check", bake.no_check,
+                     "Skip the decode-back check (every texture read back from its file and decoded as its shader "
+                     "does, against the deformed meshes)");
   bake_cmd->add_option("--backend", bake.backend,
                        "Deformer: auto (a hardware GPU through EGL when there is one, else fast-cpu), egl, osmesa, "
                        "fast-cpu (vectorized float, every core), or cpu (the double-precision reference)")

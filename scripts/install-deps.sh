@@ -8,6 +8,7 @@ packages=(
   libglm-dev                                   # vector math and glm::dualquat
   libtinygltf-dev nlohmann-json3-dev libstb-dev  # glTF loading (tinygltf's header needs json + stb)
   libopenimageio-dev                           # EXR/PNG/GIF images
+  libimath-dev                                 # half floats, as OpenEXR rounds them (texture encodings)
   libssl-dev                                   # SHA-256 (libcrypto) for bake manifests
   libmeshoptimizer-dev libdraco-dev            # compressed glTF: EXT_meshopt_compression, KHR_draco_mesh_compression
   libcli11-dev                                 # command line

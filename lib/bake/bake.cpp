@@ -15,6 +15,7 @@
 #include "dqskin/sha256.hpp"
 #include "dqskin/texture_output.hpp"
 #include "manifest.hpp"
+#include "vat_bake.hpp"
 #include "../concurrency/parallel_for.hpp"
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <mutex>
 #include <thread>
+#include <tuple>
 
 namespace dqskin {
 
@@ -82,11 +84,17 @@ struct Ledger {
     }
   }
 
+  void record_check(TextureCheck check) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    report.checks.push_back(std::move(check));
+  }
+
   // An input failed and its files were taken back: they leave the report (and so the manifest) too.
   void forget(const InputPlan& input) {
     const std::lock_guard<std::mutex> lock(mutex);
     const std::string prefix = input.stem + "/";
     std::erase_if(report.outputs, [&](const BakeOutput& o) { return o.path.rfind(prefix, 0) == 0; });
+    std::erase_if(report.checks, [&](const TextureCheck& c) { return c.input == input.path; });
   }
 };
 
@@ -150,20 +158,26 @@ public:
 
     const std::vector<size_t> frames = frames_to_deform(clip, options_.formats);
     if (frames.empty()) return 0;
-    std::unique_ptr<VatWriter> vat;
+    std::unique_ptr<VatClipBake> vat;
     if (clip.clip_mine && has(options_.formats, BakeFormat::kVat))
-      vat = std::make_unique<VatWriter>(ledger_.absolute(clip.folder + "/vat_positions.exr"),
-                                        ledger_.absolute(clip.folder + "/vat_normals.exr"),
-                                        ledger_.absolute(clip.folder + "/vat.json"), vat_sources(asset_, input_.instances),
-                                        clip.times, clip.fps, clip.name);
+      vat = std::make_unique<VatClipBake>(*deformer_, input_, clip, options_);
     std::vector<double> times;
     for (size_t f : frames) times.push_back(clip.times[f]);
     auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, vat.get()); };
     deformer_->run(clip.clip, times, sink);
     if (vat) {
-      const std::vector<Committed> committed = vat->commit({options_.overwrite, &journal_});
-      ledger_.record_files({clip.folder + "/vat_positions.exr", clip.folder + "/vat_normals.exr", clip.folder + "/vat.json"},
-                           committed);
+      const Clock::time_point start = Clock::now();
+      std::vector<std::string> names;
+      std::vector<Committed> committed;
+      for (auto& [name, c] : vat->finish(*deformer_, {options_.overwrite, &journal_})) {
+        names.push_back(name);
+        committed.push_back(c);
+      }
+      ledger_.add_time(&BakeStageTimes::check, since(start));
+      ledger_.record_files(names, committed);
+      if (const auto& c = vat->check())
+        ledger_.record_check({input_.path, clip.name, "vat", c->max_error, c->p99_error, c->max_midpoint_error,
+                              c->p99_midpoint_error, c->max_normal_degrees, c->max_midpoint_normal_degrees, c->samples});
     }
     return frames.size();
   }
@@ -191,7 +205,7 @@ private:
   }
 
   // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them.
-  void encode_batch(const DeformedBatch& batch, const ClipPlan& clip, const std::vector<size_t>& frames, VatWriter* vat) {
+  void encode_batch(const DeformedBatch& batch, const ClipPlan& clip, const std::vector<size_t>& frames, VatClipBake* vat) {
     ledger_.check_cancel();
     const size_t tasks = batch.frame_count + (vat ? 1 : 0);
     concurrency::parallel_for(tasks, jobs_, [&](size_t task) {
@@ -277,6 +291,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     throw InputError("--mode " + std::string(to_string(options.mode)) +
                      " runs on the CPU reference only; use --backend cpu (or auto)");
 
+  if (has(options.formats, BakeFormat::kVat)) (void)vat_format(options.textures);  // names checked before any work
+
   std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
   for (const InputPlan& plan : plans)
     for (const ClipPlan& clip : plan.clips) report.frames_total += frames_to_deform(clip, options.formats).size();
@@ -316,7 +332,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     for (const InputPlan& plan : plans) {
       report.inputs.push_back({plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}});
       for (const ClipPlan& clip : plan.clips)
-        for (std::string& file : planned_files(plan, clip, options.formats)) report.outputs.push_back({std::move(file), 0, {}, false});
+        for (std::string& file : planned_files(plan, clip, options)) report.outputs.push_back({std::move(file), 0, {}, false});
     }
     std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
     report.wall_seconds = since(start);
@@ -340,6 +356,9 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   else if (context.info()) report.gpu = *context.info();
   if (!report.gpu.backend.empty()) report.deformer = describe(path);
   std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
+  std::sort(report.checks.begin(), report.checks.end(), [](const TextureCheck& a, const TextureCheck& b) {
+    return std::tie(a.input, a.clip, a.texture) < std::tie(b.input, b.clip, b.texture);
+  });
   if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
     report.wall_seconds = since(start);
     return report;  // nothing baked, nothing to record

@@ -1,4 +1,5 @@
 #include "bake_plan.hpp"
+#include "vat_bake.hpp"
 
 namespace dqskin::bake_detail {
 
@@ -11,7 +12,8 @@ std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats) {
   return out;
 }
 
-std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, unsigned formats) {
+std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options) {
+  const unsigned formats = options.formats;
   std::vector<std::string> files;
   const struct {
     BakeFormat format;
@@ -25,7 +27,7 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
   if ((formats & unsigned(BakeFormat::kObj)) && !input.asset->materials.empty())
     files.push_back(clip.folder + "/materials.mtl");
   if (formats & unsigned(BakeFormat::kVat))
-    for (const char* name : {"vat_positions.exr", "vat_normals.exr", "vat.json"}) files.push_back(clip.folder + "/" + name);
+    for (auto& [name, size] : planned_vat_files(input, clip, options.textures)) files.push_back(std::move(name));
   if (formats & unsigned(BakeFormat::kBones))
     for (int skin : input.skins)
       for (const char* extension : {".exr", ".json"})

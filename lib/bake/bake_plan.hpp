@@ -10,7 +10,8 @@ namespace dqskin::bake_detail {
 // Frames to deform: all of them when whole-animation textures are due, else the shard's own.
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats);
 
-// The files one clip writes, relative to the output folder, for the formats asked for.
-std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, unsigned formats);
+// The files one clip writes, relative to the output folder, for the formats (and texture profiles) asked
+// for. Throws InputError when a texture profile cannot hold the clip.
+std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
 
 }  // namespace dqskin::bake_detail

@@ -1,4 +1,5 @@
 #include "bake_work.hpp"
+#include "vat_bake.hpp"
 
 #include "dqskin/mesh_output.hpp"
 #include "dqskin/texture_output.hpp"
@@ -65,21 +66,21 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
       if (options.formats & unsigned(BakeFormat::kObj)) obj_frame = encode_obj(mesh, asset, "materials.mtl").size();
     }
   }
-  const uint64_t vat_width = std::min<uint64_t>(vertices, kVatMaxWidth);
-  const uint64_t vat_rows = vat_width ? (vertices + vat_width - 1) / vat_width : 0;
 
   BakeWork work;
   for (const ClipPlan& clip : input.clips) {
     const uint64_t frames = clip.times.size();
     work.vertex_frames = add(work.vertex_frames, mul(vertices, frames_to_deform(clip, options.formats).size()));
-    for (const std::string& file : planned_files(input, clip, options.formats)) {
+    std::vector<std::pair<std::string, uint64_t>> vat;
+    if (options.formats & unsigned(BakeFormat::kVat)) vat = planned_vat_files(input, clip, options.textures);
+    for (const std::string& file : planned_files(input, clip, options)) {
       uint64_t size = 0;
+      const auto in_vat = std::find_if(vat.begin(), vat.end(), [&](const auto& v) { return v.first == file; });
       if (ends_with(file, ".glb")) size = glb_frame;
       else if (ends_with(file, ".ply")) size = ply_frame;
       else if (ends_with(file, ".obj")) size = obj_frame;
       else if (ends_with(file, "materials.mtl")) size = encode_mtl(asset).size();
-      else if (ends_with(file, "vat_positions.exr") || ends_with(file, "vat_normals.exr")) size = exr_bytes(vat_width, mul(frames, vat_rows));
-      else if (ends_with(file, "vat.json")) size = add(4096, mul(frames, 24));
+      else if (in_vat != vat.end()) size = in_vat->second;
       else if (file.find("/bones_skin") != std::string::npos) {
         const size_t skin = std::stoul(file.substr(file.rfind("bones_skin") + 10));
         const uint64_t joints = asset.skins[skin].joints.size();

@@ -30,6 +30,17 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     for (const ClipPlan& clip : plan.clips) {
       json c = {{"name", clip.name}, {"folder", clip.folder}, {"frame_times", clip.times}, {"frame_numbers", clip.numbers}};
       if (clip.fps > 0) c["fps"] = clip.fps;
+      json checks = json::object();
+      for (const TextureCheck& k : report.checks)
+        if (k.input == plan.path && k.clip == clip.name)
+          checks[k.texture] = {{"max_error", k.max_error},
+                               {"p99_error", k.p99_error},
+                               {"max_midpoint_error", k.max_midpoint_error},
+                               {"p99_midpoint_error", k.p99_midpoint_error},
+                               {"max_normal_degrees", k.max_normal_degrees},
+                               {"max_midpoint_normal_degrees", k.max_midpoint_normal_degrees},
+                               {"samples", k.samples}};
+      if (!checks.empty()) c["decode_check"] = std::move(checks);
       clips.push_back(std::move(c));
     }
     in["animations"] = std::move(clips);
@@ -44,7 +55,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
                                   {BakeFormat::kVat, "vat"}, {BakeFormat::kBones, "bones"}})
     if (options.formats & unsigned(bit)) formats.push_back(name);
 
-  const json manifest = {
+  json manifest = {
       {"tool", {{"name", "dqskin"}, {"version", kVersion}}},
       {"backend", {{"name", report.gpu.backend}, {"renderer", report.gpu.renderer}, {"gl_version", report.gpu.version}}},
       {"mode", to_string(options.mode)},
@@ -53,6 +64,21 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
       {"inputs", inputs},
       {"outputs", outputs},
   };
+  // Texture settings only where textures are written: the manifests of mesh bakes stay as they were.
+  if (options.formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones))) {
+    const TextureOptions& t = options.textures;
+    json textures = {{"vat_profile", t.vat_profile}, {"bones_profile", t.bones_profile}};
+    if (!t.encoding.empty()) textures["encoding"] = t.encoding;
+    if (!t.normals.empty()) textures["normals"] = t.normals;
+    if (t.max_size) textures["max_size"] = t.max_size;
+    if (t.pot) textures["pot"] = true;
+    if (t.max_error > 0) {
+      textures["max_error"] = t.max_error;
+      textures["max_error_relative"] = t.max_error_relative;
+    }
+    textures["decode_check"] = t.check;
+    manifest["textures"] = std::move(textures);
+  }
   const std::string name = options.shard.count > 1 ? "manifest.shard-" + std::to_string(options.shard.index) + "-of-" +
                                                          std::to_string(options.shard.count) + ".json"
                                                    : "manifest.json";

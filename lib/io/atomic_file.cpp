@@ -104,6 +104,7 @@ void AtomicFile::write(std::span<const char> bytes) {
 }
 
 bool AtomicFile::conflicts() const {
+  if (file_) std::fflush(file_);  // what write() buffered must be in the temporary to be compared
   return ::access(path_.c_str(), F_OK) == 0 && !same_contents(temporary_, path_);
 }
 

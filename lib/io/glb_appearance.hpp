@@ -42,6 +42,10 @@ struct BinWriter {
   int indices(std::span<const uint32_t> indices);
 };
 
+// A .glb file (glTF 2.0 §4.4 "Binary glTF"): a 12-byte header, the JSON chunk padded with spaces, the BIN
+// chunk (when not empty) padded with zeros, all little-endian. Throws OutputError past 4 GiB.
+std::string glb_container(const json& doc, std::string bin);
+
 // A source primitive's attributes that stay the same in every frame.
 struct FixedPrimitive {
   json attributes = json::object();  // TEXCOORD_n and COLOR_n → accessor index, decoded to float

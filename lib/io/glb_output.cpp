@@ -215,33 +215,6 @@ void collect_extensions(const json& j, std::set<std::string>& names) {
   }
 }
 
-void put_u32(std::string& out, size_t value) {
-  for (int shift = 0; shift < 32; shift += 8) out.push_back(char((value >> shift) & 0xFF));
-}
-
-// §4.4: 12-byte header, a JSON chunk padded with spaces, a BIN chunk padded with zeros, all little-endian.
-std::string glb_container(const json& doc, std::string bin) {
-  std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);
-  text.resize((text.size() + 3) & ~size_t(3), ' ');
-  bin.resize((bin.size() + 3) & ~size_t(3), '\0');
-  const size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size());
-  if (total > 0xFFFFFFFFu) throw OutputError("the frame is larger than the 4 GiB a .glb can hold");
-  std::string out;
-  out.reserve(total);
-  out += "glTF";
-  put_u32(out, 2);
-  put_u32(out, total);
-  put_u32(out, text.size());
-  out += "JSON";
-  out += text;
-  if (!bin.empty()) {
-    put_u32(out, bin.size());
-    out.append("BIN\0", 4);
-    out += bin;
-  }
-  return out;
-}
-
 }  // namespace
 
 GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene) {
@@ -360,7 +333,7 @@ std::string GlbWriter::encode(const FrameView& frame, const Clip* clip, double t
   for (const std::string& e : w.fixed.source_extensions_required)
     if (used.count(e)) required.push_back(e);
   if (!required.empty()) doc["extensionsRequired"] = std::move(required);
-  return glb_container(doc, std::move(bin.bytes));
+  return glb::glb_container(doc, std::move(bin.bytes));
 }
 
 }  // namespace dqskin

@@ -14,5 +14,8 @@ namespace dqskin::io {
 // printed itself (a full disk: "libpng error: Write Error") folded into the line.
 void write_image_file(AtomicFile& file, const char* format, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
                       const void* pixels);
+// The same into a temporary already handed over (`name` is the final name, for messages).
+void write_image_file(const std::string& temporary, const std::string& name, const char* format,
+                      const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* pixels);
 
 }  // namespace dqskin::io

@@ -23,6 +23,20 @@ enum class BakeFormat : unsigned { kGlb = 1, kPly = 2, kObj = 4, kVat = 8, kBone
 // "glb,ply" → the formats' bits. Throws InputError naming an unknown format.
 unsigned parse_bake_formats(const std::string& list);
 
+// How textures are laid out and checked (README "Texture profiles"). Names are checked when the bake
+// starts (InputError for unknown ones or combinations a profile cannot write).
+struct TextureOptions {
+  std::string vat_profile = "dqskin";  // dqskin, openvat, houdini
+  std::string bones_profile = "dq";    // dq, dq-cocos, mat3x4, mat4
+  std::string encoding;                // float, half, png16, png8; empty: the profile's default
+  std::string normals;                 // none, separate, packed, oct8, oct16; empty: the profile's default
+  size_t max_size = 0;                 // largest side of an image in texels; 0: the profile's default
+  bool pot = false;                    // pad images to powers of two
+  double max_error = 0;                // largest decoded error allowed, scene units; 0: no limit
+  bool max_error_relative = false;     // max_error is a fraction of the clip's bounding-box diagonal
+  bool check = true;                   // read every texture back and decode it (the decode-back check)
+};
+
 struct BakeOptions {
   std::string out_dir;
   LoadOptions load;  // resource roots and limits for reading the inputs
@@ -30,6 +44,7 @@ struct BakeOptions {
   FrameSpec frames;
   BlendMode mode = BlendMode::kDqs;
   unsigned formats = unsigned(BakeFormat::kGlb);
+  TextureOptions textures;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   int scene = -1;  // choose_scene
@@ -48,15 +63,28 @@ struct BakeOutput {
   bool unchanged = false;  // an equal file was already there (not part of the manifest)
 };
 
+// The decode-back check of one texture: what the written file decodes to, against the deformed meshes
+// (scene units; normals in degrees).
+struct TextureCheck {
+  std::string input, clip;
+  std::string texture;  // "vat", or "bones_skin<K>"
+  double max_error = 0, p99_error = 0;                    // at the baked frames
+  double max_midpoint_error = 0, p99_midpoint_error = 0;  // halfway between frames, interpolated linearly
+  double max_normal_degrees = 0, max_midpoint_normal_degrees = 0;
+  size_t samples = 0;  // vertex samples compared
+};
+
 // Thread-seconds per stage (encoding runs on several threads at once, so they may add up to more than
 // the wall time).
 struct BakeStageTimes {
   double load = 0, sample = 0, deform = 0, readback = 0, encode = 0, write = 0;
+  double check = 0;  // texture measuring passes and decode-back checks (deforming included)
 };
 
 struct BakeReport {
   std::vector<InputResult> inputs;
   std::vector<BakeOutput> outputs;  // sorted by path; with dry_run, what would be written
+  std::vector<TextureCheck> checks;  // sorted by input, clip and texture
   std::string manifest;             // path of the manifest written (empty for dry runs)
   GpuContextInfo gpu;               // what deformed: the GPU's context, or backend "fast-cpu" or "cpu"
   std::string deformer;             // describe(DeformPath): "gpu", "fast-cpu (avx2-fma)", "cpu-reference"

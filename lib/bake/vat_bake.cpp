@@ -1,0 +1,171 @@
+#include "vat_bake.hpp"
+
+#include "../diff/diff_numbers.hpp"
+#include "../texture/rest_glb.hpp"
+#include "../texture/vat_measure.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/texture_output.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace dqskin::bake_detail {
+
+using namespace texture;
+
+namespace {
+
+// One frame of a batch, kept after the deformer's sink returns.
+DeformedBatch copy_frame(const DeformedBatch& batch, size_t k) {
+  DeformedBatch one;
+  one.frame_count = 1;
+  for (const DeformedBatch::Primitive& p : batch.primitives) {
+    DeformedBatch::Primitive q;
+    q.vertices = p.vertices;
+    auto slice = [&](const std::vector<float>& all, size_t per_vertex) {
+      if (all.empty()) return std::vector<float>();
+      const auto first = all.begin() + std::ptrdiff_t(k * p.vertices * per_vertex);
+      return std::vector<float>(first, first + std::ptrdiff_t(p.vertices * per_vertex));
+    };
+    q.positions = slice(p.positions, 3);
+    q.normals = slice(p.normals, 3);
+    q.tangents = slice(p.tangents, 4);
+    one.primitives.push_back(std::move(q));
+  }
+  return one;
+}
+
+VatFormat chosen_format(const TextureOptions& o) {
+  VatProfile profile;
+  if (!parse_vat_profile(o.vat_profile, profile))
+    throw InputError("--vat-profile '" + o.vat_profile + "' is not one of dqskin, openvat, houdini");
+  VatFormat f = default_format(profile);
+  if (!o.encoding.empty() && !parse_texel_type(o.encoding, f.type))
+    throw InputError("--encoding '" + o.encoding + "' is not one of float, half, png16, png8");
+  if (!o.normals.empty() && !parse_normal_mode(o.normals, f.normals))
+    throw InputError("--normals '" + o.normals + "' is not one of none, separate, packed, oct8, oct16");
+  if (const std::string why = unsupported_reason(f); !why.empty()) throw InputError(why);
+  return f;
+}
+
+// Lengths as the diff prints them: "3.1 mm" (scene units are glTF's metres).
+std::string length(double x) { return diff_detail::length_with_unit(x, x); }
+
+}  // namespace
+
+VatFormat vat_format(const TextureOptions& options) { return chosen_format(options); }
+
+
+std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const ClipPlan& clip,
+                                                               const TextureOptions& options) {
+  const VatFormat format = chosen_format(options);
+  size_t vertices = 0, indices = 0;
+  for (const VatSource& s : vat_sources(*input.asset, input.instances)) vertices += s.vertices;
+  for (const MeshInstance& inst : input.instances)
+    for (const Primitive& p : input.asset->meshes[size_t(inst.mesh)].primitives) indices += std::max(p.indices.size(), p.vertex_count());
+  const std::string what = input.path + ", clip " + clip.name;
+  if (vertices == 0) throw InputError(what + ": no vertices to bake into a vertex-animation texture");
+  const VatLayout l = plan_vat_layout(format, vertices, clip.times.size(), options.max_size, options.pot, what);
+  VatEncoding e;
+  e.layout = l;
+  const VatFileNames names = vat_file_names(format, safe_name(input.stem));
+  // Images at their uncompressed size plus a header and an EXR offset table (an upper bound: ZIP and PNG
+  // store less); the rest mesh's attributes and indices; the JSON's per-frame lines.
+  auto image = [&](TexelType type, int channels) {
+    return uint64_t(l.width) * l.height * uint64_t(channels) * channel_bytes(type) + 1024 + l.height / 16 * 8;
+  };
+  std::vector<std::pair<std::string, uint64_t>> files;
+  const std::string folder = clip.folder + "/";
+  files.emplace_back(folder + names.positions, image(format.type, l.position_channels()));
+  if (const std::optional<TexelType> type = e.normal_image_type())
+    files.emplace_back(folder + names.normals, image(*type, normal_channels(e)));
+  files.emplace_back(folder + names.rest_mesh, 4096 + uint64_t(vertices) * (12 + 12 + 8 + 8) + uint64_t(indices) * 4);
+  if (!names.profile_side_file.empty()) files.emplace_back(folder + names.profile_side_file, 4096);
+  files.emplace_back(folder + names.dqskin_side_file, 8192 + uint64_t(clip.times.size()) * 200);
+  return files;
+}
+
+VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
+    : input_(input), clip_(clip), options_(options), what_(input.path + ", clip " + clip.name) {
+  const TextureOptions& o = options.textures;
+  VatEncoding e;
+  const VatFormat format = chosen_format(o);
+  const std::vector<VatSource> sources = vat_sources(*input.asset, input.instances);
+  size_t vertices = 0;
+  for (const VatSource& s : sources) vertices += s.vertices;
+  if (vertices == 0) throw InputError(what_ + ": no vertices to bake into a vertex-animation texture");
+  e.layout = plan_vat_layout(format, vertices, clip.times.size(), o.max_size, o.pot, what_);
+
+  // The rest mesh: the rest pose (dqskin, openvat) or the clip's first frame (houdini, whose offsets start
+  // there; it comes from the measuring pass).
+  DeformedBatch rest;
+  if (format.profile != VatProfile::kHoudini) {
+    const double zero = 0;
+    deformer.run(nullptr, std::span(&zero, 1), [&](const DeformedBatch& batch) { rest = copy_frame(batch, 0); });
+    if (format.profile == VatProfile::kOpenVat) e.rest = all_positions(frame_view(rest, 0));
+  }
+
+  // The measuring pass: bounds of what is stored, of each frame and of the clip; whether it loops.
+  VatClipInfo info;
+  info.asset = input.stem;
+  info.clip = clip.name;
+  info.times = clip.times;
+  info.fps = clip.fps;
+  info.sources = sources;
+  VatMeasure measure(e);
+  deformer.run(clip.clip, clip.times, [&](const DeformedBatch& batch) {
+    for (size_t k = 0; k < batch.frame_count; ++k) {
+      if (batch.first_frame + k == 0 && format.profile == VatProfile::kHoudini) rest = copy_frame(batch, k);
+      measure.add(frame_view(batch, k), batch.first_frame + k, clip.times.size());
+    }
+  });
+  measure.finish(info, what_);
+
+  const std::string folder = options.out_dir + "/" + clip.folder;
+  const VatFileNames names = vat_file_names(format, safe_name(input.stem));
+  std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem);
+  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));
+}
+
+VatClipBake::~VatClipBake() = default;
+
+void VatClipBake::append(const FrameView& frame) { writer_->append(frame); }
+
+std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& deformer, const CommitOptions& commit) {
+  writer_->finish();
+  const TextureOptions& o = options_.textures;
+  if (o.check) {
+    VatDecodeChecker checker(writer_->encoding(), writer_->positions(), writer_->normals());
+    // Every frame, and between neighbours the midpoint a runtime interpolates.
+    const std::vector<double>& t = clip_.times;
+    std::vector<double> times;
+    for (size_t f = 0; f < t.size(); ++f) {
+      times.push_back(t[f]);
+      if (f + 1 < t.size()) times.push_back(t[f] + (t[f + 1] - t[f]) / 2);
+    }
+    deformer.run(clip_.clip, times, [&](const DeformedBatch& batch) {
+      for (size_t k = 0; k < batch.frame_count; ++k) {
+        const size_t i = batch.first_frame + k;
+        if (i % 2 == 0) checker.baked_frame(i / 2, frame_view(batch, k));
+        else checker.midpoint(i / 2, frame_view(batch, k));
+      }
+    });
+    check_ = checker.result();
+    if (checker.reference_motion() > 0 && checker.decoded_motion() == 0)
+      throw InputError(what_ + ": every frame of the texture decodes to one pose while the clip moves " +
+                       length(checker.reference_motion()) + " (a bake of the rest pose?)");
+    if (o.max_error > 0) {
+      const double limit = o.max_error_relative ? o.max_error * writer_->clip_bounds().diagonal() : o.max_error;
+      const double worst = std::max(check_->max_error, check_->max_midpoint_error);
+      if (worst > limit)
+        throw InputError(what_ + ": the texture decodes with errors up to " + length(check_->max_error) +
+                         " at frames and " + length(check_->max_midpoint_error) + " between them, over --max-error " +
+                         length(limit));
+    }
+  }
+  std::vector<std::pair<std::string, Committed>> files = writer_->commit(check_ ? &*check_ : nullptr, commit);
+  for (auto& [name, committed] : files) name = clip_.folder + "/" + name;
+  return files;
+}
+
+}  // namespace dqskin::bake_detail

@@ -1,0 +1,59 @@
+// One clip's vertex-animation texture in a bake (internal to lib/bake): the passes around the writer.
+// Before the bake's own pass over the frames, a rest pass (the mesh the offsets are taken from) and a
+// measuring pass (the bounds the texels are remapped by, each frame's bounds for culling, whether the clip
+// loops); during it, each frame is encoded; after it, the decode-back check deforms the clip again at every
+// frame and midpoint and compares what the written files decode to. The files are committed only when the
+// check passes.
+#pragma once
+
+#include "bake_plan.hpp"
+#include "../texture/vat_check.hpp"
+#include "../texture/vat_writer.hpp"
+
+#include "dqskin/deformer.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dqskin::bake_detail {
+
+// The VAT format the options ask for. Throws InputError for unknown names and combinations the profile
+// cannot write.
+texture::VatFormat vat_format(const TextureOptions& options);
+
+// The VAT files of one clip, relative to the output folder, each with an upper bound of its size (images
+// uncompressed). Throws InputError when the profile cannot hold the clip.
+std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const ClipPlan& clip,
+                                                               const TextureOptions& options);
+
+class VatClipBake {
+public:
+  // Runs the rest and measuring passes with `deformer` and opens the files. Throws InputError when the
+  // profile cannot hold the clip (size, format), OutputError when a file cannot be created.
+  VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
+  ~VatClipBake();
+
+  // The bake's pass: every frame of the clip, in order.
+  void append(const FrameView& frame);
+
+  // Completes the images, runs the decode-back check (unless options.vat.check is off) and commits every
+  // file. Throws InputError naming the clip when the decoded texture misses --max-error, decodes to one
+  // pose while the clip moves, or holds a texel that is not finite; nothing is then left under a final
+  // name. Returns the files' paths relative to the output folder with what happened to each.
+  std::vector<std::pair<std::string, Committed>> finish(Deformer& deformer, const CommitOptions& commit);
+
+  // The check's figures, once finish() has run it.
+  const std::optional<texture::DecodeCheck>& check() const { return check_; }
+
+private:
+  const InputPlan& input_;
+  const ClipPlan& clip_;
+  const BakeOptions& options_;
+  std::string what_;  // "<input>, clip <name>" for messages
+  std::unique_ptr<texture::VatWriter> writer_;
+  std::optional<texture::DecodeCheck> check_;
+};
+
+}  // namespace dqskin::bake_detail

@@ -1,0 +1,24 @@
+// The rest mesh that ships beside a vertex-animation texture (internal to lib/texture and lib/bake): one
+// glTF 2.0 binary holding every baked primitive in world space, as the texture's offsets are measured
+// from it, with TEXCOORD_1 telling each vertex where its texels are (VatLayout::lookup_uv). An importer
+// that reorders, splits or welds vertices keeps each vertex's TEXCOORD_1, so the texture still finds it.
+#pragma once
+
+#include "vat_format.hpp"
+
+#include "dqskin/frame_view.hpp"
+#include "dqskin/skinning.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dqskin::texture {
+
+// The .glb bytes: one node `name` with no transform drawing one mesh whose primitives are those of
+// `instances` (in the VAT's vertex order), positions and normals from `rest`, the source's TEXCOORD_0 (or,
+// where a primitive has none, a copy of TEXCOORD_1, since glTF numbers texture coordinate sets from 0)
+// and TEXCOORD_1 from `layout`. No material: a viewer draws its default. Deterministic.
+std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& rest,
+                            const VatLayout& layout, const std::string& name);
+
+}  // namespace dqskin::texture

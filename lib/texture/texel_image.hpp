@@ -1,0 +1,100 @@
+// Texels as a texture file stores them (internal to lib/texture): float32, half, 16- or 8-bit unsigned, 3
+// or 4 channels. A TexelImage holds a band of rows of an image (all of them, or one frame's), addressed by
+// the image's own row numbers; TexelFileWriter streams bands into an OpenEXR (float, half) or PNG (the
+// integer types) file in row order, and TexelFileReader reads bands back for the decode-back check.
+// OpenImageIO stays in the .cpp.
+#pragma once
+
+#include "texel_encoding.hpp"
+
+#include "dqskin/atomic_file.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dqskin::texture {
+
+class TexelImage {
+public:
+  TexelImage() = default;
+  // Zero texels for rows [first_row, first_row + rows) of an image `width` texels wide.
+  TexelImage(TexelType type, size_t width, size_t rows, int channels, size_t first_row = 0);
+
+  TexelType type() const { return type_; }
+  size_t width() const { return width_; }
+  size_t rows() const { return rows_; }
+  size_t first_row() const { return first_row_; }
+  int channels() const { return channels_; }
+
+  // Stores channel c of texel (x, y), y a row of the band. `value` must already be representable: an
+  // integer in [0, max] for the unorm types, a half value (texel_encoding's to_half) for half.
+  void set(size_t x, size_t y, int c, float value);
+  // Channel c of texel (x, y) as stored: the integer for unorm types, the value for float and half.
+  float get(size_t x, size_t y, int c) const;
+  // Sets every texel to zero and moves the band to start at `first_row`.
+  void reset(size_t first_row);
+  // The first texel whose channel is not finite (float and half), as "(x, y)"; empty when all are.
+  std::string first_non_finite() const;
+
+  const uint8_t* data() const { return data_.data(); }
+  uint8_t* data() { return data_.data(); }
+
+private:
+  size_t offset(size_t x, size_t y, int c) const;
+
+  TexelType type_ = TexelType::kFloat32;
+  size_t width_ = 0, rows_ = 0, first_row_ = 0;
+  int channels_ = 0;
+  std::vector<uint8_t> data_;
+};
+
+// The file's extension for a texel type: "exr" for float and half, "png" for the integer types.
+const char* file_extension(TexelType type);
+
+// Writes an image into `file`'s temporary, band after band in row order (the caller commits the file):
+// EXR with channels R, G, B(, A), ZIP compression and no capture date; PNG with no colour-space chunk
+// (the values are data, not colours). Rows never written are zeros. Byte-identical for equal texels and
+// equal bands.
+class TexelFileWriter {
+public:
+  // Throws OutputError naming the file when it cannot be created, InputError for sizes no file holds.
+  TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels);
+  ~TexelFileWriter();
+  TexelFileWriter(const TexelFileWriter&) = delete;
+  TexelFileWriter& operator=(const TexelFileWriter&) = delete;
+
+  // The next rows: band.first_row() must be the first row not yet written (rows skipped are zeros).
+  void write(const TexelImage& band);
+  // Writes the remaining rows as zeros, closes the file and checks that it is whole (an EXR's offset
+  // table and last block, which a full disk can cut short while OpenImageIO reports nothing).
+  void close();
+  // The temporary being written (the file's final name comes with the commit).
+  const std::string& temporary() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Reads an image this project wrote, band by band.
+class TexelFileReader {
+public:
+  // `path` may be a temporary; `name` is what messages call the file. Throws OutputError when the file
+  // cannot be opened or is not `type` with `channels` channels and the expected size.
+  TexelFileReader(const std::string& path, const std::string& name, TexelType type, size_t width, size_t height,
+                  int channels);
+  ~TexelFileReader();
+  TexelFileReader(const TexelFileReader&) = delete;
+  TexelFileReader& operator=(const TexelFileReader&) = delete;
+
+  // Rows [first, first + rows) into `band` (reallocated to fit). Throws OutputError.
+  void read(size_t first, size_t rows, TexelImage& band);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dqskin::texture

@@ -1,0 +1,146 @@
+#include "vat_check.hpp"
+
+#include "dqskin/error.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace dqskin::texture {
+
+void ErrorHistogram::add(double error) {
+  ++count_;
+  max_ = std::max(max_, error);
+  if (!(error > 0)) {
+    ++bins_[0];
+    return;
+  }
+  const double position = (std::log10(error) - kFirstDecade) * kPerDecade;
+  const size_t bin = position < 0 ? 1 : std::min(bins_.size() - 1, size_t(position) + 1);
+  ++bins_[bin];
+}
+
+double ErrorHistogram::quantile(double q) const {
+  if (count_ == 0) return 0;
+  const double wanted = q * double(count_);
+  size_t seen = 0;
+  for (size_t i = 0; i < bins_.size(); ++i) {
+    seen += bins_[i];
+    if (double(seen) >= wanted) {
+      if (i == 0) return 0;
+      const double upper = std::pow(10.0, kFirstDecade + double(i) / kPerDecade);  // bin i's upper edge
+      return std::min(upper, max_);
+    }
+  }
+  return max_;
+}
+
+VatDecodeChecker::VatDecodeChecker(const VatEncoding& encoding, const VatWriter::WrittenImage& positions,
+                                   const VatWriter::WrittenImage& normals)
+    : e_(encoding), positions_name_(positions.name), normals_name_(normals.name) {
+  const VatLayout& l = e_.layout;
+  positions_ = std::make_unique<TexelFileReader>(positions.temporary, positions.name, l.format.type, l.width, l.height,
+                                                 l.position_channels());
+  if (const std::optional<TexelType> type = e_.normal_image_type())
+    normals_ = std::make_unique<TexelFileReader>(normals.temporary, normals.name, *type, l.width, l.height,
+                                                 normal_channels(e_));
+}
+
+VatDecodeChecker::~VatDecodeChecker() = default;
+
+const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
+  for (const Decoded* d : {&current_, &next_})
+    if (d->frame == f) return *d;
+  const VatLayout& l = e_.layout;
+  // Frame-major layouts read the frame's rows; openvat's frames lie in every wrap: the image, read once.
+  if (l.frame_major() || !whole_read_) {
+    const VatLayout::Rows rows = l.frame_rows(f);
+    positions_->read(rows.first, rows.count, position_band_);
+    if (const std::string at = position_band_.first_non_finite(); !at.empty())
+      throw OutputError(positions_name_ + ": texel " + at + " is not finite");
+    if (normals_) {
+      normals_->read(rows.first, rows.count, normal_band_);
+      if (const std::string at = normal_band_.first_non_finite(); !at.empty())
+        throw OutputError(normals_name_ + ": texel " + at + " is not finite");
+    }
+    whole_read_ = true;
+  }
+  // Overwrite the slot holding no frame, else the earlier frame (callers copy what they still need).
+  auto older = [](const Decoded& a, const Decoded& b) {
+    return a.frame == SIZE_MAX || (b.frame != SIZE_MAX && a.frame < b.frame);
+  };
+  Decoded& slot = older(current_, next_) ? current_ : next_;
+  decode_vat_frame(e_, position_band_, normals_ ? &normal_band_ : nullptr, f, slot.positions, slot.normals);
+  slot.frame = f;
+  return slot;
+}
+
+void VatDecodeChecker::compare(const std::vector<float>& positions, const std::vector<float>& normals,
+                               const FrameView& reference, ErrorHistogram& errors, double& normal_degrees) {
+  size_t v = 0;
+  for (const PrimitiveView& p : reference.primitives) {
+    for (size_t k = 0; k < p.vertices; ++k, ++v) {
+      const glm::dvec3 want(p.positions[3 * k], p.positions[3 * k + 1], p.positions[3 * k + 2]);
+      const glm::dvec3 got(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+      errors.add(glm::length(got - want));
+      if (normals.empty() || p.normals.empty()) continue;
+      const glm::dvec3 n(p.normals[3 * k], p.normals[3 * k + 1], p.normals[3 * k + 2]);
+      const glm::dvec3 m(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+      const double ln = glm::length(n), lm = glm::length(m);
+      if (!(ln > 0) || !(lm > 0)) continue;
+      const double c = std::clamp(glm::dot(n, m) / (ln * lm), -1.0, 1.0);
+      normal_degrees = std::max(normal_degrees, std::acos(c) * 180 / std::numbers::pi);
+    }
+  }
+}
+
+void VatDecodeChecker::baked_frame(size_t f, const FrameView& reference) {
+  const Decoded& d = decode(f);
+  compare(d.positions, d.normals, reference, frame_errors_, max_normal_degrees_);
+  if (f == 0) {
+    first_positions_ = d.positions;
+    return;
+  }
+  // Motion: the largest distance of any vertex from its place in frame 0, decoded and deformed.
+  size_t v = 0;
+  for (const PrimitiveView& p : reference.primitives) {
+    for (size_t k = 0; k < p.vertices; ++k, ++v) {
+      const glm::dvec3 first(first_positions_[3 * v], first_positions_[3 * v + 1], first_positions_[3 * v + 2]);
+      const glm::dvec3 decoded(d.positions[3 * v], d.positions[3 * v + 1], d.positions[3 * v + 2]);
+      const glm::dvec3 want(p.positions[3 * k], p.positions[3 * k + 1], p.positions[3 * k + 2]);
+      decoded_motion_ = std::max(decoded_motion_, glm::length(decoded - first));
+      reference_motion_ = std::max(reference_motion_, glm::length(want - first));
+    }
+  }
+}
+
+void VatDecodeChecker::midpoint(size_t f, const FrameView& reference) {
+  const Decoded& a = decode(f);
+  std::vector<float> positions = a.positions, normals = a.normals;
+  const Decoded& b = decode(f + 1);
+  // A runtime's linear interpolation, in float: (a + b) / 2; normals renormalized.
+  for (size_t i = 0; i < positions.size(); ++i) positions[i] = positions[i] + (b.positions[i] - positions[i]) * 0.5f;
+  for (size_t i = 0; i + 2 < normals.size(); i += 3) {
+    glm::vec3 n(normals[i] + b.normals[i], normals[i + 1] + b.normals[i + 1], normals[i + 2] + b.normals[i + 2]);
+    const float l = glm::length(n);
+    if (l > 0) n /= l;
+    for (int c = 0; c < 3; ++c) normals[i + size_t(c)] = n[c];
+  }
+  compare(positions, normals, reference, midpoint_errors_, max_midpoint_normal_degrees_);
+}
+
+DecodeCheck VatDecodeChecker::result() const {
+  DecodeCheck c;
+  c.max_error = frame_errors_.max();
+  c.p99_error = frame_errors_.quantile(0.99);
+  c.max_midpoint_error = midpoint_errors_.max();
+  c.p99_midpoint_error = midpoint_errors_.quantile(0.99);
+  c.max_normal_degrees = max_normal_degrees_;
+  c.max_midpoint_normal_degrees = max_midpoint_normal_degrees_;
+  c.samples = frame_errors_.count() + midpoint_errors_.count();
+  return c;
+}
+
+}  // namespace dqskin::texture

@@ -1,0 +1,66 @@
+// The metadata written beside a vertex-animation texture (internal to lib/texture and lib/bake): dqskin's
+// own JSON, complete for every profile, and the side file each profile's runtime reads (OpenVAT's
+// `-remap_info.json`, Houdini's `_data.json`), plus the file names each profile uses.
+#pragma once
+
+#include "vat_codec.hpp"
+
+#include "dqskin/texture_output.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace dqskin::texture {
+
+// The files of one clip's VAT, relative to the clip's folder; empty names are not written.
+struct VatFileNames {
+  std::string positions, normals, rest_mesh, profile_side_file;
+  std::string dqskin_side_file = "vat.json";
+};
+// dqskin: vat_positions.<ext>, vat_normals.<ext>, rest.glb; openvat: <asset>_vat.<ext>, <asset>_vnrm.<ext>,
+// <asset>.glb, <asset>-remap_info.json; houdini: <asset>_pos.<ext>, <asset>_rot.<ext>, <asset>_mesh.glb,
+// <asset>_data.json. `asset` is a file-name-safe name of the input.
+VatFileNames vat_file_names(const VatFormat& format, const std::string& asset);
+
+// What the metadata says about the animation.
+struct VatClipInfo {
+  std::string asset;  // the input's name
+  std::string clip;
+  std::vector<double> times;
+  double fps = 0;  // 0: the times are not a grid
+  bool loops = false;  // the last frame's pose equals the first's
+  std::vector<VatSource> sources;
+  std::vector<Box> frame_bounds;  // the animated mesh at each frame, glTF world space
+  Box clip_bounds;                // over the clip
+};
+
+// The decode-back check's figures for one texture (also recorded in manifest.json).
+struct DecodeCheck {
+  double max_error = 0, p99_error = 0;              // at the baked frames, scene units
+  double max_midpoint_error = 0, p99_midpoint_error = 0;  // between frames, linearly interpolated
+  double max_normal_degrees = 0;                    // at the baked frames
+  double max_midpoint_normal_degrees = 0;           // between frames (the normals interpolated, renormalized)
+  size_t samples = 0;                               // vertex samples compared
+  nlohmann::ordered_json to_json() const;
+};
+
+// Bounds for remapping that the shader reads back exactly: `box` widened outward to a decimal grid of
+// about four significant digits of its widest side (OpenVAT rounds to 0.1 the same way), so that the
+// side file prints short numbers whose float values are those the encoder used.
+Box decimal_bounds(const Box& box);
+
+// Houdini VAT 3.0's bounds with its shader data embedded (TEXTURE/embed_data_to_bounds): the clip's
+// bounds snapped outward to 0.1, then the HDR flag and rows per frame in the fractional parts of max.z
+// and min.y, and the active-pixel ratios of a padded image in min.z and min.x. Throws InputError naming
+// `what` for more than 899 rows per frame, which that code cannot hold.
+Box houdini_encoded_bounds(const Box& clip_bounds, const VatLayout& layout, const std::string& what);
+
+// dqskin's JSON: everything a runtime or a person needs, for every profile.
+std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFileNames& names,
+                     const DecodeCheck* check);
+// The profile's own side file (empty for dqskin).
+std::string profile_side_file(const VatEncoding& e, const VatClipInfo& info);
+
+}  // namespace dqskin::texture

@@ -1,0 +1,61 @@
+// One clip's vertex-animation texture in any profile (internal to lib/texture and lib/bake): frames are
+// encoded as they arrive, the images written to temporaries (streamed row band by row band for the
+// frame-major layouts, whole for openvat's), then, after the decode-back check has read them, the side
+// files and the rest mesh join them and all are committed at once.
+#pragma once
+
+#include "texel_image.hpp"
+#include "vat_side_files.hpp"
+
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/frame_view.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dqskin::texture {
+
+class VatWriter {
+public:
+  // `folder`: the clip's output folder; `names`: the files in it (vat_file_names); `rest_glb`: the rest
+  // mesh's bytes. Creates the images' temporaries now. Throws OutputError naming a file that cannot be
+  // created, InputError for an image no file can hold.
+  VatWriter(VatEncoding encoding, VatClipInfo info, const std::string& folder, VatFileNames names, std::string rest_glb);
+  // Without commit(): nothing appears under the final names.
+  ~VatWriter();
+  VatWriter(const VatWriter&) = delete;
+  VatWriter& operator=(const VatWriter&) = delete;
+
+  // Encodes the next frame (frames come in order, each once). Throws as encode_vat_frame, or OutputError.
+  void append(const FrameView& frame);
+  // After the last frame: completes the images on disk (still under temporary names).
+  void finish();
+
+  const VatEncoding& encoding() const { return encoding_; }
+  const Box& clip_bounds() const { return info_.clip_bounds; }
+  // The images as written, for reading back: temporary path and final name (normals: empty when none).
+  struct WrittenImage {
+    std::string temporary, name;
+  };
+  WrittenImage positions() const;
+  WrittenImage normals() const;
+
+  // Writes dqskin's JSON (with `check`'s figures when given), the profile's side file and the rest mesh,
+  // then commits every file: with kRefuseDifferent all are compared first, so a refusal changes none.
+  // Returns the files' names relative to the folder and what happened to each, in the same order.
+  std::vector<std::pair<std::string, Committed>> commit(const DecodeCheck* check, const CommitOptions& options);
+
+private:
+  struct Image;
+  VatEncoding encoding_;
+  VatClipInfo info_;
+  std::string folder_;
+  VatFileNames names_;
+  std::string rest_glb_;
+  std::unique_ptr<Image> positions_, normals_;
+  size_t frames_written_ = 0;
+};
+
+}  // namespace dqskin::texture
