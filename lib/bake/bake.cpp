@@ -15,6 +15,8 @@
 #include "dqskin/sha256.hpp"
 #include "dqskin/texture_output.hpp"
 #include "manifest.hpp"
+#include "bones_bake.hpp"
+#include "../texture/bone_profiles.hpp"
 #include "vat_bake.hpp"
 #include "../concurrency/parallel_for.hpp"
 
@@ -130,8 +132,12 @@ public:
     if (has(options.formats, BakeFormat::kPly) || has(options.formats, BakeFormat::kObj))
       mesh_ = std::make_unique<MeshFrameEncoder>(asset_, input.instances, asset_.materials.empty() ? "" : "materials.mtl");
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
-    const bool deforms = std::any_of(input.clips.begin(), input.clips.end(),
-                                     [&](const ClipPlan& c) { return !frames_to_deform(c, options.formats).empty(); });
+    // The decode-back check of bone textures deforms too.
+    const bool checks_bones = has(options.formats, BakeFormat::kBones) && options.textures.check && !input.skins.empty() &&
+                              std::any_of(input.clips.begin(), input.clips.end(), [](const ClipPlan& c) { return c.clip_mine; });
+    const bool deforms = checks_bones || std::any_of(input.clips.begin(), input.clips.end(), [&](const ClipPlan& c) {
+                           return !frames_to_deform(c, options.formats).empty();
+                         });
     if (deforms) {
       DeformerOptions o;
       o.mode = options.mode;
@@ -189,19 +195,17 @@ private:
       ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
     if (!has(options_.formats, BakeFormat::kBones) || input_.skins.empty()) return;
     const Clock::time_point start = Clock::now();
-    std::vector<Pose> poses;
-    for (double t : clip.times) poses.push_back(sample_pose(asset_, clip.clip, t));
-    for (int skin : input_.skins) {
-      std::vector<JointTransforms> frames;
-      for (const Pose& pose : poses) frames.push_back(joint_transforms(asset_.skins[size_t(skin)], pose));
-      const BoneTexture texture = pack_bone_texture(frames);
-      const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
-      const std::vector<Committed> committed = write_bone_texture(
-          ledger_.absolute(base + ".exr"), ledger_.absolute(base + ".json"), texture, asset_, skin, clip.times, clip.fps,
-          {options_.overwrite, &journal_});
-      ledger_.record_files({base + ".exr", base + ".json"}, committed);
+    BonesClipResult bones =
+        bake_bones_clip(deformer_.get(), input_, clip, options_, {options_.overwrite, &journal_}, jobs_);
+    std::vector<std::string> names;
+    std::vector<Committed> committed;
+    for (auto& [name, c] : bones.files) {
+      names.push_back(name);
+      committed.push_back(c);
     }
-    ledger_.add_time(&BakeStageTimes::sample, since(start));
+    ledger_.record_files(names, committed);
+    for (TextureCheck& check : bones.checks) ledger_.record_check(std::move(check));
+    ledger_.add_time(options_.textures.check ? &BakeStageTimes::check : &BakeStageTimes::sample, since(start));
   }
 
   // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them.
@@ -291,7 +295,13 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     throw InputError("--mode " + std::string(to_string(options.mode)) +
                      " runs on the CPU reference only; use --backend cpu (or auto)");
 
-  if (has(options.formats, BakeFormat::kVat)) (void)vat_format(options.textures);  // names checked before any work
+  // Texture names are checked before any work.
+  if (has(options.formats, BakeFormat::kVat)) (void)vat_format(options.textures);
+  if (BoneProfile p{}; has(options.formats, BakeFormat::kBones) && !parse_bone_profile(options.textures.bones_profile, p))
+    throw InputError("--bones-profile '" + options.textures.bones_profile + "' is not one of dq, dq-cocos, mat3x4, mat4");
+  if (has(options.formats, BakeFormat::kBones) && !options.textures.encoding.empty() &&
+      options.textures.encoding != "float" && options.textures.encoding != "half" && !has(options.formats, BakeFormat::kVat))
+    throw InputError("--encoding " + options.textures.encoding + " is for vertex-animation textures; bone textures are float or half");
 
   std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
   for (const InputPlan& plan : plans)

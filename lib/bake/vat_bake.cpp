@@ -63,7 +63,7 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
   for (const VatSource& s : vat_sources(*input.asset, input.instances)) vertices += s.vertices;
   for (const MeshInstance& inst : input.instances)
     for (const Primitive& p : input.asset->meshes[size_t(inst.mesh)].primitives) indices += std::max(p.indices.size(), p.vertex_count());
-  const std::string what = input.path + ", clip " + clip.name;
+  const std::string what = "clip " + clip.name;
   if (vertices == 0) throw InputError(what + ": no vertices to bake into a vertex-animation texture");
   const VatLayout l = plan_vat_layout(format, vertices, clip.times.size(), options.max_size, options.pot, what);
   VatEncoding e;
@@ -86,7 +86,7 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
 }
 
 VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
-    : input_(input), clip_(clip), options_(options), what_(input.path + ", clip " + clip.name) {
+    : input_(input), clip_(clip), options_(options), what_("clip " + clip.name) {
   const TextureOptions& o = options.textures;
   VatEncoding e;
   const VatFormat format = chosen_format(o);

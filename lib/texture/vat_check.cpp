@@ -22,6 +22,12 @@ void ErrorHistogram::add(double error) {
   ++bins_[bin];
 }
 
+void ErrorHistogram::merge(const ErrorHistogram& other) {
+  for (size_t i = 0; i < bins_.size(); ++i) bins_[i] += other.bins_[i];
+  max_ = std::max(max_, other.max_);
+  count_ += other.count_;
+}
+
 double ErrorHistogram::quantile(double q) const {
   if (count_ == 0) return 0;
   const double wanted = q * double(count_);

@@ -20,6 +20,7 @@ namespace dqskin::texture {
 class ErrorHistogram {
 public:
   void add(double error);
+  void merge(const ErrorHistogram& other);
   double max() const { return max_; }
   size_t count() const { return count_; }
   // The smallest bin edge at or above the q-quantile (never above max()).

@@ -48,7 +48,7 @@ void VatWriter::append(const FrameView& frame) {
     else if (l.frame_major()) image->band.reset(rows.first);
   }
   encode_vat_frame(encoding_, frame, f, positions_->band, normals_ ? &normals_->band : nullptr,
-                   info_.asset + ", clip " + info_.clip);
+                   "clip " + info_.clip);
   ++frames_written_;
   if (!l.frame_major() && frames_written_ < l.frames) return;
   // The two images compress (ZIP) independently: the normals on a second thread.

@@ -1,0 +1,208 @@
+#include "bones_bake.hpp"
+
+#include "../concurrency/parallel_for.hpp"
+#include "../diff/diff_numbers.hpp"
+#include "../texture/bone_writer.hpp"
+#include "../texture/vat_check.hpp"
+#include "../texture/vat_codec.hpp"
+
+#include "dqskin/error.hpp"
+#include "dqskin/frame_view.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <optional>
+
+namespace dqskin::bake_detail {
+
+using texture::ErrorHistogram;
+
+namespace {
+
+std::string length(double x) { return diff_detail::length_with_unit(x, x); }
+
+texture::TexelType bone_texel_type(const TextureOptions& o) {
+  // Bone textures are float or half; the PNG encodings are the VAT's (README "Texture profiles").
+  return o.encoding == "half" ? texture::TexelType::kHalf : texture::TexelType::kFloat32;
+}
+
+// A primitive of an instance drawn with the skin being checked, and where its vertices are in a frame.
+struct SkinnedPrimitive {
+  size_t instance = 0, primitive = 0;  // the instance's index and the primitive's in its mesh
+  size_t view = 0;                     // its index in a FrameView
+};
+
+// What the check of one texture accumulates.
+struct SkinCheck {
+  ErrorHistogram frames, midpoints;
+  double normal_degrees = 0, midpoint_normal_degrees = 0;
+  double reference_motion = 0, decoded_motion = 0;
+  texture::Box bounds;  // of the deformed vertices over the clip, for a relative --max-error
+  std::vector<std::vector<glm::dvec3>> first_decoded, first_reference;  // per skinned primitive, frame 0
+};
+
+// Compares one primitive at one time: each vertex skinned from `image` at `frame` against `reference`.
+// Vertices are split among threads; their figures are merged afterwards.
+void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t prim_index, const Pose& pose,
+                       const BoneImage& image, size_t frame, const PrimitiveView& reference, bool midpoint,
+                       size_t skinned, SkinCheck& check, unsigned threads) {
+  const Primitive& prim = asset.meshes[size_t(instance.mesh)].primitives[prim_index];
+  const size_t n = prim.vertex_count();
+  const std::vector<double>& morph = pose.weights[size_t(instance.node)];
+  const size_t chunk = 4096, chunks = (n + chunk - 1) / chunk;
+  struct Partial {
+    ErrorHistogram errors;
+    double degrees = 0, reference_motion = 0, decoded_motion = 0;
+    texture::Box bounds;
+  };
+  std::vector<Partial> partial(chunks);
+  const bool first = !midpoint && frame == 0;
+  if (first) {
+    check.first_decoded.resize(std::max(check.first_decoded.size(), skinned + 1));
+    check.first_reference.resize(std::max(check.first_reference.size(), skinned + 1));
+    check.first_decoded[skinned].resize(n);
+    check.first_reference[skinned].resize(n);
+  }
+  concurrency::parallel_for(chunks, threads, [&](size_t c) {
+    Partial& out = partial[c];
+    const size_t per = size_t(prim.influences);
+    for (size_t v = c * chunk; v < std::min(n, (c + 1) * chunk); ++v) {
+      // Morph targets first (glTF 2.0 §3.7.3), as the runtime does before its skinning.
+      glm::dvec3 p(prim.positions[v]);
+      glm::dvec3 nrm = prim.normals.empty() ? glm::dvec3(0.0) : glm::dvec3(prim.normals[v]);
+      for (size_t k = 0; k < morph.size() && k < prim.targets.size(); ++k) {
+        if (morph[k] == 0) continue;
+        if (!prim.targets[k].positions.empty()) p += morph[k] * glm::dvec3(prim.targets[k].positions[v]);
+        if (!prim.normals.empty() && !prim.targets[k].normals.empty())
+          nrm += morph[k] * glm::dvec3(prim.targets[k].normals[v]);
+      }
+      std::vector<int> joints(per);
+      for (size_t i = 0; i < per; ++i) joints[i] = prim.joints[v * per + i];
+      const std::span<const float> weights(&prim.weights[v * per], per);
+      const SkinnedVertex s = skin_vertex(image, frame, joints, weights, p, nrm);
+      const glm::dvec3 want(reference.positions[3 * v], reference.positions[3 * v + 1], reference.positions[3 * v + 2]);
+      out.errors.add(glm::length(s.position - want));
+      out.bounds.add(want);
+      if (first) {
+        check.first_decoded[skinned][v] = s.position;
+        check.first_reference[skinned][v] = want;
+      } else if (!midpoint) {
+        out.decoded_motion = std::max(out.decoded_motion, glm::length(s.position - check.first_decoded[skinned][v]));
+        out.reference_motion = std::max(out.reference_motion, glm::length(want - check.first_reference[skinned][v]));
+      }
+      if (reference.normals.empty() || prim.normals.empty()) continue;
+      const glm::dvec3 wn(reference.normals[3 * v], reference.normals[3 * v + 1], reference.normals[3 * v + 2]);
+      const double l = glm::length(wn) * glm::length(s.normal);
+      if (!(l > 0)) continue;
+      const double cosine = std::clamp(glm::dot(wn, s.normal) / l, -1.0, 1.0);
+      out.degrees = std::max(out.degrees, std::acos(cosine) * 180 / std::numbers::pi);
+    }
+  });
+  for (const Partial& part : partial) {
+    (midpoint ? check.midpoints : check.frames).merge(part.errors);
+    double& degrees = midpoint ? check.midpoint_normal_degrees : check.normal_degrees;
+    degrees = std::max(degrees, part.degrees);
+    check.reference_motion = std::max(check.reference_motion, part.reference_motion);
+    check.decoded_motion = std::max(check.decoded_motion, part.decoded_motion);
+    check.bounds.add(part.bounds);
+  }
+}
+
+}  // namespace
+
+BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, const ClipPlan& clip,
+                                const BakeOptions& options, const CommitOptions& commit, unsigned threads) {
+  const Asset& asset = *input.asset;
+  const TextureOptions& o = options.textures;
+  BoneProfile profile{};
+  if (!parse_bone_profile(o.bones_profile, profile))
+    throw InputError("--bones-profile '" + o.bones_profile + "' is not one of dq, dq-cocos, mat3x4, mat4");
+  std::vector<Pose> poses;
+  for (double t : clip.times) poses.push_back(sample_pose(asset, clip.clip, t));
+
+  BonesClipResult result;
+  std::vector<std::unique_ptr<texture::BoneTextureWriter>> writers;
+  std::vector<std::string> bases;
+  for (int skin : input.skins) {
+    std::vector<JointTransforms> frames;
+    for (const Pose& pose : poses) frames.push_back(joint_transforms(asset.skins[size_t(skin)], pose));
+    const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
+    writers.push_back(std::make_unique<texture::BoneTextureWriter>(
+        options.out_dir + "/" + base + ".exr", options.out_dir + "/" + base + ".json", pack_bones(profile, frames),
+        bone_texel_type(o), asset, skin, clip.times, clip.fps));
+    bases.push_back(base);
+  }
+
+  std::vector<std::optional<texture::DecodeCheck>> figures(writers.size());
+  if (o.check && !writers.empty() && deformer) {
+    std::vector<BoneImage> images;
+    for (const auto& w : writers) images.push_back(w->read_back());
+    std::vector<SkinCheck> checks(writers.size());
+    // Every frame, and between neighbours the midpoint.
+    const std::vector<double>& t = clip.times;
+    std::vector<double> times;
+    for (size_t f = 0; f < t.size(); ++f) {
+      times.push_back(t[f]);
+      if (f + 1 < t.size()) times.push_back(t[f] + (t[f + 1] - t[f]) / 2);
+    }
+    deformer->run(clip.clip, times, [&](const DeformedBatch& batch) {
+      for (size_t k = 0; k < batch.frame_count; ++k) {
+        const size_t i = batch.first_frame + k;
+        const bool midpoint = i % 2 == 1;
+        const Pose pose = sample_pose(asset, clip.clip, times[i]);
+        const FrameView view = frame_view(batch, k);
+        size_t at = 0;
+        for (size_t s = 0; s < input.skins.size(); ++s) {
+          size_t skinned = 0;
+          at = 0;
+          for (const MeshInstance& instance : input.instances) {
+            const size_t primitives = asset.meshes[size_t(instance.mesh)].primitives.size();
+            if (instance.skin == input.skins[s])
+              for (size_t p = 0; p < primitives; ++p, ++skinned)
+                compare_primitive(asset, instance, p, pose, images[s], i / 2, view.primitives[at + p], midpoint,
+                                  skinned, checks[s], threads);
+            at += primitives;
+          }
+        }
+      }
+    });
+    for (size_t s = 0; s < writers.size(); ++s) {
+      const SkinCheck& c = checks[s];
+      texture::DecodeCheck d;
+      d.max_error = c.frames.max();
+      d.p99_error = c.frames.quantile(0.99);
+      d.max_midpoint_error = c.midpoints.max();
+      d.p99_midpoint_error = c.midpoints.quantile(0.99);
+      d.max_normal_degrees = c.normal_degrees;
+      d.max_midpoint_normal_degrees = c.midpoint_normal_degrees;
+      d.samples = c.frames.count() + c.midpoints.count();
+      figures[s] = d;
+      const std::string what = "clip " + clip.name + ", bones_skin" + std::to_string(input.skins[s]);
+      if (c.reference_motion > 0 && c.decoded_motion == 0)
+        throw InputError(what + ": every frame of the texture skins to one pose while the clip moves " +
+                         length(c.reference_motion));
+      if (o.max_error > 0) {
+        const double limit = o.max_error_relative ? o.max_error * c.bounds.diagonal() : o.max_error;
+        if (d.max_error > limit)
+          throw InputError(what + ": the texture skins (" + implied_blend(profile) + ") to within " +
+                           length(d.max_error) + " of the deformed mesh (--mode " + to_string(options.mode) +
+                           "), over --max-error " + length(limit));
+      }
+      result.checks.push_back({input.path, clip.name, "bones_skin" + std::to_string(input.skins[s]), d.max_error,
+                               d.p99_error, d.max_midpoint_error, d.p99_midpoint_error, d.max_normal_degrees,
+                               d.max_midpoint_normal_degrees, d.samples});
+    }
+  }
+  for (size_t s = 0; s < writers.size(); ++s) {
+    const std::vector<Committed> c = writers[s]->commit(figures[s] ? &*figures[s] : nullptr, commit);
+    result.files.emplace_back(bases[s] + ".exr", c[0]);
+    result.files.emplace_back(bases[s] + ".json", c[1]);
+  }
+  return result;
+}
+
+}  // namespace dqskin::bake_detail
