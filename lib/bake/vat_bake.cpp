@@ -76,9 +76,11 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
   };
   std::vector<std::pair<std::string, uint64_t>> files;
   const std::string folder = clip.folder + "/";
-  files.emplace_back(folder + names.positions, image(format.type, l.position_channels()));
-  if (const std::optional<TexelType> type = e.normal_image_type())
-    files.emplace_back(folder + names.normals, image(*type, normal_channels(e)));
+  for (size_t page = 0; page < l.pages; ++page) {
+    files.emplace_back(folder + page_file_name(names.positions, page, l.pages), image(format.type, l.position_channels()));
+    if (const std::optional<TexelType> type = e.normal_image_type())
+      files.emplace_back(folder + page_file_name(names.normals, page, l.pages), image(*type, normal_channels(e)));
+  }
   files.emplace_back(folder + names.rest_mesh, 4096 + uint64_t(vertices) * (12 + 12 + 8 + 8) + uint64_t(indices) * 4);
   if (!names.profile_side_file.empty()) files.emplace_back(folder + names.profile_side_file, 4096);
   files.emplace_back(folder + names.dqskin_side_file, 8192 + uint64_t(clip.times.size()) * 200);
@@ -135,7 +137,7 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
   writer_->finish();
   const TextureOptions& o = options_.textures;
   if (o.check) {
-    VatDecodeChecker checker(writer_->encoding(), writer_->positions(), writer_->normals());
+    VatDecodeChecker checker(*writer_);
     // Every frame, and between neighbours the midpoint a runtime interpolates.
     const std::vector<double>& t = clip_.times;
     std::vector<double> times;

@@ -43,15 +43,22 @@ double ErrorHistogram::quantile(double q) const {
   return max_;
 }
 
-VatDecodeChecker::VatDecodeChecker(const VatEncoding& encoding, const VatWriter::WrittenImage& positions,
-                                   const VatWriter::WrittenImage& normals)
-    : e_(encoding), positions_name_(positions.name), normals_name_(normals.name) {
+VatDecodeChecker::VatDecodeChecker(const VatWriter& writer) : writer_(writer), e_(writer.encoding()) { open_page(0); }
+
+void VatDecodeChecker::open_page(size_t page) {
+  if (page == page_) return;
   const VatLayout& l = e_.layout;
-  positions_ = std::make_unique<TexelFileReader>(positions.temporary, positions.name, l.format.type, l.width, l.height,
-                                                 l.position_channels());
+  const VatWriter::WrittenImage positions = writer_.positions(page), normals = writer_.normals(page);
+  positions_name_ = positions.name;
+  normals_name_ = normals.name;
+  positions_ = std::make_unique<TexelFileReader>(positions.temporary, positions.name, l.format.type, l.width,
+                                                 l.page_height(page), l.position_channels());
+  normals_.reset();
   if (const std::optional<TexelType> type = e_.normal_image_type())
-    normals_ = std::make_unique<TexelFileReader>(normals.temporary, normals.name, *type, l.width, l.height,
+    normals_ = std::make_unique<TexelFileReader>(normals.temporary, normals.name, *type, l.width, l.page_height(page),
                                                  normal_channels(e_));
+  page_ = page;
+  whole_read_ = false;
 }
 
 VatDecodeChecker::~VatDecodeChecker() = default;
@@ -60,6 +67,7 @@ const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
   for (const Decoded* d : {&current_, &next_})
     if (d->frame == f) return *d;
   const VatLayout& l = e_.layout;
+  open_page(l.page_of(f));
   // Frame-major layouts read the frame's rows; openvat's frames lie in every wrap: the image, read once.
   if (l.frame_major() || !whole_read_) {
     const VatLayout::Rows rows = l.frame_rows(f);

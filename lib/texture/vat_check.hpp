@@ -35,10 +35,8 @@ private:
 
 class VatDecodeChecker {
 public:
-  // Opens the written images (temporaries) for reading. Throws OutputError when one cannot be read as
-  // written.
-  VatDecodeChecker(const VatEncoding& encoding, const VatWriter::WrittenImage& positions,
-                   const VatWriter::WrittenImage& normals);
+  // Reads the writer's images (temporaries) back. Throws OutputError when one cannot be read as written.
+  explicit VatDecodeChecker(const VatWriter& writer);
   ~VatDecodeChecker();
 
   // The deformed mesh at baked frame f; frames come in order, each followed (but the last) by its
@@ -63,7 +61,11 @@ private:
   void compare(const std::vector<float>& positions, const std::vector<float>& normals, const FrameView& reference,
                ErrorHistogram& errors, double& normal_degrees);
 
+  void open_page(size_t page);
+
+  const VatWriter& writer_;
   const VatEncoding& e_;
+  size_t page_ = SIZE_MAX;  // the page the readers are open on
   std::string positions_name_, normals_name_;
   std::unique_ptr<TexelFileReader> positions_, normals_;
   TexelImage position_band_, normal_band_;

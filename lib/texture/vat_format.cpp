@@ -104,10 +104,20 @@ std::string unsupported_reason(const VatFormat& f) {
   return {};
 }
 
+size_t VatLayout::page_frames(size_t page) const {
+  return std::min(frames_per_page, frames - page_first_frame(page));
+}
+
+size_t VatLayout::page_height(size_t page) const {
+  if (pages == 1 || page + 1 < pages) return height;
+  const size_t used = page_frames(page) * wraps;
+  return format.profile == VatProfile::kOpenVat ? height : (height == used_height ? used : std::bit_ceil(used));
+}
+
 TexelAt VatLayout::position(size_t v, size_t f) const {
   assert(v < vertices && f < frames);
-  if (format.profile == VatProfile::kOpenVat) return {v % wrap, (v / wrap) * frames + f};
-  return {v % wrap, f * wraps + v / wrap};
+  if (format.profile == VatProfile::kOpenVat) return {v % wrap, (v / wrap) * frames + f, 0};
+  return {v % wrap, (f % frames_per_page) * wraps + v / wrap, f / frames_per_page};
 }
 
 TexelAt VatLayout::packed_normal(size_t v, size_t f) const {
@@ -128,7 +138,7 @@ glm::dvec2 VatLayout::lookup_uv(size_t v) const {
 }
 
 VatLayout::Rows VatLayout::frame_rows(size_t f) const {
-  if (frame_major()) return {f * wraps, wraps};
+  if (frame_major()) return {(f % frames_per_page) * wraps, wraps};
   return {0, height};
 }
 
@@ -168,16 +178,37 @@ VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frame
     l.wrap = std::min(vertices, max_size ? max_size : kDefaultWrap);
     l.wraps = ceil_div(vertices, l.wrap);
     l.used_width = l.wrap;
-    if (l.wraps > limit / frames) throw too_large("an image " + std::to_string(limit) + " texels high");
-    l.used_height = frames * l.wraps;
     l.width = pad(l.used_width, pot);
+    // The frames one image holds: all of them, unless it would be higher than the limit (dqskin pages;
+    // the runtimes of the other profiles read one image).
+    size_t fit = l.wraps > limit ? 0 : limit / l.wraps;
+    if (pot)
+      while (fit > 0 && pad(fit * l.wraps, true) > limit) --fit;
+    if (fit == 0 || l.width > limit)
+      throw too_large("an image within " + std::to_string(limit) + " texels a side: one frame takes " +
+                      std::to_string(l.wraps) + " rows of " + std::to_string(l.width) + " texels");
+    if (fit < frames && format.profile != VatProfile::kDqskin)
+      throw too_large("an image " + std::to_string(limit) + " texels high (at most " + std::to_string(fit) +
+                      " frames do); lower --fps, or use the dqskin profile, which splits frames over pages");
+    l.frames_per_page = std::min(frames, fit);
+    l.pages = ceil_div(frames, l.frames_per_page);
+    l.used_height = l.frames_per_page * l.wraps;
     l.height = pad(l.used_height, pot);
-    if (l.width > limit || l.height > limit)
-      throw too_large("a power-of-two image within " + std::to_string(max_size) + " texels a side");
   }
+  if (l.frames_per_page == 0) l.frames_per_page = frames;
   if (l.height > size_t(INT_MAX) || l.width > size_t(INT_MAX) / 16)
     throw too_large("an image file (" + std::to_string(l.width) + " × " + std::to_string(l.height) + " texels)");
   return l;
+}
+
+std::string page_file_name(const std::string& name, size_t page, size_t pages) {
+  if (pages == 1) return name;
+  const size_t dot = name.rfind('.');
+  std::string out = name.substr(0, dot);
+  out += "_page";
+  out += std::to_string(page);
+  if (dot != std::string::npos) out += name.substr(dot);
+  return out;
 }
 
 }  // namespace dqskin::texture

@@ -50,9 +50,10 @@ VatFormat default_format(VatProfile profile);
 // octahedral normals belong to dqskin, houdini's packed normals need float or half, and so on.
 std::string unsupported_reason(const VatFormat& format);
 
-// Where one texel is, in image coordinates: x to the right, y down from the first row of the file.
+// Where one texel is: the page (image file), x to the right, y down from the first row of that file.
 struct TexelAt {
   size_t x = 0, y = 0;
+  size_t page = 0;
 };
 
 // The geometry of one clip's VAT images (positions, and normals when separate: both the same size).
@@ -62,8 +63,18 @@ struct VatLayout {
   size_t frames = 0;
   size_t wrap = 0;            // W: vertices per row
   size_t wraps = 0;           // R: rows one frame's vertices take
-  size_t width = 0, height = 0;            // the image, padding included
-  size_t used_width = 0, used_height = 0;  // the texels that hold data (top-left)
+  size_t width = 0, height = 0;            // a (full) page's image, padding included
+  size_t used_width = 0, used_height = 0;  // the texels that hold data (top-left) in a full page
+  // Frames split over several images when one would be higher than --max-size (dqskin only): pages of
+  // frames_per_page frames each, the last with the rest.
+  size_t frames_per_page = 0;
+  size_t pages = 1;
+
+  size_t page_of(size_t f) const { return f / frames_per_page; }
+  size_t page_first_frame(size_t page) const { return page * frames_per_page; }
+  size_t page_frames(size_t page) const;
+  // The height of a page's image (padding included): a full page's, or the last page's own.
+  size_t page_height(size_t page) const;
 
   // Vertex v of frame f in the position image (and the normal image when separate).
   TexelAt position(size_t v, size_t f) const;
@@ -74,8 +85,9 @@ struct VatLayout {
   // openvat and houdini the texel centre of frame 0 in [0, 1]² (houdini's over the unpadded texels, as
   // its shader scales by the active-pixel ratios).
   glm::dvec2 lookup_uv(size_t v) const;
-  // The rows frame f's texels lie in: [first, first + count). Frame-major layouts (dqskin, houdini) give
-  // the frame's own rows, so frames stream in order; openvat's lie in every wrap: the whole image.
+  // The rows frame f's texels lie in, in its page's image: [first, first + count). Frame-major layouts
+  // (dqskin, houdini) give the frame's own rows, so frames stream in order; openvat's lie in every wrap:
+  // the whole image.
   struct Rows {
     size_t first = 0, count = 0;
   };
@@ -87,9 +99,13 @@ struct VatLayout {
 
 // Chooses the layout. `max_size` bounds both sides of the image (0: the profile's default, which for
 // dqskin and houdini wraps rows at 8192 texels and leaves the height free, and for openvat keeps one row
-// per vertex, its `use_single_row`). `pot` pads both sides to powers of two. Throws InputError (naming
-// `what`) when the vertices or frames cannot fit.
+// per vertex, its `use_single_row`); dqskin splits frames over pages rather than exceed it. `pot` pads
+// both sides to powers of two. Throws InputError (naming `what`) when the vertices or frames cannot fit,
+// saying what would.
 VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frames, size_t max_size, bool pot,
                           const std::string& what);
+
+// A page's file name: `name` itself for a single page, else "<stem>_page<k><extension>".
+std::string page_file_name(const std::string& name, size_t page, size_t pages);
 
 }  // namespace dqskin::texture

@@ -19,6 +19,9 @@ std::string texel_formula(const VatLayout& l) {
   switch (l.format.profile) {
     case VatProfile::kDqskin:
     case VatProfile::kHoudini:
+      if (l.pages > 1)
+        return "vertex v of frame f is in page floor(f / frames_per_page) at (v % wrap_width, (f % frames_per_page) * "
+               "rows_per_frame + floor(v / wrap_width)), row 0 the first of the file; other texels are 0";
       return "vertex v of frame f is at (v % wrap_width, f * rows_per_frame + floor(v / wrap_width)), row 0 the "
              "first of the file; other texels are 0";
     case VatProfile::kOpenVat:
@@ -197,7 +200,7 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
   const double duration = info.times.empty() ? 0 : info.times.back() - info.times.front();
   doc["clips"] = Json::array({{{"name", info.clip},
                                {"first_row", 0},
-                               {"row_count", l.used_height},
+                               {"row_count", l.frame_major() ? l.frames * l.wraps : l.used_height},
                                {"first_frame", 0},
                                {"frame_count", l.frames},
                                {"duration", duration},
@@ -205,7 +208,21 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
   doc["wrap_width"] = l.wrap;
   doc["rows_per_frame"] = l.format.profile == VatProfile::kOpenVat ? 1 : l.wraps;
   if (l.format.profile == VatProfile::kOpenVat) doc["wraps"] = l.wraps;
-  doc["pages"] = 1;
+  doc["pages"] = l.pages;
+  if (l.pages > 1) {
+    // Frame f is in page floor(f / frames_per_page), as frame f % frames_per_page of that page's images.
+    Json table = Json::array();
+    for (size_t p = 0; p < l.pages; ++p) {
+      Json page = {{"positions", page_file_name(names.positions, p, l.pages)}};
+      if (!names.normals.empty()) page["normals"] = page_file_name(names.normals, p, l.pages);
+      page["first_frame"] = l.page_first_frame(p);
+      page["frame_count"] = l.page_frames(p);
+      page["height"] = l.page_height(p);
+      table.push_back(std::move(page));
+    }
+    doc["frames_per_page"] = l.frames_per_page;
+    doc["page_table"] = std::move(table);
+  }
   doc["width"] = l.width;
   doc["height"] = l.height;
   doc["used_width"] = l.used_width;

@@ -27,10 +27,13 @@ VatWriter::VatWriter(VatEncoding encoding, VatClipInfo info, const std::string& 
     : encoding_(std::move(encoding)), info_(std::move(info)), folder_(folder), names_(std::move(names)),
       rest_glb_(std::move(rest_glb)) {
   const VatLayout& l = encoding_.layout;
-  positions_ = std::make_unique<Image>(folder_ + "/" + names_.positions, l.format.type, l.width, l.height,
-                                       l.position_channels());
-  if (const std::optional<TexelType> type = encoding_.normal_image_type()) {
-    normals_ = std::make_unique<Image>(folder_ + "/" + names_.normals, *type, l.width, l.height, normal_channels(encoding_));
+  const std::optional<TexelType> normal_type = encoding_.normal_image_type();
+  for (size_t page = 0; page < l.pages; ++page) {
+    positions_.push_back(std::make_unique<Image>(folder_ + "/" + page_file_name(names_.positions, page, l.pages),
+                                                 l.format.type, l.width, l.page_height(page), l.position_channels()));
+    if (normal_type)
+      normals_.push_back(std::make_unique<Image>(folder_ + "/" + page_file_name(names_.normals, page, l.pages),
+                                                 *normal_type, l.width, l.page_height(page), normal_channels(encoding_)));
   }
 }
 
@@ -40,46 +43,53 @@ void VatWriter::append(const FrameView& frame) {
   const VatLayout& l = encoding_.layout;
   const size_t f = frames_written_;
   assert(f < l.frames);
+  const size_t page = l.page_of(f);
+  Image* positions = positions_[page].get();
+  Image* normals = normals_.empty() ? nullptr : normals_[page].get();
   const VatLayout::Rows rows = l.frame_rows(f);
   // Frame-major layouts get a fresh band per frame; openvat fills one band, the image, over all frames.
-  for (Image* image : {positions_.get(), normals_.get()}) {
+  for (Image* image : {positions, normals}) {
     if (!image) continue;
     if (image->band.rows() != rows.count) image->band = TexelImage(image->type, image->width, rows.count, image->channels, rows.first);
     else if (l.frame_major()) image->band.reset(rows.first);
   }
-  encode_vat_frame(encoding_, frame, f, positions_->band, normals_ ? &normals_->band : nullptr,
-                   "clip " + info_.clip);
+  encode_vat_frame(encoding_, frame, f, positions->band, normals ? &normals->band : nullptr, "clip " + info_.clip);
   ++frames_written_;
   if (!l.frame_major() && frames_written_ < l.frames) return;
   // The two images compress (ZIP) independently: the normals on a second thread.
-  std::future<void> normals;
-  if (normals_) normals = std::async(std::launch::async, [this] { normals_->writer.write(normals_->band); });
-  positions_->writer.write(positions_->band);
-  if (normals.valid()) normals.get();
+  std::future<void> written;
+  if (normals) written = std::async(std::launch::async, [normals] { normals->writer.write(normals->band); });
+  positions->writer.write(positions->band);
+  if (written.valid()) written.get();
 }
 
 void VatWriter::finish() {
   if (frames_written_ != encoding_.layout.frames)
     throw std::logic_error("VatWriter::finish: " + std::to_string(frames_written_) + " of " +
                            std::to_string(encoding_.layout.frames) + " frames appended");
-  positions_->writer.close();
-  positions_->band = TexelImage();
-  if (normals_) {
-    normals_->writer.close();
-    normals_->band = TexelImage();
-  }
+  for (auto* images : {&positions_, &normals_})
+    for (const std::unique_ptr<Image>& image : *images) {
+      image->writer.close();
+      image->band = TexelImage();
+    }
 }
 
-VatWriter::WrittenImage VatWriter::positions() const { return {positions_->writer.temporary(), positions_->file.path()}; }
+VatWriter::WrittenImage VatWriter::positions(size_t page) const {
+  return {positions_[page]->writer.temporary(), positions_[page]->file.path()};
+}
 
-VatWriter::WrittenImage VatWriter::normals() const {
-  if (!normals_) return {};
-  return {normals_->writer.temporary(), normals_->file.path()};
+VatWriter::WrittenImage VatWriter::normals(size_t page) const {
+  if (normals_.empty()) return {};
+  return {normals_[page]->writer.temporary(), normals_[page]->file.path()};
 }
 
 std::vector<std::pair<std::string, Committed>> VatWriter::commit(const DecodeCheck* check, const CommitOptions& options) {
-  std::vector<std::pair<std::string, AtomicFile*>> files = {{names_.positions, &positions_->file}};
-  if (normals_) files.emplace_back(names_.normals, &normals_->file);
+  const size_t pages = encoding_.layout.pages;
+  std::vector<std::pair<std::string, AtomicFile*>> files;
+  for (size_t page = 0; page < pages; ++page) {
+    files.emplace_back(page_file_name(names_.positions, page, pages), &positions_[page]->file);
+    if (!normals_.empty()) files.emplace_back(page_file_name(names_.normals, page, pages), &normals_[page]->file);
+  }
   std::optional<AtomicFile> rest;
   if (!names_.rest_mesh.empty()) {
     rest.emplace(folder_ + "/" + names_.rest_mesh, false);

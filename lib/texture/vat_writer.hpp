@@ -35,12 +35,13 @@ public:
 
   const VatEncoding& encoding() const { return encoding_; }
   const Box& clip_bounds() const { return info_.clip_bounds; }
-  // The images as written, for reading back: temporary path and final name (normals: empty when none).
+  // A page's images as written, for reading back: temporary path and final name (normals: empty when
+  // none).
   struct WrittenImage {
     std::string temporary, name;
   };
-  WrittenImage positions() const;
-  WrittenImage normals() const;
+  WrittenImage positions(size_t page = 0) const;
+  WrittenImage normals(size_t page = 0) const;
 
   // Writes dqskin's JSON (with `check`'s figures when given), the profile's side file and the rest mesh,
   // then commits every file: with kRefuseDifferent all are compared first, so a refusal changes none.
@@ -54,7 +55,7 @@ private:
   std::string folder_;
   VatFileNames names_;
   std::string rest_glb_;
-  std::unique_ptr<Image> positions_, normals_;
+  std::vector<std::unique_ptr<Image>> positions_, normals_;  // one per page; normals_ empty without an image
   size_t frames_written_ = 0;
 };
 

@@ -137,7 +137,7 @@ Written write_clip(const Deformed& d, const VatFormat& format, const fs::path& f
   writer.finish();
   Written w;
   {
-    VatDecodeChecker checker(writer.encoding(), writer.positions(), writer.normals());
+    VatDecodeChecker checker(writer);
     for (size_t f = 0; f < d.times.size(); ++f) {
       checker.baked_frame(f, frame_view(d.frames, f));
       if (f + 1 < d.times.size()) checker.midpoint(f, frame_view(d.midpoints, f));
@@ -236,13 +236,60 @@ TEST_F(VatWriterTest, LayoutWrapsAtTheDefaultWidthAndHonoursMaxSize) {
   EXPECT_EQ(limited.width, 4096u);
   EXPECT_EQ(limited.used_height, 6u);
   EXPECT_EQ(limited.height, 8u) << "padded to a power of two";
+  // Higher than the limit: dqskin splits the frames over pages, the other profiles' runtimes cannot.
+  const VatLayout paged = plan_vat_layout(kDqskin, 34159, 1047, 4096, false, "t");
+  EXPECT_EQ(paged.wraps, 9u);
+  EXPECT_EQ(paged.frames_per_page, 4096u / 9);
+  EXPECT_EQ(paged.pages, 3u);
+  EXPECT_EQ(paged.page_height(0), 455u * 9);
+  EXPECT_EQ(paged.page_height(2), (1047u - 2 * 455) * 9);
+  const TexelAt at = paged.position(4100, 500);
+  EXPECT_EQ(at.page, 1u);
+  EXPECT_EQ(at.x, 4u);
+  EXPECT_EQ(at.y, (500u - 455) * 9 + 1);
   try {
-    plan_vat_layout(kDqskin, 34159, 1047, 4096, false, "Brain.glb, clip 0");
+    plan_vat_layout({VatProfile::kHoudini, TexelType::kFloat32, NormalMode::kSeparate}, 34159, 1047, 4096, false,
+                    "clip 0");
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "Brain.glb, clip 0: 34159 vertices × 1047 frames do not fit an image 4096 texels high");
+              "clip 0: 34159 vertices × 1047 frames do not fit an image 4096 texels high (at most 455 frames do); "
+              "lower --fps, or use the dqskin profile, which splits frames over pages");
   }
+  EXPECT_THROW(plan_vat_layout(kDqskin, 5000, 3, 2, false, "t"), InputError) << "one frame is taller than the limit";
+}
+
+TEST_F(VatWriterTest, PagesRoundTripAndNameTheirFiles) {
+  // 216 vertices in rows of 64 (4 rows a frame) within 16 texels high: 4 frames a page, 13 frames in 4
+  // pages, the last with one frame.
+  const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf", 0, grid(13, 8));
+  VatLayout l = plan_vat_layout(kDqskin, 216, 13, 16, false, "t");  // rows of 16: 14 rows a frame
+  ASSERT_EQ(l.wraps, 14u);
+  l.wrap = l.width = l.used_width = 64;
+  l.wraps = 4;
+  l.frames_per_page = 4;
+  l.pages = 4;
+  l.used_height = l.height = 16;
+  const Written w = write_clip(d, kDqskin, dir_, 0, false, &l);
+  EXPECT_EQ(w.check.max_error, 0.0);
+  EXPECT_GT(w.decoded_motion, 0.0);
+  for (size_t p = 0; p < 4; ++p) {
+    const Image image = read_image(dir_ / ("vat_positions_page" + std::to_string(p) + ".exr"));
+    EXPECT_EQ(image.spec.height, p < 3 ? 16 : 4);
+    ASSERT_TRUE(fs::exists(dir_ / ("vat_normals_page" + std::to_string(p) + ".exr")));
+    // Frame 4p's vertex 70 at (70 % 64, 70 / 64) of page p.
+    const FrameView frame = frame_view(d.frames, 4 * p);
+    const PrimitiveView& second = frame.primitives[0].vertices > 70 ? frame.primitives[0] : frame.primitives[1];
+    const size_t k = frame.primitives[0].vertices > 70 ? 70 : 70 - frame.primitives[0].vertices;
+    EXPECT_TRUE(same_bits(image.texel(6, 1)[0], second.positions[3 * k]));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "vat_positions.exr"));
+  const json side = read_json(dir_ / "vat.json");
+  EXPECT_EQ(side["pages"], 4);
+  EXPECT_EQ(side["frames_per_page"], 4);
+  EXPECT_EQ(side["page_table"][3]["first_frame"], 12);
+  EXPECT_EQ(side["page_table"][3]["frame_count"], 1);
+  EXPECT_EQ(side["page_table"][1]["positions"], "vat_positions_page1.exr");
 }
 
 TEST_F(VatWriterTest, OpenVatLayoutIsWrapMajorWithNormalsInTheLowerHalf) {
