@@ -43,6 +43,7 @@ struct BakeSettings {
   bool dry_run = false, quiet = false, json_progress = false, force = false, verbose = false;
   TextureOptions textures;
   std::string max_error;  // "0.001" (scene units) or "0.1%" (of the clip's bounding-box diagonal)
+  std::string max_bytes;  // "64M"
   bool no_check = false;
 };
 
@@ -81,6 +82,7 @@ BakeOptions to_options(const BakeSettings& s) {
   o.textures = s.textures;
   o.textures.check = !s.no_check;
   parse_max_error(s.max_error, o.textures);
+  if (!s.max_bytes.empty()) o.textures.max_bytes = parse_byte_size(s.max_bytes, "--max-bytes");
   return o;
 }
 
@@ -146,6 +148,8 @@ int run_bake(const BakeSettings& given) {
     progress.done();
     if (options.dry_run) {
       for (const BakeOutput& o : report.outputs) std::cout << printable(options.out_dir + '/' + o.path) << '\n';
+      if (!settings.quiet)
+        for (const std::string& line : report.plans) std::fprintf(stderr, "%s\n", printable(line).c_str());
       print_input_messages(report.inputs, settings.quiet);
       const bool any_planned = std::any_of(report.inputs.begin(), report.inputs.end(),
                                            [](const InputResult& in) { return in.error.empty(); });
@@ -208,6 +212,11 @@ Command add_bake_command(CLI::App& app) {
                        "Fail a clip whose textures decode further than this from the deformed mesh, at a frame or "
                        "between two: a length in scene units, or a percentage of the clip's bounding-box diagonal")
       ->type_name("LENGTH|P%");
+  bake_cmd->add_option("--max-bytes", bake.max_bytes,
+                       "GPU memory a clip's vertex-animation textures may take (uncompressed: 64M, 1.5G). With "
+                       "--max-error or --max-bytes the texel type (unless --encoding) and a frame decimation are "
+                       "chosen to fit; --dry-run prints the choices")
+      ->type_name("BYTES");
   bake_cmd->add_flag("--no-check", bake.no_check,
                      "Skip the decode-back check (every texture read back from its file and decoded as its shader "
                      "does, against the deformed meshes)");

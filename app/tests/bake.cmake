@@ -37,6 +37,27 @@ dqskin_bake_test(dib_on_the_gpu_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x 
   STDERR "^dqskin: --mode dib runs on the CPU reference only")
 dqskin_bake_test(dib_on_fast_cpu_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --mode dib --backend fast-cpu
   STDERR "^dqskin: --mode dib runs on the CPU reference only")
+# Texture profiles and the planner: unknown names, a budget no choice meets (one line, no texture), and
+# the plan a dry run prints.
+set(twist ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf)
+dqskin_bake_test(unknown_vat_profile_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --format vat --vat-profile unity
+  STDERR "^dqskin: --vat-profile 'unity' is not one of dqskin, openvat, houdini\n$")
+dqskin_bake_test(octahedral_normals_are_dqskins 2 ARGS bake ${rig} -o ${bake_scratch}/x --format vat --vat-profile openvat
+  --normals oct8 STDERR "^dqskin: octahedral normals \\(oct8\\) are dqskin's; the openvat profile stores normals separate or packed\n$")
+dqskin_bake_test(unknown_bones_profile_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --format bones --bones-profile mat2
+  STDERR "^dqskin: --bones-profile 'mat2' is not one of dq, dq-cocos, mat3x4, mat4\n$")
+dqskin_bake_test(bad_max_error_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --format vat --max-error 1mm
+  STDERR "^dqskin: --max-error '1mm' is not a positive length or percentage \\(0.001, 0.1%\\)\n$")
+dqskin_bake_test(unmet_max_error_exits_2 2 ARGS bake ${twist} -o ${bake_scratch}/unmet --format vat --encoding png8
+  --max-error 0.00001 STDERR "^dqskin: [^\n]*twisted_cylinder.gltf: clip twist: no texture meets --max-error 10 um; the most accurate is png8 at 30 fps \\([0-9.]+ mm, [0-9.]+ KiB\\)\n$")
+add_test(NAME cli.bake_unmet_max_error_leaves_nothing COMMAND sh -c
+  "test ! -e '${bake_scratch}/unmet/twisted_cylinder'")
+set_tests_properties(cli.bake_unmet_max_error_leaves_nothing PROPERTIES DEPENDS cli.bake_unmet_max_error_exits_2
+  FIXTURES_REQUIRED bake_scratch)
+dqskin_bake_test(dry_run_prints_the_plan 0 ARGS bake ${twist} -o ${bake_scratch}/plan --format vat --vat-profile openvat
+  --encoding half --max-bytes 100K --dry-run STDOUT "twisted_cylinder-remap_info.json"
+  STDERR "plan for clip twist \\(--max-bytes 100 KiB\\)[^\n]*\n.*\\* half +6 frames at 5 fps, 792 x 12, 55.7 KiB[^\n]*<- chosen")
+
 # The summary, --verbose and the manifest say which deformer ran.
 dqskin_bake_test(fast_cpu_says_so 0 ARGS bake ${rig} -o ${bake_scratch}/fast --format ply --backend fast-cpu -v
   STDERR "frames deformed on fast-cpu \\((avx2-fma|baseline)\\).*\ndeformer: fast-cpu [^\n]*; backend: fast-cpu, dqskin fast CPU deformer")

@@ -18,6 +18,7 @@
 #include "bones_bake.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "vat_bake.hpp"
+#include "vat_planner.hpp"
 #include "../concurrency/parallel_for.hpp"
 
 #include <algorithm>
@@ -162,15 +163,24 @@ public:
     journal_.make_folders(ledger_.absolute(clip.folder));
     if (clip.clip_mine) write_clip_files(clip);
 
-    const std::vector<size_t> frames = frames_to_deform(clip, options_.formats);
+    std::vector<size_t> frames = frames_to_deform(clip, options_.formats);
     if (frames.empty()) return 0;
+    const size_t counted = frames.size();  // what the progress counter expects of this clip
     std::unique_ptr<VatClipBake> vat;
     if (clip.clip_mine && has(options_.formats, BakeFormat::kVat))
       vat = std::make_unique<VatClipBake>(*deformer_, input_, clip, options_);
+    // A texture of other frames than the bake's (the planner decimated them) deforms its own; the bake's
+    // pass then needs only the per-frame outputs' frames.
+    VatClipBake* shared = vat && vat->uses_bake_frames() ? vat.get() : nullptr;
+    if (vat && !shared) {
+      vat->encode_own_frames(*deformer_);
+      frames = frames_to_deform(clip, options_.formats & ~unsigned(BakeFormat::kVat));
+      ledger_.progress.add(counted - frames.size(), input_.path, clip.name);
+    }
     std::vector<double> times;
     for (size_t f : frames) times.push_back(clip.times[f]);
-    auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, vat.get()); };
-    deformer_->run(clip.clip, times, sink);
+    auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, shared); };
+    if (!times.empty()) deformer_->run(clip.clip, times, sink);
     if (vat) {
       const Clock::time_point start = Clock::now();
       std::vector<std::string> names;
@@ -185,7 +195,7 @@ public:
         ledger_.record_check({input_.path, clip.name, "vat", c->max_error, c->p99_error, c->max_midpoint_error,
                               c->p99_midpoint_error, c->max_normal_degrees, c->max_midpoint_normal_degrees, c->samples});
     }
-    return frames.size();
+    return counted;
   }
 
 private:
@@ -339,7 +349,15 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
                      " free");
 
   if (options.dry_run) {
-    for (const InputPlan& plan : plans) {
+    for (InputPlan& plan : plans) {
+      // With a texture budget, the planner's choices: it deforms each clip on the CPU.
+      if (plan.error.empty() && has(options.formats, BakeFormat::kVat) && planner_active(options.textures)) {
+        try {
+          for (std::string& line : dry_run_plans(plan, options)) report.plans.push_back(std::move(line));
+        } catch (const InputError& e) {
+          plan.error = e.what();
+        }
+      }
       report.inputs.push_back({plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}});
       for (const ClipPlan& clip : plan.clips)
         for (std::string& file : planned_files(plan, clip, options)) report.outputs.push_back({std::move(file), 0, {}, false});

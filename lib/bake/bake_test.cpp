@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -239,6 +240,105 @@ TEST_F(BakeTest, ShardsTogetherEqualTheWholeBake) {
   const auto whole = tree(root_ / "whole", false), sharded = tree(root_ / "sharded", false);
   EXPECT_EQ(whole.size(), listed.size());
   EXPECT_TRUE(whole == sharded) << "the union of the shards equals the whole bake, byte for byte";
+}
+
+// Every texture profile (and a planner budget): two bakes byte-identical, and three shards' files together
+// equal to the whole bake.
+TEST_F(BakeTest, TextureProfilesAreDeterministicAndShardsUnionToTheWhole) {
+  const std::vector<std::string> inputs = {rig("twisted_cylinder.gltf"), rig("two_skins.gltf")};
+  const unsigned textures = unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones);
+  struct Case {
+    const char *vat, *bones, *encoding;
+    uint64_t max_bytes;
+  };
+  for (const Case& c : {Case{"openvat", "dq-cocos", "", 0}, Case{"houdini", "mat4", "half", 0},
+                        Case{"dqskin", "mat3x4", "png16", 0}, Case{"openvat", "dq", "", 60000}}) {
+    SCOPED_TRACE(std::string(c.vat) + " " + c.bones + " " + c.encoding);
+    const std::string name = std::string(c.vat) + c.bones + c.encoding + std::to_string(c.max_bytes);
+    auto with = [&](const std::string& folder) {
+      BakeOptions o = options(name + "/" + folder, textures);
+      o.textures.vat_profile = c.vat;
+      o.textures.bones_profile = c.bones;
+      o.textures.encoding = c.encoding;
+      o.textures.max_bytes = c.max_bytes;
+      return o;
+    };
+    const BakeReport first = bake(inputs, with("a"));
+    ASSERT_FALSE(first.any_failed()) << first.inputs[0].error << first.inputs[1].error;
+    EXPECT_EQ(first.checks.size(), 5u) << "two VATs and three bone textures, each checked";
+    ASSERT_FALSE(bake(inputs, with("b")).any_failed());
+    for (size_t i = 0; i < 3; ++i) {
+      BakeOptions o = with("sharded");
+      o.shard = {i, 3};
+      ASSERT_FALSE(bake(inputs, o).any_failed());
+    }
+    const auto a = tree(root_ / name / "a", true), b = tree(root_ / name / "b", true);
+    EXPECT_GT(a.size(), 10u);
+    EXPECT_TRUE(a == b) << "byte-identical run to run";
+    EXPECT_TRUE(tree(root_ / name / "a", false) == tree(root_ / name / "sharded", false)) << "shards union to the whole";
+  }
+}
+
+TEST_F(BakeTest, PlannerDecimatesFramesToFitTheBytes) {
+  // The twisted cylinder's twist (31 frames at 30 fps) in 100 kB of half texels: fewer frames, interpolated.
+  BakeOptions o = options("planned", unsigned(BakeFormat::kVat));
+  o.textures.vat_profile = "openvat";
+  o.textures.encoding = "half";
+  o.textures.max_bytes = 100000;
+  const BakeReport r = bake({rig("twisted_cylinder.gltf")}, o);
+  ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;
+  const nlohmann::json side = nlohmann::json::parse(read_file(root_ / "planned/twisted_cylinder/twist/vat.json"));
+  const size_t frames = frame_times(load_asset(rig("twisted_cylinder.gltf")).clips[0], o.frames).size();
+  EXPECT_LT(side["frame_count"].get<size_t>(), frames);
+  EXPECT_GT(side["plan"]["frame_step"].get<size_t>(), 1u);
+  EXPECT_LE(side["plan"]["gpu_bytes"].get<uint64_t>(), 100000u);
+  EXPECT_EQ(side["fps"].get<double>(), 30.0 / side["plan"]["frame_step"].get<double>());
+  // The check, at the texture's frames and midpoints, stays within what the planner expected.
+  EXPECT_LE(side["decode_check"]["max_midpoint_error"].get<double>(), side["plan"]["expected_error"].get<double>() * 1.001);
+  EXPECT_LE(side["decode_check"]["max_error"].get<double>(), side["plan"]["encoding_error"].get<double>());
+}
+
+TEST_F(BakeTest, AnErrorBudgetNoChoiceMeetsFailsTheInputAndLeavesNoTexture) {
+  // png8 cannot hold the twist within 10 µm: the planner says so with the figures, nothing is written.
+  BakeOptions o = options("refused", unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kPly));
+  o.textures.encoding = "png8";
+  o.textures.max_error = 1e-5;
+  const BakeReport r = bake({rig("twisted_cylinder.gltf")}, o);
+  ASSERT_TRUE(r.any_failed());
+  EXPECT_NE(r.inputs[0].error.find("clip twist: no texture meets --max-error 10 um; the most accurate is png8 at 30 fps (9.01 mm"),
+            std::string::npos)
+      << r.inputs[0].error;
+  EXPECT_FALSE(fs::exists(root_ / "refused" / "twisted_cylinder")) << "nothing under a final name";
+  // The dry run shows the same refusal, and with a reachable budget the table of choices.
+  o.dry_run = true;
+  EXPECT_TRUE(bake({rig("twisted_cylinder.gltf")}, o).any_failed());
+  o.textures.max_error = 0.05;
+  const BakeReport dry = bake({rig("twisted_cylinder.gltf")}, o);
+  ASSERT_FALSE(dry.any_failed()) << dry.inputs[0].error;
+  ASSERT_FALSE(dry.plans.empty());
+  EXPECT_EQ(std::count_if(dry.plans.begin(), dry.plans.end(),
+                          [](const std::string& l) { return l.find("<- chosen") != std::string::npos; }),
+            1);
+}
+
+TEST_F(BakeTest, BoneTextureMissingTheErrorBudgetLeavesNoTexture) {
+  // mat4 is LBS: the twisted cylinder's candy wrapper is half a unit from DQS, over a 1 mm budget.
+  BakeOptions o = options("bones", unsigned(BakeFormat::kBones));
+  o.textures.bones_profile = "mat4";
+  o.textures.max_error = 1e-3;
+  const BakeReport r = bake({rig("twisted_cylinder.gltf")}, o);
+  ASSERT_TRUE(r.any_failed());
+  EXPECT_NE(r.inputs[0].error.find("clip twist, bones_skin0: the texture skins (lbs) to within 50 cm of the deformed "
+                                   "mesh (--mode dqs), over --max-error 1 mm"),
+            std::string::npos)
+      << r.inputs[0].error;
+  EXPECT_FALSE(fs::exists(root_ / "bones" / "twisted_cylinder"));
+  // Baked with LBS, the same texture passes.
+  o.mode = BlendMode::kLbs;
+  const BakeReport lbs = bake({rig("twisted_cylinder.gltf")}, o);
+  ASSERT_FALSE(lbs.any_failed()) << lbs.inputs[0].error;
+  ASSERT_EQ(lbs.checks.size(), 1u);
+  EXPECT_LT(lbs.checks[0].max_error, 1e-6);
 }
 
 TEST_F(BakeTest, DifferentExistingOutputIsRefusedUnlessForced) {

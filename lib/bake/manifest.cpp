@@ -72,6 +72,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     if (!t.normals.empty()) textures["normals"] = t.normals;
     if (t.max_size) textures["max_size"] = t.max_size;
     if (t.pot) textures["pot"] = true;
+    if (t.max_bytes > 0) textures["max_bytes"] = t.max_bytes;
     if (t.max_error > 0) {
       textures["max_error"] = t.max_error;
       textures["max_error_relative"] = t.max_error_relative;

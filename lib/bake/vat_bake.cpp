@@ -3,6 +3,7 @@
 #include "../diff/diff_numbers.hpp"
 #include "../texture/rest_glb.hpp"
 #include "../texture/vat_measure.hpp"
+#include "vat_planner.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/texture_output.hpp"
 
@@ -65,7 +66,19 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
     for (const Primitive& p : input.asset->meshes[size_t(inst.mesh)].primitives) indices += std::max(p.indices.size(), p.vertex_count());
   const std::string what = "clip " + clip.name;
   if (vertices == 0) throw InputError(what + ": no vertices to bake into a vertex-animation texture");
-  const VatLayout l = plan_vat_layout(format, vertices, clip.times.size(), options.max_size, options.pot, what);
+  // With a budget the planner may keep fewer frames: the estimate takes the most that fit (an upper bound),
+  // and leaves a clip that fits at no decimation to the planner's message.
+  std::optional<VatLayout> fits;
+  for (size_t step = 1; step <= (planner_active(options) ? 8u : 1u) && !fits; ++step) {
+    const size_t frames = (clip.times.size() - 1 + step - 1) / step + 1;
+    try {
+      fits = plan_vat_layout(format, vertices, frames, options.max_size, options.pot, what);
+    } catch (const InputError&) {
+      if (!planner_active(options)) throw;
+    }
+  }
+  if (!fits) fits = plan_vat_layout(format, vertices, 1, 0, false, what);  // names only; the planner will refuse
+  const VatLayout& l = *fits;
   VatEncoding e;
   e.layout = l;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
@@ -88,15 +101,14 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
 }
 
 VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
-    : input_(input), clip_(clip), options_(options), what_("clip " + clip.name) {
+    : input_(input), clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times) {
   const TextureOptions& o = options.textures;
   VatEncoding e;
-  const VatFormat format = chosen_format(o);
+  VatFormat format = chosen_format(o);
   const std::vector<VatSource> sources = vat_sources(*input.asset, input.instances);
   size_t vertices = 0;
   for (const VatSource& s : sources) vertices += s.vertices;
   if (vertices == 0) throw InputError(what_ + ": no vertices to bake into a vertex-animation texture");
-  e.layout = plan_vat_layout(format, vertices, clip.times.size(), o.max_size, o.pot, what_);
 
   // The rest mesh: the rest pose (dqskin, openvat) or the clip's first frame (houdini, whose offsets start
   // there; it comes from the measuring pass).
@@ -107,18 +119,32 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
     if (format.profile == VatProfile::kOpenVat) e.rest = all_positions(frame_view(rest, 0));
   }
 
+  // With a budget, the planner chooses the texel type and the frames.
+  double fps = clip.fps;
+  std::optional<VatChoice> planned;
+  if (planner_active(o)) {
+    const VatPlan plan = plan_vat(deformer, input, clip, o, e.rest);
+    planned = plan.choices[plan.chosen];
+    format.type = planned->format.type;
+    times_ = plan.times;
+    if (planned->step > 1) fps = planned->fps;
+  }
+  e.layout = plan_vat_layout(format, vertices, times_.size(), o.max_size, o.pot, what_);
+
   // The measuring pass: bounds of what is stored, of each frame and of the clip; whether it loops.
   VatClipInfo info;
   info.asset = input.stem;
   info.clip = clip.name;
-  info.times = clip.times;
-  info.fps = clip.fps;
+  info.times = times_;
+  info.fps = fps;
   info.sources = sources;
+  if (planned) info.plan = {to_string(planned->format.type), planned->step, planned->error(), planned->encoding_error,
+                            planned->interpolation_error, planned->bytes};
   VatMeasure measure(e);
-  deformer.run(clip.clip, clip.times, [&](const DeformedBatch& batch) {
+  deformer.run(clip.clip, times_, [&](const DeformedBatch& batch) {
     for (size_t k = 0; k < batch.frame_count; ++k) {
       if (batch.first_frame + k == 0 && format.profile == VatProfile::kHoudini) rest = copy_frame(batch, k);
-      measure.add(frame_view(batch, k), batch.first_frame + k, clip.times.size());
+      measure.add(frame_view(batch, k), batch.first_frame + k, times_.size());
     }
   });
   measure.finish(info, what_);
@@ -127,6 +153,14 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem);
   writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));
+}
+
+bool VatClipBake::uses_bake_frames() const { return times_ == clip_.times; }
+
+void VatClipBake::encode_own_frames(Deformer& deformer) {
+  deformer.run(clip_.clip, times_, [&](const DeformedBatch& batch) {
+    for (size_t k = 0; k < batch.frame_count; ++k) writer_->append(frame_view(batch, k));
+  });
 }
 
 VatClipBake::~VatClipBake() = default;
@@ -139,7 +173,7 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
   if (o.check) {
     VatDecodeChecker checker(*writer_);
     // Every frame, and between neighbours the midpoint a runtime interpolates.
-    const std::vector<double>& t = clip_.times;
+    const std::vector<double>& t = times_;
     std::vector<double> times;
     for (size_t f = 0; f < t.size(); ++f) {
       times.push_back(t[f]);

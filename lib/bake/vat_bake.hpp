@@ -35,8 +35,12 @@ public:
   VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
   ~VatClipBake();
 
+  // Whether the texture holds the bake's own frames (the clip's times), so that the bake's pass feeds it
+  // through append(); else (the planner decimated them) encode_own_frames() deforms its frames.
+  bool uses_bake_frames() const;
   // The bake's pass: every frame of the clip, in order.
   void append(const FrameView& frame);
+  void encode_own_frames(Deformer& deformer);
 
   // Completes the images, runs the decode-back check (unless options.vat.check is off) and commits every
   // file. Throws InputError naming the clip when the decoded texture misses --max-error, decodes to one
@@ -51,7 +55,8 @@ private:
   const InputPlan& input_;
   const ClipPlan& clip_;
   const BakeOptions& options_;
-  std::string what_;  // "<input>, clip <name>" for messages
+  std::string what_;  // "clip <name>" for messages
+  std::vector<double> times_;  // the texture's frames
   std::unique_ptr<texture::VatWriter> writer_;
   std::optional<texture::DecodeCheck> check_;
 };

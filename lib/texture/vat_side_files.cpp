@@ -266,6 +266,13 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
                              {"content", raw ? "unit normal xyz (0 where the primitive has none), w = 0" : normal_formula(e)}};
   }
   doc["attributes"] = std::move(attributes);
+  if (info.plan)
+    doc["plan"] = {{"encoding", info.plan->type},
+                   {"frame_step", info.plan->step},
+                   {"expected_error", info.plan->expected_error},
+                   {"encoding_error", info.plan->encoding_error},
+                   {"interpolation_error", info.plan->interpolation_error},
+                   {"gpu_bytes", info.plan->bytes}};
   if (check) doc["decode_check"] = check->to_json();
   return dump(doc, 2);
 }

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,14 @@ struct VatClipInfo {
   std::vector<VatSource> sources;
   std::vector<Box> frame_bounds;  // the animated mesh at each frame, glTF world space
   Box clip_bounds;                // over the clip
+  // What the planner chose, when it ran (--max-error, --max-bytes).
+  struct Plan {
+    std::string type;
+    size_t step = 1;  // every step-th frame of the clip's grid
+    double expected_error = 0, encoding_error = 0, interpolation_error = 0;
+    uint64_t bytes = 0;  // GPU memory of the images
+  };
+  std::optional<Plan> plan;
 };
 
 // The decode-back check's figures for one texture (also recorded in manifest.json).

@@ -514,8 +514,11 @@ TEST_F(VatWriterTest, HalfOverflowIsAnErrorNamingFrameAndVertex) {
   d.frames.primitives[0].positions = {0, 0, 0, 1, 70000, 2};
   VatEncoding e;
   e.layout = plan_vat_layout({VatProfile::kDqskin, TexelType::kHalf, NormalMode::kNone}, 2, 1, 0, false, "t");
-  VatWriter writer(e, {"big", "clip", {0.0}, 0, false, {}, {}, {}}, dir_.string(),
-                   vat_file_names(e.layout.format, "big"), "");
+  VatClipInfo info;
+  info.asset = "big";
+  info.clip = "clip";
+  info.times = {0.0};
+  VatWriter writer(e, info, dir_.string(), vat_file_names(e.layout.format, "big"), "");
   try {
     writer.append(frame_view(d.frames, 0));
     FAIL() << "expected InputError";

@@ -34,6 +34,7 @@ struct TextureOptions {
   bool pot = false;                    // pad images to powers of two
   double max_error = 0;                // largest decoded error allowed, scene units; 0: no limit
   bool max_error_relative = false;     // max_error is a fraction of the clip's bounding-box diagonal
+  uint64_t max_bytes = 0;              // GPU memory a clip's vertex-animation textures may take; 0: no limit
   bool check = true;                   // read every texture back and decode it (the decode-back check)
 };
 
@@ -85,6 +86,7 @@ struct BakeReport {
   std::vector<InputResult> inputs;
   std::vector<BakeOutput> outputs;  // sorted by path; with dry_run, what would be written
   std::vector<TextureCheck> checks;  // sorted by input, clip and texture
+  std::vector<std::string> plans;    // with dry_run and a texture budget: the planner's tables
   std::string manifest;             // path of the manifest written (empty for dry runs)
   GpuContextInfo gpu;               // what deformed: the GPU's context, or backend "fast-cpu" or "cpu"
   std::string deformer;             // describe(DeformPath): "gpu", "fast-cpu (avx2-fma)", "cpu-reference"
