@@ -187,7 +187,10 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
       }
     });
     check_ = checker.result();
-    if (checker.reference_motion() > 0 && checker.decoded_motion() == 0)
+    // A clip that moves further than its encoding resolves (float noise aside) must not decode to one pose.
+    const double resolvable =
+        std::max(2 * position_encoding_bound(writer_->encoding()), 1e-6 * writer_->clip_bounds().diagonal());
+    if (checker.reference_motion() > resolvable && checker.decoded_motion() == 0)
       throw InputError(what_ + ": every frame of the texture decodes to one pose while the clip moves " +
                        length(checker.reference_motion()) + " (a bake of the rest pose?)");
     if (o.max_error > 0) {

@@ -132,7 +132,13 @@ void encode_vat_frame(const VatEncoding& e, const FrameView& frame, size_t f, Te
     const uint32_t m = unorm_max(t);
     if (!std::isfinite(value)) fail(v, "the value to store is not finite");
     if (m) {
-      if (value < lo || value > hi) fail(v, "value " + std::to_string(value) + " lies outside the remap bounds");
+      if (value < lo || value > hi) {
+        std::string why = "value " + std::to_string(value) + " lies outside the remap bounds [" + std::to_string(lo) +
+                          ", " + std::to_string(hi) + "]";
+        if (fmt.profile == VatProfile::kHoudini)
+          why += " (Houdini's PNG encodings remap offsets by the clip's absolute bounds; use --encoding half or float)";
+        fail(v, why);
+      }
       image.set(x, y, c, float(encode_unorm(value, lo, hi, m)));
       return;
     }

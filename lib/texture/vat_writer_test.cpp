@@ -589,6 +589,55 @@ INSTANTIATE_TEST_SUITE_P(
                     RoundTrip{{VatProfile::kHoudini, TexelType::kHalf, NormalMode::kPacked}, 50.0}),
     [](const testing::TestParamInfo<RoundTrip>& p) { return format_name(p.param.format); });
 
+// The shared sample models: eight frames spread over the first clip of each, in one format of each profile
+// family, decoded within the same bounds as the rigs.
+class VatSharedRoundTrip : public VatWriterTest, public testing::WithParamInterface<const char*> {};
+
+TEST_P(VatSharedRoundTrip, DecodesWithinTheEncodingsBound) {
+  const fs::path path = fs::path(DQSKIN_SHARED_TESTDATA_DIR) / GetParam();
+  if (!fs::exists(path)) GTEST_SKIP() << "shared test data not found: " << path;
+  const Asset probe = load_asset(path.string());
+  std::vector<double> times = {0.0};
+  if (!probe.clips.empty()) {
+    const std::vector<double> all = frame_times(probe.clips[0], FrameSpec{});
+    times.clear();
+    for (size_t i = 0; i < 8; ++i) times.push_back(all[i * (all.size() - 1) / 7]);
+  }
+  const Deformed d = deform_clip(path.string(), 0, times);
+  const std::pair<VatFormat, double> formats[] = {
+      {{VatProfile::kDqskin, TexelType::kFloat32, NormalMode::kSeparate}, 1e-4},
+      {{VatProfile::kDqskin, TexelType::kUnorm16, NormalMode::kOct16}, 0.005},
+      {{VatProfile::kOpenVat, TexelType::kHalf, NormalMode::kPacked}, 0.1},
+      {{VatProfile::kOpenVat, TexelType::kUnorm8, NormalMode::kSeparate}, 0.6},
+      {{VatProfile::kHoudini, TexelType::kHalf, NormalMode::kSeparate}, 0.2}};
+  for (const auto& [format, degrees] : formats) {
+    SCOPED_TRACE(format_name(format));
+    const fs::path folder = dir_ / format_name(format);
+    fs::create_directories(folder);
+    // Images of 2048 texels a side at most, so that the larger models wrap.
+    const Written w = write_clip(d, format, folder, 2048);
+    EXPECT_LE(w.check.max_error, position_encoding_bound(w.encoding));
+    EXPECT_LE(w.check.max_normal_degrees, degrees);
+    // A clip that moves by more than the encoding can resolve decodes to that motion (greenman's first
+    // clip moves by float noise only: 1e-5).
+    if (w.reference_motion > 4 * position_encoding_bound(w.encoding)) {
+      EXPECT_GT(w.decoded_motion, 0.5 * w.reference_motion);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, VatSharedRoundTrip,
+                         testing::Values("CesiumMan/CesiumMan.glb", "Fox/Fox.glb", "RiggedFigure/RiggedFigure.glb",
+                                         "RiggedSimple/RiggedSimple.glb", "BrainStem/BrainStem.glb",
+                                         "raylib_robot/robot.glb", "raylib_greenman/greenman.glb",
+                                         "RecursiveSkeletons/RecursiveSkeletons.glb", "SimpleSkin/SimpleSkin.gltf",
+                                         "AnimatedMorphCube/AnimatedMorphCube.glb", "InterpolationTest/InterpolationTest.glb"),
+                         [](const testing::TestParamInfo<const char*>& model) {
+                           std::string name = fs::path(model.param).stem().string();
+                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           return name;
+                         });
+
 // The rest mesh of every rig and shared model, for the dqskin and openvat layouts: read back with dqskin's
 // own loader, its positions are the rest frame's and each vertex's TEXCOORD_1 leads back to its texel;
 // the source's TEXCOORD_0 is kept. With DQSKIN_REST_GLB_SAMPLE_DIR set the files are also written there,
