@@ -199,6 +199,10 @@ Command add_bake_command(CLI::App& app) {
                        "Texel type: float or half (EXR), png16 or png8 (remapped to recorded bounds). Default: the "
                        "profile's")
       ->type_name("TYPE");
+  bake_cmd->add_option("--exr-compression", bake.textures.exr_compression,
+                       "Lossless EXR compression: zip, piz, rle, zips or none. Default: zip for float (smallest), "
+                       "piz for half (smaller and faster than zip)")
+      ->type_name("NAME");
   bake_cmd->add_option("--normals", bake.textures.normals,
                        "VAT normals: none, separate (an image of their own), packed (as the profile packs them), "
                        "oct8 or oct16 (dqskin: octahedral in a PNG). Default: the profile's")

@@ -5,7 +5,9 @@
 // of raw texels per second), and whether the texels came back bit for bit. Not a CTest test: its numbers
 // only mean something on a quiet machine (docs/PERFORMANCE.md, "Texture profiles").
 //
-// Usage: dqskin_bench_exr FILE.exr… [--threads N]   (N: OpenEXR's worker threads, default 0 = none)
+// Usage: dqskin_bench_exr FILE.exr… [--threads N] [--methods LIST]
+//   N: OpenImageIO's exr_threads (OpenEXR's worker threads; default 1, one worker beside the caller)
+//   LIST: compressions to try, comma-separated (default: all lossless ones)
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -39,13 +41,24 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 int main(int argc, char** argv) {
   std::vector<std::string> files;
-  int threads = 0;
+  int threads = 1;
+  std::vector<std::string> only;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else files.push_back(argv[i]);
+    if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
+      threads = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--methods") == 0 && i + 1 < argc) {
+      std::string list = argv[++i];
+      for (size_t start = 0; start <= list.size();) {
+        const size_t comma = std::min(list.find(',', start), list.size());
+        only.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+      }
+    } else {
+      files.push_back(argv[i]);
+    }
   }
   if (files.empty()) {
-    std::fprintf(stderr, "usage: dqskin_bench_exr FILE.exr... [--threads N]\n");
+    std::fprintf(stderr, "usage: dqskin_bench_exr FILE.exr... [--threads N] [--methods LIST]\n");
     return 2;
   }
   OIIO::attribute("exr_threads", threads);
@@ -63,6 +76,7 @@ int main(int argc, char** argv) {
     std::printf("| compression | bytes | of raw | encode MB/s | decode MB/s | lossless |\n|---|---|---|---|---|---|\n");
     std::vector<std::string> methods = {"none", "rle", "zips", "zip:1", "zip:4", "zip:6", "zip:9", "piz"};
     if (half) methods.push_back("pxr24");
+    if (!only.empty()) methods = only;
     for (const std::string& method : methods) {
       double encode = 1e30, decode = 1e30;
       uintmax_t bytes = 0;

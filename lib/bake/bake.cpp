@@ -167,8 +167,11 @@ public:
     if (frames.empty()) return 0;
     const size_t counted = frames.size();  // what the progress counter expects of this clip
     std::unique_ptr<VatClipBake> vat;
-    if (clip.clip_mine && has(options_.formats, BakeFormat::kVat))
+    if (clip.clip_mine && has(options_.formats, BakeFormat::kVat)) {
+      const Clock::time_point start = Clock::now();  // the texture's own passes: rest, planner, measuring
       vat = std::make_unique<VatClipBake>(*deformer_, input_, clip, options_);
+      ledger_.add_time(&BakeStageTimes::check, since(start));
+    }
     // A texture of other frames than the bake's (the planner decimated them) deforms its own; the bake's
     // pass then needs only the per-frame outputs' frames.
     VatClipBake* shared = vat && vat->uses_bake_frames() ? vat.get() : nullptr;
@@ -182,7 +185,10 @@ public:
     auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, shared); };
     if (!times.empty()) deformer_->run(clip.clip, times, sink);
     if (vat) {
-      const Clock::time_point start = Clock::now();
+      Clock::time_point start = Clock::now();
+      vat->complete_images();  // the last rows; a PNG is compressed here, whole
+      ledger_.add_time(&BakeStageTimes::encode, since(start));
+      start = Clock::now();
       std::vector<std::string> names;
       std::vector<Committed> committed;
       for (auto& [name, c] : vat->finish(*deformer_, {options_.overwrite, &journal_})) {
@@ -306,7 +312,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
                      " runs on the CPU reference only; use --backend cpu (or auto)");
 
   // Texture names are checked before any work.
-  if (has(options.formats, BakeFormat::kVat)) (void)vat_format(options.textures);
+  if (has(options.formats, BakeFormat::kVat) || has(options.formats, BakeFormat::kBones)) (void)vat_format(options.textures);
   if (BoneProfile p{}; has(options.formats, BakeFormat::kBones) && !parse_bone_profile(options.textures.bones_profile, p))
     throw InputError("--bones-profile '" + options.textures.bones_profile + "' is not one of dq, dq-cocos, mat3x4, mat4");
   if (has(options.formats, BakeFormat::kBones) && !options.textures.encoding.empty() &&

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -80,10 +81,10 @@ void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t 
         if (!prim.normals.empty() && !prim.targets[k].normals.empty())
           nrm += morph[k] * glm::dvec3(prim.targets[k].normals[v]);
       }
-      std::vector<int> joints(per);
+      std::array<int, 8> joints{};  // glTF's JOINTS_0 and JOINTS_1 at most (the loader's limit)
       for (size_t i = 0; i < per; ++i) joints[i] = prim.joints[v * per + i];
       const std::span<const float> weights(&prim.weights[v * per], per);
-      const SkinnedVertex s = skin_vertex(image, frame, joints, weights, p, nrm);
+      const SkinnedVertex s = skin_vertex(image, frame, std::span<const int>(joints.data(), per), weights, p, nrm);
       const glm::dvec3 want(reference.positions[3 * v], reference.positions[3 * v + 1], reference.positions[3 * v + 2]);
       out.errors.add(glm::length(s.position - want));
       out.bounds.add(want);
@@ -133,7 +134,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
     const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
     writers.push_back(std::make_unique<texture::BoneTextureWriter>(
         options.out_dir + "/" + base + ".exr", options.out_dir + "/" + base + ".json", pack_bones(profile, frames),
-        bone_texel_type(o), asset, skin, clip.times, clip.fps));
+        bone_texel_type(o), asset, skin, clip.times, clip.fps, o.exr_compression));
     bases.push_back(base);
   }
 

@@ -70,6 +70,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     json textures = {{"vat_profile", t.vat_profile}, {"bones_profile", t.bones_profile}};
     if (!t.encoding.empty()) textures["encoding"] = t.encoding;
     if (!t.normals.empty()) textures["normals"] = t.normals;
+    if (!t.exr_compression.empty()) textures["exr_compression"] = t.exr_compression;
     if (t.max_size) textures["max_size"] = t.max_size;
     if (t.pot) textures["pot"] = true;
     if (t.max_bytes > 0) textures["max_bytes"] = t.max_bytes;

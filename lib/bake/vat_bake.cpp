@@ -2,6 +2,7 @@
 
 #include "../diff/diff_numbers.hpp"
 #include "../texture/rest_glb.hpp"
+#include "../texture/texel_image.hpp"
 #include "../texture/vat_measure.hpp"
 #include "vat_planner.hpp"
 #include "dqskin/error.hpp"
@@ -46,6 +47,8 @@ VatFormat chosen_format(const TextureOptions& o) {
   if (!o.normals.empty() && !parse_normal_mode(o.normals, f.normals))
     throw InputError("--normals '" + o.normals + "' is not one of none, separate, packed, oct8, oct16");
   if (const std::string why = unsupported_reason(f); !why.empty()) throw InputError(why);
+  if (!o.exr_compression.empty() && !is_lossless_exr_compression(o.exr_compression))
+    throw InputError("--exr-compression '" + o.exr_compression + "' is not one of zip, piz, rle, zips, none (the lossless ones)");
   return f;
 }
 
@@ -104,6 +107,7 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
     : input_(input), clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times) {
   const TextureOptions& o = options.textures;
   VatEncoding e;
+  e.compression = o.exr_compression;
   VatFormat format = chosen_format(o);
   const std::vector<VatSource> sources = vat_sources(*input.asset, input.instances);
   size_t vertices = 0;
@@ -167,8 +171,14 @@ VatClipBake::~VatClipBake() = default;
 
 void VatClipBake::append(const FrameView& frame) { writer_->append(frame); }
 
-std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& deformer, const CommitOptions& commit) {
+void VatClipBake::complete_images() {
+  if (complete_) return;
   writer_->finish();
+  complete_ = true;
+}
+
+std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& deformer, const CommitOptions& commit) {
+  complete_images();
   const TextureOptions& o = options_.textures;
   if (o.check) {
     VatDecodeChecker checker(*writer_);

@@ -42,7 +42,9 @@ public:
   void append(const FrameView& frame);
   void encode_own_frames(Deformer& deformer);
 
-  // Completes the images, runs the decode-back check (unless options.vat.check is off) and commits every
+  // Writes what the images still lack (the last rows, or a whole PNG) to their temporaries.
+  void complete_images();
+  // Completes the images if not done yet, runs the decode-back check (unless options.vat.check is off) and commits every
   // file. Throws InputError naming the clip when the decoded texture misses --max-error, decodes to one
   // pose while the clip moves, or holds a texel that is not finite; nothing is then left under a final
   // name. Returns the files' paths relative to the output folder with what happened to each.
@@ -59,6 +61,7 @@ private:
   std::vector<double> times_;  // the texture's frames
   std::unique_ptr<texture::VatWriter> writer_;
   std::optional<texture::DecodeCheck> check_;
+  bool complete_ = false;
 };
 
 }  // namespace dqskin::bake_detail

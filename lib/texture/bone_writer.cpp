@@ -34,7 +34,7 @@ struct BoneTextureWriter::Impl {
 
 BoneTextureWriter::BoneTextureWriter(const std::string& exr_path, const std::string& json_path, BoneImage image,
                                      TexelType type, const Asset& asset, int skin, std::span<const double> times,
-                                     double fps)
+                                     double fps, const std::string& compression)
     : impl_(std::make_unique<Impl>(exr_path, json_path, std::move(image), type, asset, skin, times, fps)) {
   Impl& m = *impl_;
   assert(type == TexelType::kFloat32 || type == TexelType::kHalf);
@@ -54,7 +54,7 @@ BoneTextureWriter::BoneTextureWriter(const std::string& exr_path, const std::str
                            ", beyond half precision (largest 65504); use --encoding float");
         rows.set(x, y, c, value);
       }
-  TexelFileWriter writer(m.image, type, m.texture.width, m.texture.height, 4);
+  TexelFileWriter writer(m.image, type, m.texture.width, m.texture.height, 4, compression);
   writer.write(rows);
   writer.close();
   m.temporary = writer.temporary();

@@ -20,10 +20,11 @@ namespace dqskin::texture {
 class BoneTextureWriter {
 public:
   // Writes `image` (of `asset`'s skin `skin`, one row of frames per `times`) as `type` (float or half)
-  // into exr_path's temporary. Throws InputError for an empty image or a value half cannot hold (naming
+  // into exr_path's temporary, with `compression` (texel_image.hpp exr_compression). Throws InputError for an empty image or a value half cannot hold (naming
   // the file and texel), OutputError when the file cannot be written.
   BoneTextureWriter(const std::string& exr_path, const std::string& json_path, BoneImage image, TexelType type,
-                    const Asset& asset, int skin, std::span<const double> times, double fps);
+                    const Asset& asset, int skin, std::span<const double> times, double fps,
+                    const std::string& compression = "");
   ~BoneTextureWriter();
   BoneTextureWriter(const BoneTextureWriter&) = delete;
   BoneTextureWriter& operator=(const BoneTextureWriter&) = delete;

@@ -28,11 +28,19 @@ OIIO::TypeDesc oiio_type(TexelType type) {
   return OIIO::TypeDesc::UNKNOWN;
 }
 
+// Scanlines per block in an OpenEXR file (the OpenEXR file layout, "Scan Line Blocks"): 1 for NONE, RLE
+// and ZIPS, 16 for ZIP, 32 for PIZ.
+size_t rows_per_block(const std::string& compression) {
+  if (compression == "zip") return 16;
+  if (compression == "piz") return 32;
+  return 1;
+}
+
 // Whether the EXR at `path` is whole, as OpenEXR lays out a single-part scanline image: magic and version,
-// the header's attributes up to an empty name, one offset per block of 16 rows (ZIP), then the blocks,
-// each an int32 row and an int32 byte count before its data. Complete when every offset lies in the file
-// and the last block (rows increase) ends where the file ends.
-bool exr_is_whole(const std::string& path, size_t height) {
+// the header's attributes up to an empty name, one offset per block of rows, then the blocks, each an
+// int32 row and an int32 byte count before its data. Complete when every offset lies in the file and the
+// last block (rows increase) ends where the file ends.
+bool exr_is_whole(const std::string& path, size_t height, size_t block_rows) {
   static_assert(std::endian::native == std::endian::little, "EXR files are little-endian");
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   const auto size = uint64_t(std::streamoff(in.tellg()));
@@ -49,7 +57,7 @@ bool exr_is_whole(const std::string& path, size_t height) {
   };
   while (skip_attribute()) {
   }
-  std::vector<uint64_t> offsets((height + 15) / 16);
+  std::vector<uint64_t> offsets((height + block_rows - 1) / block_rows);
   in.read(reinterpret_cast<char*>(offsets.data()), std::streamsize(offsets.size() * 8));
   bool whole = bool(in);
   for (uint64_t at : offsets) whole = whole && at > 0 && at + 8 <= size;
@@ -148,6 +156,7 @@ struct TexelFileWriter::Impl {
   int channels = 0;
   std::unique_ptr<OIIO::ImageOutput> exr;  // EXR: rows are compressed and written as they come
   TexelImage png;                          // PNG: the whole image, written at close (libpng is one call)
+  std::string compression;                 // EXR
 
   [[noreturn]] void fail(const std::string& why) const { throw OutputError(file->path() + ": " + why); }
 
@@ -157,7 +166,17 @@ struct TexelFileWriter::Impl {
   }
 };
 
-TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels)
+bool is_lossless_exr_compression(const std::string& name) {
+  return name == "zip" || name == "piz" || name == "rle" || name == "zips" || name == "none";
+}
+
+std::string exr_compression(TexelType type, const std::string& requested) {
+  if (!requested.empty()) return requested;
+  return type == TexelType::kHalf ? "piz" : "zip";
+}
+
+TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
+                                 const std::string& compression)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.file = &file;
@@ -173,11 +192,14 @@ TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width,
     m.png = TexelImage(type, width, height, channels);
     return;
   }
+  m.compression = exr_compression(type, compression);
   OIIO::ImageSpec spec(int(width), int(height), channels, oiio_type(type));
-  // ZIP: lossless, as the texels must reach the shader bit for bit (DWA and B44 are lossy, PXR24 rounds
-  // floats to 24 bits). zlib over blocks of 16 scanlines is decoded by every EXR reader, small ones
-  // included, and its output depends only on the bytes and the level (OpenImageIO's default, 4).
-  spec.attribute("compression", "zip");
+  // Lossless only, as the texels must reach the shader bit for bit (DWA and B44 are lossy, PXR24 rounds
+  // floats to 24 bits). ZIP (zlib over blocks of 16 scanlines, OpenImageIO's level 4) and PIZ (wavelet
+  // and Huffman) are decoded by every EXR reader, small ones included (three.js's EXRLoader, tinyexr), and
+  // their output depends only on the texels.
+  assert(is_lossless_exr_compression(m.compression));
+  spec.attribute("compression", m.compression);
   // Byte-identical outputs: OpenImageIO stamps the current time as the EXR attribute capDate unless the
   // spec has a DateTime, so we give an empty one (no capture date).
   spec.attribute("DateTime", "");
@@ -212,7 +234,8 @@ void TexelFileWriter::close() {
     if (m.next_row < m.height) m.write_exr_rows(TexelImage(m.type, m.width, m.height - m.next_row, m.channels, m.next_row));
     if (!m.exr->close()) m.fail(oiio_message(m.exr->geterror()));
     m.exr.reset();
-    if (!exr_is_whole(m.temporary, m.height)) m.fail("the image is incomplete after writing (is the disk full?)");
+    if (!exr_is_whole(m.temporary, m.height, rows_per_block(m.compression)))
+      m.fail("the image is incomplete after writing (is the disk full?)");
     return;
   }
   OIIO::ImageSpec spec(int(m.width), int(m.height), m.channels, oiio_type(m.type));

@@ -53,14 +53,22 @@ private:
 // The file's extension for a texel type: "exr" for float and half, "png" for the integer types.
 const char* file_extension(TexelType type);
 
+// The lossless OpenEXR compressions a texture may use ("zip", "piz", "rle", "zips", "none"); false for
+// any other (lossy ones change texels). Empty means the default for the type: ZIP for float (the smallest
+// files: 60 % of the raw size on BrainStem, where PIZ keeps 70 %), PIZ for half (smaller than ZIP and
+// twice as fast; docs/PERFORMANCE.md "Texture profiles").
+bool is_lossless_exr_compression(const std::string& name);
+std::string exr_compression(TexelType type, const std::string& requested);
+
 // Writes an image into `file`'s temporary, band after band in row order (the caller commits the file):
-// EXR with channels R, G, B(, A), ZIP compression and no capture date; PNG with no colour-space chunk
-// (the values are data, not colours). Rows never written are zeros. Byte-identical for equal texels and
-// equal bands.
+// EXR with channels R, G, B(, A), a lossless compression (exr_compression) and no capture date; PNG with
+// no colour-space chunk (the values are data, not colours). Rows never written are zeros. Byte-identical
+// for equal texels and equal bands.
 class TexelFileWriter {
 public:
   // Throws OutputError naming the file when it cannot be created, InputError for sizes no file holds.
-  TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels);
+  TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
+                  const std::string& compression = "");
   ~TexelFileWriter();
   TexelFileWriter(const TexelFileWriter&) = delete;
   TexelFileWriter& operator=(const TexelFileWriter&) = delete;

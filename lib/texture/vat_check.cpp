@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <future>
 #include <cmath>
 #include <numbers>
 
@@ -68,17 +69,28 @@ const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
     if (d->frame == f) return *d;
   const VatLayout& l = e_.layout;
   open_page(l.page_of(f));
-  // Frame-major layouts read the frame's rows; openvat's frames lie in every wrap: the image, read once.
-  if (l.frame_major() || !whole_read_) {
-    const VatLayout::Rows rows = l.frame_rows(f);
-    positions_->read(rows.first, rows.count, position_band_);
+  // Frame-major layouts read bands of whole frames, at least 256 rows (several EXR blocks of 16 or 32
+  // rows, each decompressed once, not once per frame that shares it); openvat's frames lie in every wrap:
+  // the image, read once. Positions and normals are read at once, on two threads.
+  const VatLayout::Rows rows = l.frame_rows(f);
+  const bool in_band = whole_read_ && rows.first >= position_band_.first_row() &&
+                       rows.first + rows.count <= position_band_.first_row() + position_band_.rows();
+  if (!in_band) {
+    size_t first = rows.first, count = rows.count;
+    if (l.frame_major()) {
+      const size_t height = l.page_height(l.page_of(f));
+      const size_t frames = std::max<size_t>(1, 256 / rows.count);
+      count = std::min(height - first, frames * rows.count);
+    }
+    std::future<void> normals;
+    if (normals_) normals = std::async(std::launch::async, [&] { normals_->read(first, count, normal_band_); });
+    positions_->read(first, count, position_band_);
+    if (normals.valid()) normals.get();
     if (const std::string at = position_band_.first_non_finite(); !at.empty())
       throw OutputError(positions_name_ + ": texel " + at + " is not finite");
-    if (normals_) {
-      normals_->read(rows.first, rows.count, normal_band_);
+    if (normals_)
       if (const std::string at = normal_band_.first_non_finite(); !at.empty())
         throw OutputError(normals_name_ + ": texel " + at + " is not finite");
-    }
     whole_read_ = true;
   }
   // Overwrite the slot holding no frame, else the earlier frame (callers copy what they still need).

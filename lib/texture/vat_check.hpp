@@ -69,7 +69,7 @@ private:
   std::string positions_name_, normals_name_;
   std::unique_ptr<TexelFileReader> positions_, normals_;
   TexelImage position_band_, normal_band_;
-  bool whole_read_ = false;  // openvat: the whole image is one band, read once
+  bool whole_read_ = false;  // the bands hold rows read from the current page
   Decoded current_, next_;
   std::vector<float> first_positions_;
   ErrorHistogram frame_errors_, midpoint_errors_;

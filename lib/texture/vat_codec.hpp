@@ -45,6 +45,8 @@ struct VatEncoding {
   Box bounds;
   // What is stored before any remapping, over the clip (profile axes): the magnitudes half rounds at.
   Box stored;
+  // The EXR files' compression (texel_image.hpp exr_compression; empty: the type's default).
+  std::string compression;
 
   bool stores_offsets() const { return !rest.empty(); }
   // The rows of the normal image, when the normals have their own: its texel type (oct8 and oct16 are

@@ -1,5 +1,7 @@
 #include "vat_side_files.hpp"
 
+#include "texel_image.hpp"
+
 #include "dqskin/error.hpp"
 
 #include <cmath>
@@ -192,6 +194,7 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
   doc["profile"] = to_string(l.format.profile);
   doc["encoding"] = to_string(l.format.type);
   doc["normals"] = to_string(l.format.normals);
+  if (!is_png(l.format.type)) doc["exr_compression"] = exr_compression(l.format.type, e.compression);
   doc["clip"] = info.clip;
   doc["vertex_count"] = l.vertices;
   doc["frame_count"] = l.frames;

@@ -10,8 +10,9 @@ namespace dqskin::texture {
 
 // One image file: its AtomicFile, the writer streaming into its temporary, and the band being filled.
 struct VatWriter::Image {
-  Image(const std::string& path, TexelType texel_type, size_t image_width, size_t height, int image_channels)
-      : file(path, false), writer(file, texel_type, image_width, height, image_channels), type(texel_type),
+  Image(const std::string& path, TexelType texel_type, size_t image_width, size_t height, int image_channels,
+        const std::string& compression)
+      : file(path, false), writer(file, texel_type, image_width, height, image_channels, compression), type(texel_type),
         width(image_width), channels(image_channels) {}
 
   AtomicFile file;  // synced with the rest of the bake before the manifest
@@ -30,10 +31,12 @@ VatWriter::VatWriter(VatEncoding encoding, VatClipInfo info, const std::string& 
   const std::optional<TexelType> normal_type = encoding_.normal_image_type();
   for (size_t page = 0; page < l.pages; ++page) {
     positions_.push_back(std::make_unique<Image>(folder_ + "/" + page_file_name(names_.positions, page, l.pages),
-                                                 l.format.type, l.width, l.page_height(page), l.position_channels()));
+                                                 l.format.type, l.width, l.page_height(page), l.position_channels(),
+                                                 encoding_.compression));
     if (normal_type)
       normals_.push_back(std::make_unique<Image>(folder_ + "/" + page_file_name(names_.normals, page, l.pages),
-                                                 *normal_type, l.width, l.page_height(page), normal_channels(encoding_)));
+                                                 *normal_type, l.width, l.page_height(page), normal_channels(encoding_),
+                                                 encoding_.compression));
   }
 }
 
