@@ -200,8 +200,8 @@ Command add_bake_command(CLI::App& app) {
                        "profile's")
       ->type_name("TYPE");
   bake_cmd->add_option("--exr-compression", bake.textures.exr_compression,
-                       "Lossless EXR compression: zip, piz, rle, zips or none. Default: zip for float (smallest), "
-                       "piz for half (smaller and faster than zip)")
+                       "Lossless EXR compression: zip (the default: smallest), piz (faster to write, usually "
+                       "larger), rle, zips or none")
       ->type_name("NAME");
   bake_cmd->add_option("--normals", bake.textures.normals,
                        "VAT normals: none, separate (an image of their own), packed (as the profile packs them), "

@@ -170,10 +170,7 @@ bool is_lossless_exr_compression(const std::string& name) {
   return name == "zip" || name == "piz" || name == "rle" || name == "zips" || name == "none";
 }
 
-std::string exr_compression(TexelType type, const std::string& requested) {
-  if (!requested.empty()) return requested;
-  return type == TexelType::kHalf ? "piz" : "zip";
-}
+std::string exr_compression(const std::string& requested) { return requested.empty() ? "zip" : requested; }
 
 TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
                                  const std::string& compression)
@@ -192,7 +189,7 @@ TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width,
     m.png = TexelImage(type, width, height, channels);
     return;
   }
-  m.compression = exr_compression(type, compression);
+  m.compression = exr_compression(compression);
   OIIO::ImageSpec spec(int(width), int(height), channels, oiio_type(type));
   // Lossless only, as the texels must reach the shader bit for bit (DWA and B44 are lossy, PXR24 rounds
   // floats to 24 bits). ZIP (zlib over blocks of 16 scanlines, OpenImageIO's level 4) and PIZ (wavelet

@@ -54,11 +54,11 @@ private:
 const char* file_extension(TexelType type);
 
 // The lossless OpenEXR compressions a texture may use ("zip", "piz", "rle", "zips", "none"); false for
-// any other (lossy ones change texels). Empty means the default for the type: ZIP for float (the smallest
-// files: 60 % of the raw size on BrainStem, where PIZ keeps 70 %), PIZ for half (smaller than ZIP and
-// twice as fast; docs/PERFORMANCE.md "Texture profiles").
+// any other (lossy ones change texels). Empty means ZIP: the smallest files on every texture measured but
+// one, where PIZ, 1.2 to 2 times faster to write, was up to 3.2 times larger (docs/PERFORMANCE.md
+// "Texture profiles").
 bool is_lossless_exr_compression(const std::string& name);
-std::string exr_compression(TexelType type, const std::string& requested);
+std::string exr_compression(const std::string& requested);
 
 // Writes an image into `file`'s temporary, band after band in row order (the caller commits the file):
 // EXR with channels R, G, B(, A), a lossless compression (exr_compression) and no capture date; PNG with

@@ -194,7 +194,7 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
   doc["profile"] = to_string(l.format.profile);
   doc["encoding"] = to_string(l.format.type);
   doc["normals"] = to_string(l.format.normals);
-  if (!is_png(l.format.type)) doc["exr_compression"] = exr_compression(l.format.type, e.compression);
+  if (!is_png(l.format.type)) doc["exr_compression"] = exr_compression(e.compression);
   doc["clip"] = info.clip;
   doc["vertex_count"] = l.vertices;
   doc["frame_count"] = l.frames;

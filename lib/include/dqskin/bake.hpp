@@ -30,7 +30,7 @@ struct TextureOptions {
   std::string bones_profile = "dq";    // dq, dq-cocos, mat3x4, mat4
   std::string encoding;                // float, half, png16, png8; empty: the profile's default
   std::string normals;                 // none, separate, packed, oct8, oct16; empty: the profile's default
-  std::string exr_compression;         // zip, piz, rle, zips, none; empty: zip for float, piz for half
+  std::string exr_compression;         // zip, piz, rle, zips, none; empty: zip
   size_t max_size = 0;                 // largest side of an image in texels; 0: the profile's default
   bool pot = false;                    // pad images to powers of two
   double max_error = 0;                // largest decoded error allowed, scene units; 0: no limit
