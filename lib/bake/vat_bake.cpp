@@ -104,7 +104,7 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
 }
 
 VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
-    : input_(input), clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times) {
+    : clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times) {
   const TextureOptions& o = options.textures;
   VatEncoding e;
   e.compression = o.exr_compression;

@@ -54,7 +54,6 @@ public:
   const std::optional<texture::DecodeCheck>& check() const { return check_; }
 
 private:
-  const InputPlan& input_;
   const ClipPlan& clip_;
   const BakeOptions& options_;
   std::string what_;  // "clip <name>" for messages
