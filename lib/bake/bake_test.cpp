@@ -321,6 +321,40 @@ TEST_F(BakeTest, EveryBoneProfileSkinsTheSharedModelsAsTheBake) {
   EXPECT_GT(checked, 20u);
 }
 
+// Bone textures in half (--encoding half): every profile within what half's 11 bits allow (2^-10 of the
+// model's size: a joint's translation and rotation entries rounded to half, through the blend), and not
+// exact, so the half path is the one that ran.
+TEST_F(BakeTest, HalfBoneTexturesSkinWithinHalfPrecision) {
+  for (const char* rig_name : {"twisted_cylinder.gltf", "nonuniform_scale.gltf", "two_skins.gltf"}) {
+    const std::string model = rig(rig_name);
+    const Asset asset = load_asset(model);
+    const DeformedFrame rest =
+        deform_frame(asset, mesh_instances(asset, choose_scene(asset, -1)), sample_pose(asset, nullptr, 0), BlendMode::kDqs);
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const DeformedPrimitive& p : rest.primitives)
+      for (const Vec3<double>& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
+    const double size = glm::length(hi - lo);
+    for (const auto& [profile, mode] : {std::pair{"dq", BlendMode::kDqs}, std::pair{"dq-cocos", BlendMode::kDqs},
+                                        std::pair{"mat3x4", BlendMode::kLbs}, std::pair{"mat4", BlendMode::kLbs}}) {
+      SCOPED_TRACE(std::string(rig_name) + " " + profile);
+      BakeOptions o = options(std::string("half_") + profile, unsigned(BakeFormat::kBones));
+      o.textures.bones_profile = profile;
+      o.textures.encoding = "half";
+      o.mode = mode;
+      const BakeReport r = bake({model}, o);
+      ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;
+      for (const TextureCheck& c : r.checks) {
+        EXPECT_LE(c.max_error, std::ldexp(size, -10)) << c.texture;
+        EXPECT_GT(c.max_error, 0.0) << c.texture;
+      }
+      for (const BakeOutput& out : r.outputs) {
+        if (!out.path.ends_with(".json")) continue;
+        EXPECT_EQ(nlohmann::json::parse(read_file(fs::path(o.out_dir) / out.path))["type"], "float16") << out.path;
+      }
+    }
+  }
+}
+
 TEST_F(BakeTest, PlannerDecimatesFramesToFitTheBytes) {
   // The twisted cylinder's twist (31 frames at 30 fps) in 100 kB of half texels: fewer frames, interpolated.
   BakeOptions o = options("planned", unsigned(BakeFormat::kVat));
