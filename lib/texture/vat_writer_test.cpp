@@ -505,6 +505,25 @@ TEST_F(VatWriterTest, UnwritableFolderIsAnOutputErrorNamingTheFile) {
   EXPECT_EQ(entries(), 0u);
 }
 
+TEST_F(VatWriterTest, ABakeOfOnePoseInEveryRowDecodesWithoutMotion) {
+  // The failure users report: a bake that "succeeded" with the bind pose in every row. The checker sees
+  // the deformed clip move and the texture stand still, the figures the bake fails on.
+  const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf", 0, grid(9, 8));
+  VatEncoding e;
+  e.layout = plan_vat_layout(kDqskin, vertex_count(d), d.times.size(), 0, false, "t");
+  VatWriter writer(e, {}, dir_.string(), vat_file_names(kDqskin, "x"), "");
+  for (size_t f = 0; f < d.times.size(); ++f) writer.append(frame_view(d.rest, 0));
+  writer.finish();
+  VatDecodeChecker checker(writer);
+  for (size_t f = 0; f < d.times.size(); ++f) {
+    checker.baked_frame(f, frame_view(d.frames, f));
+    if (f + 1 < d.times.size()) checker.midpoint(f, frame_view(d.midpoints, f));
+  }
+  EXPECT_EQ(checker.decoded_motion(), 0.0);
+  EXPECT_GT(checker.reference_motion(), 0.1) << "the twist moves the cylinder's rim by more than a tenth";
+  EXPECT_GT(checker.result().max_error, 0.1);
+}
+
 TEST_F(VatWriterTest, HalfOverflowIsAnErrorNamingFrameAndVertex) {
   Deformed d;
   d.times = {0.0};
