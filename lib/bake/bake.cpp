@@ -197,9 +197,7 @@ public:
       }
       ledger_.add_time(&BakeStageTimes::check, since(start));
       ledger_.record_files(names, committed);
-      if (const auto& c = vat->check())
-        ledger_.record_check({input_.path, clip.name, "vat", c->max_error, c->p99_error, c->max_midpoint_error,
-                              c->p99_midpoint_error, c->max_normal_degrees, c->max_midpoint_normal_degrees, c->samples});
+      if (const auto& c = vat->check()) ledger_.record_check(c->report(input_.path, clip.name, "vat"));
     }
     return counted;
   }

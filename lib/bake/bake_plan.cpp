@@ -12,6 +12,15 @@ std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats) {
   return out;
 }
 
+std::vector<double> frames_and_midpoints(const std::vector<double>& t) {
+  std::vector<double> out;
+  for (size_t f = 0; f < t.size(); ++f) {
+    out.push_back(t[f]);
+    if (f + 1 < t.size()) out.push_back(t[f] + (t[f + 1] - t[f]) / 2);
+  }
+  return out;
+}
+
 std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options) {
   const unsigned formats = options.formats;
   std::vector<std::string> files;

@@ -10,6 +10,10 @@ namespace dqskin::bake_detail {
 // Frames to deform: all of them when whole-animation textures are due, else the shard's own.
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats);
 
+// Every frame time and, between neighbours, the midpoint: t0, (t0+t1)/2, t1, … (2n − 1 times; frame f at
+// index 2f). The texture passes sample there: what a runtime interpolating between frames shows.
+std::vector<double> frames_and_midpoints(const std::vector<double>& times);
+
 // The files one clip writes, relative to the output folder, for the formats (and texture profiles) asked
 // for. Throws InputError when a texture profile cannot hold the clip.
 std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);

@@ -279,6 +279,16 @@ TEST_F(BakeTest, TextureProfilesAreDeterministicAndShardsUnionToTheWhole) {
   }
 }
 
+// The diagonal of an asset's bounding box at the rest pose: the size tolerances scale with.
+double rest_size(const Asset& asset) {
+  const DeformedFrame rest =
+      deform_frame(asset, mesh_instances(asset, choose_scene(asset, -1)), sample_pose(asset, nullptr, 0), BlendMode::kDqs);
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const DeformedPrimitive& p : rest.primitives)
+    for (const Vec3<double>& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
+  return glm::length(hi - lo);
+}
+
 // Every bone profile on every shared model, baked with the blend the profile implies: the mesh skinned
 // from the texture read back lands on the bake's mesh within float rounding (1e-5 of the model's size:
 // float texels, 2^-24 relative, through a few dozen float operations in the bake's deformer and the
@@ -290,12 +300,7 @@ TEST_F(BakeTest, EveryBoneProfileSkinsTheSharedModelsAsTheBake) {
   for (const std::string& model : models) {
     const Asset asset = load_asset(model);
     if (asset.skins.empty()) continue;
-    const DeformedFrame rest =
-        deform_frame(asset, mesh_instances(asset, choose_scene(asset, -1)), sample_pose(asset, nullptr, 0), BlendMode::kDqs);
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const DeformedPrimitive& p : rest.primitives)
-      for (const Vec3<double>& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
-    const double size = glm::length(hi - lo);
+    const double size = rest_size(asset);
     for (const auto& [profile, mode] : {std::pair{"dq", BlendMode::kDqs}, std::pair{"dq-cocos", BlendMode::kDqs},
                                         std::pair{"mat3x4", BlendMode::kLbs}, std::pair{"mat4", BlendMode::kLbs}}) {
       SCOPED_TRACE(model + " " + profile);
@@ -328,12 +333,7 @@ TEST_F(BakeTest, HalfBoneTexturesSkinWithinHalfPrecision) {
   for (const char* rig_name : {"twisted_cylinder.gltf", "nonuniform_scale.gltf", "two_skins.gltf"}) {
     const std::string model = rig(rig_name);
     const Asset asset = load_asset(model);
-    const DeformedFrame rest =
-        deform_frame(asset, mesh_instances(asset, choose_scene(asset, -1)), sample_pose(asset, nullptr, 0), BlendMode::kDqs);
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const DeformedPrimitive& p : rest.primitives)
-      for (const Vec3<double>& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
-    const double size = glm::length(hi - lo);
+    const double size = rest_size(asset);
     for (const auto& [profile, mode] : {std::pair{"dq", BlendMode::kDqs}, std::pair{"dq-cocos", BlendMode::kDqs},
                                         std::pair{"mat3x4", BlendMode::kLbs}, std::pair{"mat4", BlendMode::kLbs}}) {
       SCOPED_TRACE(std::string(rig_name) + " " + profile);

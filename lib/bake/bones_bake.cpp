@@ -20,11 +20,12 @@
 
 namespace dqskin::bake_detail {
 
+using diff_detail::length_text;  // "3.1 mm"
+
 using texture::ErrorHistogram;
 
 namespace {
 
-std::string length(double x) { return diff_detail::length_with_unit(x, x); }
 
 texture::TexelType bone_texel_type(const TextureOptions& o) {
   // Bone textures are float or half; the PNG encodings are the VAT's (README "Texture profiles").
@@ -144,17 +145,14 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
     for (const auto& w : writers) images.push_back(w->read_back());
     std::vector<SkinCheck> checks(writers.size());
     // Every frame, and between neighbours the midpoint.
-    const std::vector<double>& t = clip.times;
-    std::vector<double> times;
-    for (size_t f = 0; f < t.size(); ++f) {
-      times.push_back(t[f]);
-      if (f + 1 < t.size()) times.push_back(t[f] + (t[f + 1] - t[f]) / 2);
-    }
+    const std::vector<double> times = frames_and_midpoints(clip.times);
     deformer->run(clip.clip, times, [&](const DeformedBatch& batch) {
       for (size_t k = 0; k < batch.frame_count; ++k) {
         const size_t i = batch.first_frame + k;
         const bool midpoint = i % 2 == 1;
-        const Pose pose = sample_pose(asset, clip.clip, times[i]);
+        // Morph weights: the frames' poses were sampled for packing; only midpoints need sampling.
+        const Pose midpoint_pose = midpoint ? sample_pose(asset, clip.clip, times[i]) : Pose();
+        const Pose& pose = midpoint ? midpoint_pose : poses[i / 2];
         const FrameView view = frame_view(batch, k);
         size_t at = 0;
         for (size_t s = 0; s < input.skins.size(); ++s) {
@@ -186,17 +184,15 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
       // Float noise aside: a millionth of the clip's size.
       if (c.reference_motion > 1e-6 * c.bounds.diagonal() && c.decoded_motion == 0)
         throw InputError(what + ": every frame of the texture skins to one pose while the clip moves " +
-                         length(c.reference_motion));
+                         length_text(c.reference_motion));
       if (o.max_error > 0) {
         const double limit = o.max_error_relative ? o.max_error * c.bounds.diagonal() : o.max_error;
         if (d.max_error > limit)
           throw InputError(what + ": the texture skins (" + implied_blend(profile) + ") to within " +
-                           length(d.max_error) + " of the deformed mesh (--mode " + to_string(options.mode) +
-                           "), over --max-error " + length(limit));
+                           length_text(d.max_error) + " of the deformed mesh (--mode " + to_string(options.mode) +
+                           "), over --max-error " + length_text(limit));
       }
-      result.checks.push_back({input.path, clip.name, "bones_skin" + std::to_string(input.skins[s]), d.max_error,
-                               d.p99_error, d.max_midpoint_error, d.p99_midpoint_error, d.max_normal_degrees,
-                               d.max_midpoint_normal_degrees, d.samples});
+      result.checks.push_back(d.report(input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
     }
   }
   for (size_t s = 0; s < writers.size(); ++s) {

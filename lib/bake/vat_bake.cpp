@@ -13,6 +13,8 @@
 
 namespace dqskin::bake_detail {
 
+using diff_detail::length_text;  // "3.1 mm"
+
 using namespace texture;
 
 namespace {
@@ -51,10 +53,6 @@ VatFormat chosen_format(const TextureOptions& o) {
     throw InputError("--exr-compression '" + o.exr_compression + "' is not one of zip, piz, rle, zips, none (the lossless ones)");
   return f;
 }
-
-// Lengths as the diff prints them: "3.1 mm" (scene units are glTF's metres).
-std::string length(double x) { return diff_detail::length_with_unit(x, x); }
-
 }  // namespace
 
 VatFormat vat_format(const TextureOptions& options) { return chosen_format(options); }
@@ -183,12 +181,7 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
   if (o.check) {
     VatDecodeChecker checker(*writer_);
     // Every frame, and between neighbours the midpoint a runtime interpolates.
-    const std::vector<double>& t = times_;
-    std::vector<double> times;
-    for (size_t f = 0; f < t.size(); ++f) {
-      times.push_back(t[f]);
-      if (f + 1 < t.size()) times.push_back(t[f] + (t[f + 1] - t[f]) / 2);
-    }
+    const std::vector<double> times = frames_and_midpoints(times_);
     deformer.run(clip_.clip, times, [&](const DeformedBatch& batch) {
       for (size_t k = 0; k < batch.frame_count; ++k) {
         const size_t i = batch.first_frame + k;
@@ -202,14 +195,14 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
         std::max(2 * position_encoding_bound(writer_->encoding()), 1e-6 * writer_->clip_bounds().diagonal());
     if (checker.reference_motion() > resolvable && checker.decoded_motion() == 0)
       throw InputError(what_ + ": every frame of the texture decodes to one pose while the clip moves " +
-                       length(checker.reference_motion()) + " (a bake of the rest pose?)");
+                       length_text(checker.reference_motion()) + " (a bake of the rest pose?)");
     if (o.max_error > 0) {
       const double limit = o.max_error_relative ? o.max_error * writer_->clip_bounds().diagonal() : o.max_error;
       const double worst = std::max(check_->max_error, check_->max_midpoint_error);
       if (worst > limit)
-        throw InputError(what_ + ": the texture decodes with errors up to " + length(check_->max_error) +
-                         " at frames and " + length(check_->max_midpoint_error) + " between them, over --max-error " +
-                         length(limit));
+        throw InputError(what_ + ": the texture decodes with errors up to " + length_text(check_->max_error) +
+                         " at frames and " + length_text(check_->max_midpoint_error) + " between them, over --max-error " +
+                         length_text(limit));
     }
   }
   std::vector<std::pair<std::string, Committed>> files = writer_->commit(check_ ? &*check_ : nullptr, commit);

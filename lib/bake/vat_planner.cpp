@@ -2,6 +2,7 @@
 
 #include "vat_bake.hpp"
 #include "../diff/diff_numbers.hpp"
+#include "../texture/vat_measure.hpp"
 #include "../texture/vat_side_files.hpp"
 
 #include "dqskin/byte_size.hpp"
@@ -17,11 +18,12 @@
 
 namespace dqskin::bake_detail {
 
+using diff_detail::length_text;  // "3.1 mm"
+
 using namespace texture;
 
 namespace {
 
-std::string length(double x) { return diff_detail::length_with_unit(x, x); }
 
 // The frame decimations weighed: every k-th frame of the grid.
 constexpr size_t kSteps[] = {1, 2, 3, 4, 6, 8};
@@ -130,11 +132,7 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
   const double spacing = grid ? (t.back() - t.front()) / double(frames - 1) : 0.0;
 
   // Samples: every frame and midpoint, then the poses past the end that decimations keep.
-  std::vector<double> times;
-  for (size_t f = 0; f < frames; ++f) {
-    times.push_back(t[f]);
-    if (f + 1 < frames) times.push_back(t[f] + (t[f + 1] - t[f]) / 2);
-  }
+  std::vector<double> times = frames_and_midpoints(t);
   const size_t regular = times.size();
   std::map<size_t, std::vector<size_t>> past_end;  // last kept frame past the end → the steps keeping it
   for (size_t s = 0; s < steps.size(); ++s) {
@@ -152,9 +150,7 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
   deformer.run(clip.clip, times, [&](const DeformedBatch& batch) {
     for (size_t k = 0; k < batch.frame_count; ++k) {
       const size_t j = batch.first_frame + k;
-      std::vector<float> positions;
-      for (const PrimitiveView& p : frame_view(batch, k).primitives)
-        positions.insert(positions.end(), p.positions.begin(), p.positions.end());
+      std::vector<float> positions = all_positions(frame_view(batch, k));
       if (j >= regular) {  // a pose past the end
         for (size_t s : past_end_at->second) interpolation.add_past_end(s, 2 * past_end_at->first, positions);
         ++past_end_at;
@@ -204,7 +200,7 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
     }
 
   const double max_error = o.max_error_relative ? o.max_error * plan.diagonal : o.max_error;
-  if (o.max_error > 0) plan.budget = "--max-error " + length(max_error);
+  if (o.max_error > 0) plan.budget = "--max-error " + length_text(max_error);
   if (o.max_bytes > 0) plan.budget += (plan.budget.empty() ? "" : ", ") + std::string("--max-bytes ") + byte_size(o.max_bytes);
   auto within_bytes = [&](const VatChoice& c) { return c.unfit.empty() && (o.max_bytes == 0 || c.bytes <= o.max_bytes); };
   auto within_error = [&](const VatChoice& c) { return c.unfit.empty() && (o.max_error == 0 || c.error() <= max_error); };
@@ -229,7 +225,7 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
     if (best_in_bytes) {
       const VatChoice& c = plan.choices[*best_in_bytes];
       message += std::string("; the most accurate") + (o.max_bytes > 0 ? " within --max-bytes" : "") + " is " +
-                 choice_text(c) + " (" + length(c.error()) + ", " + byte_size(c.bytes) + ")";
+                 choice_text(c) + " (" + length_text(c.error()) + ", " + byte_size(c.bytes) + ")";
     }
     if (fewest_in_error) {
       const VatChoice& c = plan.choices[*fewest_in_error];
@@ -256,9 +252,7 @@ std::vector<std::string> dry_run_plans(const InputPlan& input, const BakeOptions
   std::vector<float> rest;
   if (vat_format(options.textures).profile == VatProfile::kOpenVat) {
     const double zero = 0;
-    deformer->run(nullptr, std::span(&zero, 1), [&](const DeformedBatch& batch) {
-      for (const PrimitiveView& p : frame_view(batch, 0).primitives) rest.insert(rest.end(), p.positions.begin(), p.positions.end());
-    });
+    deformer->run(nullptr, std::span(&zero, 1), [&](const DeformedBatch& batch) { rest = all_positions(frame_view(batch, 0)); });
   }
   std::vector<std::string> lines;
   for (const ClipPlan& clip : input.clips) {
@@ -285,8 +279,8 @@ std::vector<std::string> describe(const VatPlan& plan, const std::string& clip) 
       std::snprintf(text, sizeof text, "  %s %-6s %5zu frames%s, %zu x %zu%s, %s, %s = %s + %s%s",
                     i == plan.chosen ? "*" : " ", to_string(c.format.type), c.frames,
                     c.fps > 0 ? (" at " + fps_text(c.fps)).c_str() : "", c.width, c.height, pages.c_str(),
-                    byte_size(c.bytes).c_str(), length(c.error()).c_str(), length(c.encoding_error).c_str(),
-                    length(c.interpolation_error).c_str(), i == plan.chosen ? "  <- chosen" : "");
+                    byte_size(c.bytes).c_str(), length_text(c.error()).c_str(), length_text(c.encoding_error).c_str(),
+                    length_text(c.interpolation_error).c_str(), i == plan.chosen ? "  <- chosen" : "");
     }
     lines.push_back(text);
   }

@@ -46,4 +46,7 @@ inline std::string length_with_unit(double value, double scale) {
   return text;
 }
 
+// A length with the SI prefix that suits itself: "3.1 mm" (the bake's texture messages).
+inline std::string length_text(double value) { return length_with_unit(value, value); }
+
 }  // namespace dqskin::diff_detail

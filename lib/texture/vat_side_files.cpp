@@ -101,7 +101,7 @@ double round_out(double x, double step, bool up) { return (up ? std::ceil(x / st
 }  // namespace
 
 VatFileNames vat_file_names(const VatFormat& format, const std::string& asset) {
-  const std::string ext = is_png(format.type) ? "png" : "exr";
+  const std::string ext = file_extension(format.type);
   VatFileNames n;
   const bool separate = format.normals != NormalMode::kNone && format.normals != NormalMode::kPacked;
   const std::string normal_ext = format.normals == NormalMode::kOct8 || format.normals == NormalMode::kOct16 ? "png" : ext;
@@ -135,6 +135,11 @@ Json DecodeCheck::to_json() const {
           {"max_normal_degrees", max_normal_degrees},
           {"max_midpoint_normal_degrees", max_midpoint_normal_degrees},
           {"samples", samples}};
+}
+
+TextureCheck DecodeCheck::report(const std::string& input, const std::string& clip, const std::string& texture) const {
+  return {input, clip, texture, max_error, p99_error, max_midpoint_error, p99_midpoint_error, max_normal_degrees,
+          max_midpoint_normal_degrees, samples};
 }
 
 Box decimal_bounds(const Box& box) {
