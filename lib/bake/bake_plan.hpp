@@ -14,6 +14,9 @@ std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats);
 // index 2f). The texture passes sample there: what a runtime interpolating between frames shows.
 std::vector<double> frames_and_midpoints(const std::vector<double>& times);
 
+// The skinned mesh written beside a clip's bone textures (texture/bones_mesh_glb.hpp).
+inline constexpr const char* kBonesMeshFile = "bones_mesh.glb";
+
 // The files one clip writes, relative to the output folder, for the formats (and texture profiles) asked
 // for. Throws InputError when a texture profile cannot hold the clip.
 std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);

@@ -3,6 +3,7 @@
 #include "../concurrency/parallel_for.hpp"
 #include "../diff/diff_numbers.hpp"
 #include "../texture/bone_writer.hpp"
+#include "../texture/bones_mesh_glb.hpp"
 #include "../texture/vat_check.hpp"
 #include "../texture/vat_codec.hpp"
 
@@ -195,6 +196,14 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
       result.checks.push_back(d.report(input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
     }
   }
+  if (writers.empty()) return result;
+  // The skinned mesh the textures deform, first: a reader that finds a texture finds its mesh.
+  const std::string mesh_name = clip.folder + "/" + kBonesMeshFile;
+  AtomicFile mesh(options.out_dir + "/" + mesh_name, false);
+  mesh.write(texture::encode_bones_mesh_glb(asset, input.instances, input.stem));
+  if (commit.overwrite == Overwrite::kRefuseDifferent && mesh.conflicts())
+    throw OutputError(mesh.path() + ": exists with different contents; not overwritten");
+  result.files.emplace_back(mesh_name, mesh.commit(commit));
   for (size_t s = 0; s < writers.size(); ++s) {
     const std::vector<Committed> c = writers[s]->commit(figures[s] ? &*figures[s] : nullptr, commit);
     result.files.emplace_back(bases[s] + ".exr", c[0]);

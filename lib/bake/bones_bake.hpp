@@ -21,7 +21,7 @@ struct BonesClipResult {
   std::vector<TextureCheck> checks;                      // one per skin, when checked
 };
 
-// Writes and (with options.textures.check, using `deformer`, which may then not be null) checks the bone
+// Writes the clip's bones_mesh.glb and, per skin, writes and (with options.textures.check, using `deformer`, which may then not be null) checks the bone
 // textures of `clip`, then commits them. Throws InputError naming the clip and skin when a check fails
 // (--max-error, one pose for a moving clip, a texel that is not finite); nothing is then committed.
 BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, const ClipPlan& clip,

@@ -1,0 +1,92 @@
+#include "bones_mesh_glb.hpp"
+
+#include "../io/glb_appearance.hpp"
+#include "dqskin/triangles.hpp"
+#include "dqskin/version.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace dqskin::texture {
+
+using glb::json;
+
+namespace {
+
+// An UNSIGNED_SHORT VEC4 accessor over `values` (four per vertex).
+int joints_accessor(glb::BinWriter& bin, const std::vector<uint16_t>& values) {
+  const int view = bin.view(values.data(), values.size() * sizeof(uint16_t), glb::kArrayBuffer);
+  bin.accessors.push_back(
+      {{"bufferView", view}, {"componentType", glb::kUnsignedShort}, {"count", values.size() / 4}, {"type", "VEC4"}});
+  return int(bin.accessors.size()) - 1;
+}
+
+// POSITION needs min and max (§3.7.2.1), of the values as written.
+void add_bounds(json& accessor, const std::vector<glm::vec3>& positions) {
+  glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+  for (const glm::vec3& p : positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  accessor["min"] = {lo.x, lo.y, lo.z};
+  accessor["max"] = {hi.x, hi.y, hi.z};
+}
+
+// glm vectors are tightly packed floats (asserted by glm's own layout tests); an empty vector gives an
+// empty span.
+template <class Vec>
+std::span<const float> flat(const std::vector<Vec>& values) {
+  return {reinterpret_cast<const float*>(values.data()), values.size() * Vec::length()};
+}
+
+}  // namespace
+
+std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
+                                  const std::string& name) {
+  glb::BinWriter bin;
+  json primitives = json::array();
+  for (const MeshInstance& instance : instances) {
+    if (instance.skin < 0) continue;
+    for (const Primitive& source : asset.meshes[size_t(instance.mesh)].primitives) {
+      const size_t n = source.vertex_count();
+      json attributes;
+      attributes["POSITION"] = bin.floats(flat(source.positions), n, "VEC3");
+      add_bounds(bin.accessors.back(), source.positions);
+      if (source.normals.size() == n) attributes["NORMAL"] = bin.floats(flat(source.normals), n, "VEC3");
+      if (source.uv0.size() == n) attributes["TEXCOORD_0"] = bin.floats(flat(source.uv0), n, "VEC2");
+      // The loader's influences are vertex-major, `influences` (4 or 8) per vertex; glTF sets hold 4.
+      const size_t per = size_t(source.influences);
+      for (size_t set = 0; set * 4 < per; ++set) {
+        std::vector<uint16_t> joints(4 * n);
+        std::vector<float> weights(4 * n);
+        for (size_t v = 0; v < n; ++v)
+          for (size_t i = 0; i < 4; ++i) {
+            joints[4 * v + i] = source.joints[v * per + 4 * set + i];
+            weights[4 * v + i] = source.weights[v * per + 4 * set + i];
+          }
+        attributes["_JOINTS_" + std::to_string(set)] = joints_accessor(bin, joints);
+        attributes["_WEIGHTS_" + std::to_string(set)] = bin.floats(weights, n, "VEC4");
+      }
+      json primitive = {{"attributes", std::move(attributes)},
+                        {"extras", {{"skin", instance.skin}, {"bones", "bones_skin" + std::to_string(instance.skin)}}}};
+      if (const std::vector<uint32_t> triangles = triangle_list(source); !triangles.empty()) {
+        primitive["indices"] = bin.indices(triangles);
+      } else {
+        if (!source.indices.empty()) primitive["indices"] = bin.indices(source.indices);
+        primitive["mode"] = int(source.mode);
+      }
+      primitives.push_back(std::move(primitive));
+    }
+  }
+  json doc = {{"asset", {{"version", "2.0"}, {"generator", std::string("dqskin ") + kVersion}}},
+              {"scene", 0},
+              {"scenes", json::array({{{"nodes", {0}}}})},
+              {"nodes", json::array({{{"name", name}, {"mesh", 0}}})},
+              {"meshes", json::array({{{"name", name}, {"primitives", std::move(primitives)}}})},
+              {"accessors", std::move(bin.accessors)},
+              {"bufferViews", std::move(bin.views)}};
+  if (!bin.bytes.empty()) doc["buffers"] = json::array({{{"byteLength", bin.bytes.size()}}});
+  return glb::glb_container(doc, std::move(bin.bytes));
+}
+
+}  // namespace dqskin::texture
