@@ -18,6 +18,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
   python3                                      # generators of the test inputs (scripts/make_*.py)
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
+  chromium                                     # headless WebGL2 (SwiftShader) for the player's tests (web/)
 )
 
 # Node.js and npm run the glTF tools of scripts/install-node-tools.sh. Debian's are installed

@@ -3,6 +3,7 @@
 #   gltf-validator        the Khronos glTF-Validator (scripts/validate_gltf.mjs, the glb_validator tests)
 #   gltfpack              meshoptimizer's optimizer (app/tests/geometry_diff.cmake)
 #   @gltf-transform/cli   glTF-Transform's `gltf-transform` (app/tests/geometry_diff.cmake)
+#   three                 three.js, which the player (web/) imports; scripts/install-player.sh copies it
 # Does nothing when every package is there at its version; otherwise one npm call installs them all.
 # The programs are then PREFIX/node_modules/.bin/gltfpack and PREFIX/node_modules/.bin/gltf-transform; they
 # need no network to run.
@@ -16,6 +17,7 @@ packages=(
   gltf-validator@2.0.0-dev.3.10
   gltfpack@1.3.0
   @gltf-transform/cli@4.5.1
+  three@0.187.0
 )
 
 if [ $# -ne 1 ]; then

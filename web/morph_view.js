@@ -1,0 +1,70 @@
+// The `morph` output (animation.glb) as any three.js application shows it: GLTFLoader, the glTF
+// animation on an AnimationMixer, and three.js's own morph-target code (its shader chunks
+// morphtarget_pars_vertex, morphnormal_vertex and morphtarget_vertex). Only the colour is ours: the
+// material shows world-space normals as `dqskin render --shade normals` does, where a stock material
+// would light the mesh.
+import * as THREE from 'three';
+import { srgbGlsl } from './shading.js';
+
+const vertex = /* glsl */ `
+#include <common>
+#include <morphtarget_pars_vertex>
+varying vec3 world_position;
+varying vec3 world_normal;
+void main() {
+  #include <beginnormal_vertex>
+  #include <morphinstance_vertex>
+  #include <morphnormal_vertex>
+  #include <begin_vertex>
+  #include <morphtarget_vertex>
+  // The inverse transpose: KHR_mesh_quantization puts a scale, possibly different per axis, on the node.
+  world_normal = transpose(inverse(mat3(modelMatrix))) * objectNormal;
+  vec4 world = modelMatrix * vec4(transformed, 1.0);
+  world_position = world.xyz;
+  gl_Position = projectionMatrix * viewMatrix * world;
+}`;
+
+const fragment = /* glsl */ `
+varying vec3 world_position;
+varying vec3 world_normal;
+uniform bool has_normals;
+${srgbGlsl}
+void main() {
+  vec3 face = cross(dFdx(world_position), dFdy(world_position));
+  vec3 n = has_normals ? normalize(world_normal) : normalize(face);
+  gl_FragColor = vec4(srgb_encode(0.5 * n + 0.5), 1.0);
+}`;
+
+function normalsMaterial(geometry) {
+  return new THREE.ShaderMaterial({
+    vertexShader: vertex,
+    fragmentShader: fragment,
+    uniforms: { has_normals: { value: geometry.getAttribute('normal') !== undefined } },
+    side: THREE.DoubleSide,
+  });
+}
+
+// gltf: GLTFLoader's result. Returns { object, setTime(seconds), duration }.
+export function morphView(gltf, clipName) {
+  const object = gltf.scene;
+  object.traverse((node) => {
+    if (node.isMesh) node.material = normalsMaterial(node.geometry);
+  });
+  const clip = gltf.animations.find((a) => a.name === clipName) ?? gltf.animations[0];
+  if (!clip) throw new Error('animation.glb has no animation');
+  const mixer = new THREE.AnimationMixer(object);
+  const action = mixer.clipAction(clip);
+  // Once and clamped: the last frame's time is the clip's end, which a repeating action wraps to 0.
+  action.setLoop(THREE.LoopOnce, 1);
+  action.clampWhenFinished = true;
+  action.play();
+  return {
+    object,
+    duration: clip.duration,
+    setTime(seconds) {
+      action.reset();
+      action.play();
+      mixer.setTime(seconds);
+    },
+  };
+}

@@ -1,0 +1,117 @@
+# One model through the player (web/CMakeLists.txt), at test time:
+#   1. bakes MODEL's clip CLIP at FPS: WORK/openvat (--format vat,bones --vat-profile openvat; the
+#      bone texture in the dq profile) and WORK/houdini (--format vat --vat-profile houdini);
+#   2. renders the same frames with `dqskin render --shade normals --size 256x256` into WORK/render;
+#   3. installs the player into WORK/player and draws each of FRAMES through each path (openvat VAT,
+#      houdini VAT, dq bones, morph glb) in headless Chromium (capture.mjs), into WORK/shots;
+#   4. compares every shot with dqskin's render of that frame: `dqskin diff` must pass (or warn) with
+#      --fail ${pixel} --failpercent ${percent}; and each of FAULTS (name=bake:path:frame:fault, a
+#      deliberately wrong decode) must fail it.
+# Prints "player: SKIPPED: <why>" (CTest's SKIP_REGULAR_EXPRESSION) when something it needs is missing.
+#
+#   cmake -DDQSKIN=dqskin -DNODE=node -DCHROMIUM=chromium -DSOURCE_DIR=repo -DTHREE_DIR=node_modules/three
+#         -DMODEL=m.glb -DCLIP=name -DFPS=30 -DFRAMES=4,15 [-DFAULTS=n=openvat:vat:4:row-order,…] -DWORK=dir
+#         -P player_test.cmake
+cmake_minimum_required(VERSION 3.25)
+
+# Thresholds, idiff's: a pixel is over when a channel differs by more than `pixel` (0 to 1), and a shot
+# fails when more than `percent` % of its pixels are. The two renderers rasterize the same triangles with
+# different multisample patterns and resolve at different points (dqskin resolves linear colour, then
+# encodes sRGB; WebGL resolves the encoded values), so silhouette pixels differ by up to the whole
+# contrast between model and background; inside the silhouette the colours agree to a few 8-bit steps.
+set(pixel 0.05)
+set(percent 2)
+
+macro(skip why)
+  message("player: SKIPPED: ${why}")
+  return()
+endmacro()
+foreach(need MODEL NODE CHROMIUM)
+  if("${${need}}" STREQUAL "" OR "${${need}}" MATCHES "NOTFOUND$" OR NOT EXISTS "${${need}}")
+    skip("${need} '${${need}}' is missing (Chromium and Node.js: scripts/install-deps.sh; the shared models: ../shared/testdata)")
+  endif()
+endforeach()
+if(NOT EXISTS "${THREE_DIR}/build/three.module.js")
+  skip("three.js is missing at ${THREE_DIR}; run scripts/install-node-tools.sh on the build folder's tools/")
+endif()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
+  if(NOT status EQUAL 0)
+    string(REPLACE ";" " " line "${ARGN}")
+    message(FATAL_ERROR "${line}: exit ${status}\n${out}${err}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/openvat" --anim "${CLIP}" --fps ${FPS} --format vat,bones
+    --vat-profile openvat -q)
+run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/houdini" --anim "${CLIP}" --fps ${FPS} --format vat --vat-profile houdini -q)
+run("${DQSKIN}" render "${MODEL}" -o "${WORK}/render" --anim "${CLIP}" --fps ${FPS} --shade normals --size 256x256 -q)
+run(env "THREE_DIR=${THREE_DIR}" bash "${SOURCE_DIR}/scripts/install-player.sh" "${WORK}")
+
+get_filename_component(stem "${MODEL}" NAME_WE)
+string(REPLACE "," ";" frames "${FRAMES}")
+string(REPLACE "," ";" faults "${FAULTS}")
+set(captures "")
+set(expect_pass "")
+foreach(frame IN LISTS frames)
+  foreach(case openvat:vat openvat:bones houdini:vat)
+    string(REPLACE ":" ";" parts "${case}")
+    list(GET parts 0 bake)
+    list(GET parts 1 path)
+    set(name ${bake}_${path}_${frame})
+    list(APPEND captures "${name}=bake=../${bake}&clip=${CLIP}&path=${path}&frame=${frame}")
+    list(APPEND expect_pass "${name}:${frame}")
+  endforeach()
+endforeach()
+set(expect_fail "")
+foreach(fault IN LISTS faults)
+  string(REGEX MATCH "^([^=]+)=([^:]+):([^:]+):([0-9]+):(.+)$" match "${fault}")
+  if(NOT match)
+    message(FATAL_ERROR "FAULTS: '${fault}' is not name=bake:path:frame:fault")
+  endif()
+  set(name fault_${CMAKE_MATCH_1})
+  list(APPEND captures "${name}=bake=../${CMAKE_MATCH_2}&clip=${CLIP}&path=${CMAKE_MATCH_3}&frame=${CMAKE_MATCH_4}&fault=${CMAKE_MATCH_5}")
+  list(APPEND expect_fail "${name}:${CMAKE_MATCH_4}")
+endforeach()
+run("${NODE}" "${SOURCE_DIR}/web/capture.mjs" --root "${WORK}" --out "${WORK}/shots" --chromium "${CHROMIUM}"
+    --size 256x256 ${captures})
+
+# The render's folder for the clip: bake and render name it alike (README "Outputs").
+file(GLOB clip_dirs LIST_DIRECTORIES true "${WORK}/render/${stem}/*")
+list(LENGTH clip_dirs count)
+if(NOT count EQUAL 1)
+  message(FATAL_ERROR "${WORK}/render/${stem}: expected one clip folder, found ${count}")
+endif()
+set(report "")
+set(problems "")
+foreach(item IN LISTS expect_pass expect_fail)
+  string(REPLACE ":" ";" parts "${item}")
+  list(GET parts 0 name)
+  list(GET parts 1 frame)
+  # Frame file names have at least four digits.
+  set(number "000${frame}")
+  string(LENGTH "${number}" length)
+  math(EXPR first "${length} - 4")
+  string(SUBSTRING "${number}" ${first} 4 number)
+  execute_process(COMMAND "${DQSKIN}" diff "${clip_dirs}/frame_${number}.png" "${WORK}/shots/${name}.png"
+                          --fail ${pixel} --failpercent ${percent}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  string(REGEX REPLACE "\n.*" "" line "${out}")
+  string(REGEX REPLACE "^([A-Z]+) +[^ ]+ +" "\\1 " line "${line}")
+  string(APPEND report "${name} (frame ${frame}): ${line}\n")
+  if(name MATCHES "^fault_")
+    if(NOT status EQUAL 2)
+      string(APPEND problems "${name}: a deliberately wrong decode passed the comparison (exit ${status})\n")
+    endif()
+  elseif(NOT (status EQUAL 0 OR status EQUAL 1))
+    string(APPEND problems "${name}: the player differs from dqskin render (exit ${status}) ${err}\n")
+  endif()
+endforeach()
+file(WRITE "${WORK}/figures.txt" "${report}")
+message("${report}")
+if(problems)
+  message(FATAL_ERROR "${problems}")
+endif()
