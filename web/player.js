@@ -179,10 +179,11 @@ async function main() {
   const frames = bake.clip.frame_numbers;
   played.showFrame(0);
   const box = await cameraBox(bake, played);
-  const camera = frameCamera(box, {
+  const view = {
     yaw: number('yaw', 35), pitch: number('pitch', 20), fov: number('fov', 35),
     distance: params.has('distance') ? number('distance') : undefined, ortho: params.get('ortho') === '1',
-  }, width / height);
+  };
+  let camera = frameCamera(box, view, width / height);
 
   if (params.has('frame')) {
     const index = frames.indexOf(Number(params.get('frame')));
@@ -215,6 +216,13 @@ async function main() {
     start = performance.now() - position * 1000 / fps;
   };
   scrub.oninput = () => { position = Number(scrub.value); start = performance.now() - position * 1000 / fps; };
+  if (!params.has('size'))
+    window.addEventListener('resize', () => {
+      renderer.setSize(window.innerWidth, window.innerHeight, false);
+      canvas.style.width = `${window.innerWidth}px`;
+      canvas.style.height = `${window.innerHeight}px`;
+      camera = frameCamera(box, view, window.innerWidth / window.innerHeight);
+    });
   renderer.setAnimationLoop(() => {
     if (playing) position = ((performance.now() - start) * fps / 1000) % frames.length;
     const index = Math.floor(position);

@@ -10,7 +10,8 @@
 # Prints "player: SKIPPED: <why>" (CTest's SKIP_REGULAR_EXPRESSION) when something it needs is missing.
 #
 #   cmake -DDQSKIN=dqskin -DNODE=node -DCHROMIUM=chromium -DSOURCE_DIR=repo -DTHREE_DIR=node_modules/three
-#         -DMODEL=m.glb -DCLIP=name -DFPS=30 -DFRAMES=4,15 [-DFAULTS=n=openvat:vat:4:row-order,…] -DWORK=dir
+#         -DMODEL=m.glb -DCLIP=name -DFPS=30 -DFRAMES=4,15 [-DFAULTS=n=openvat:vat:4:row-order,…]
+#         [-DOPENVAT_FLAGS=--encoding,float,…] -DWORK=dir
 #         -P player_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
@@ -45,8 +46,9 @@ endfunction()
 
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
+string(REPLACE "," ";" openvat_flags "${OPENVAT_FLAGS}")
 run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/openvat" --anim "${CLIP}" --fps ${FPS} --format vat,bones
-    --vat-profile openvat -q)
+    --vat-profile openvat ${openvat_flags} -q)
 run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/houdini" --anim "${CLIP}" --fps ${FPS} --format vat --vat-profile houdini -q)
 run("${DQSKIN}" render "${MODEL}" -o "${WORK}/render" --anim "${CLIP}" --fps ${FPS} --shade normals --size 256x256 -q)
 run(env "THREE_DIR=${THREE_DIR}" bash "${SOURCE_DIR}/scripts/install-player.sh" "${WORK}")
