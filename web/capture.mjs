@@ -6,7 +6,8 @@
 // DIR holds player/ (scripts/install-player.sh) and the bakes; each NAME=QUERY opens
 // player/?QUERY&size=…&capture=1 and writes SHOTS/NAME.png from the canvas. A static server of DIR
 // listens on 127.0.0.1 on a free port while the captures run and is closed afterwards. Chromium runs with
-// SwiftShader's WebGL2 (no GPU needed) and --dump-dom; the page puts the canvas in <pre id="capture">.
+// SwiftShader's WebGL2 (no GPU needed); the page puts the canvas in <pre id="capture"> and marks its body
+// data-ready (or data-error), which this script waits for over the DevTools protocol.
 // Exit status: 0 all written, 1 a page reported an error or drew nothing (its message printed), 2 usage.
 import { spawn } from 'node:child_process';
 import { createServer } from 'node:http';
@@ -59,38 +60,94 @@ const server = createServer((request, response) => {
 await new Promise((done) => server.listen(0, '127.0.0.1', done));
 const port = server.address().port;
 
-function chromium(url) {
-  return new Promise((done) => {
-    const child = spawn(options.chromium, [
-      '--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-      '--disable-gpu-sandbox', '--no-first-run', '--disable-extensions', '--hide-scrollbars',
-      `--window-size=${options.size.replace('x', ',')}`,
-      // Virtual time waits for the page's fetches and promises; the budget bounds a page that never ends.
-      '--virtual-time-budget=60000', '--dump-dom', url,
-    ], { stdio: ['ignore', 'pipe', 'pipe'] });
-    let out = '', err = '';
-    child.stdout.on('data', (d) => { out += d; });
-    child.stderr.on('data', (d) => { err += d; });
-    const timer = setTimeout(() => child.kill('SIGKILL'), 120000);
-    child.on('close', (status) => { clearTimeout(timer); done({ status, out, err }); });
-    child.on('error', (e) => { clearTimeout(timer); done({ status: -1, out, err: String(e) }); });
+// One headless Chromium for every capture, driven over the DevTools protocol on a pipe (file descriptors
+// 3 and 4, NUL-separated JSON): no port to pick, nothing for other processes to connect to.
+function launch() {
+  const child = spawn(options.chromium, [
+    '--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+    '--no-first-run', '--disable-extensions', '--hide-scrollbars', '--remote-debugging-pipe',
+    `--window-size=${options.size.replace('x', ',')}`, 'about:blank',
+  ], { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
+  let next = 0, buffer = '', stderr = '';
+  const waiting = new Map();
+  child.stderr.on('data', (d) => { stderr = (stderr + d).slice(-4000); });
+  child.stdio[4].on('data', (data) => {
+    buffer += data;
+    for (let end; (end = buffer.indexOf('\0')) >= 0; buffer = buffer.slice(end + 1)) {
+      const message = JSON.parse(buffer.slice(0, end));
+      const reply = waiting.get(message.id);
+      if (!reply) continue;
+      waiting.delete(message.id);
+      if (message.error) reply.reject(new Error(message.error.message));
+      else reply.resolve(message.result);
+    }
   });
+  const exited = new Promise((done) => child.on('exit', done));
+  child.on('error', (e) => { for (const w of waiting.values()) w.reject(e); });
+  exited.then(() => { for (const w of waiting.values()) w.reject(new Error(`chromium exited: ${stderr}`)); });
+  return {
+    send(method, params = {}, sessionId = undefined) {
+      const id = ++next;
+      child.stdio[3].write(JSON.stringify({ id, method, params, sessionId }) + '\0');
+      return new Promise((resolve, reject) => waiting.set(id, { resolve, reject }));
+    },
+    async close() {
+      child.stdio[3].end();
+      const timer = setTimeout(() => child.kill('SIGKILL'), 10000);
+      await exited;
+      clearTimeout(timer);
+    },
+  };
+}
+
+// Opens the page in a fresh tab, waits until it says it is done (body data-ready or data-error), and
+// returns what it captured.
+async function capture(browser, url) {
+  const { targetId } = await browser.send('Target.createTarget', { url: 'about:blank' });
+  const { sessionId } = await browser.send('Target.attachToTarget', { targetId, flatten: true });
+  try {
+    // Answers once the page's document is committed: the evaluation below runs in it, not in about:blank.
+    const navigation = await browser.send('Page.navigate', { url }, sessionId);
+    if (navigation.errorText) return { error: `${url}: ${navigation.errorText}` };
+    const waitForPage = `new Promise((done) => {
+      const started = Date.now();
+      const check = () => {
+        const body = document.body;
+        if (body && (body.dataset.ready || body.dataset.error))
+          done({ error: body.dataset.error, image: document.getElementById('capture')?.textContent });
+        else if (Date.now() - started > 90000) done({ error: 'the page did not finish within 90 s' });
+        else setTimeout(check, 50);
+      };
+      check();
+    })`;
+    const { result } = await browser.send('Runtime.evaluate', { expression: waitForPage, awaitPromise: true, returnByValue: true }, sessionId);
+    return result.value ?? { error: 'no answer from the page' };
+  } finally {
+    await browser.send('Target.closeTarget', { targetId });
+  }
 }
 
 mkdirSync(options.out, { recursive: true });
+const browser = launch();
 let failed = false;
-for (const job of jobs) {
-  const url = `http://127.0.0.1:${port}/player/?${job.query}&size=${options.size}&capture=1`;
-  const { status, out, err } = await chromium(url);
-  const shot = out.match(/<pre id="capture">data:image\/png;base64,([A-Za-z0-9+/=]+)<\/pre>/);
-  if (!shot) {
-    const error = out.match(/data-error="([^"]*)"/);
-    console.error(`capture: ${job.name}: ${error ? error[1] : `no image (chromium exit ${status}) ${err.split('\n').filter((l) => !/dbus|Fontconfig/.test(l)).slice(-3).join(' ')}`}`);
-    failed = true;
-    continue;
+try {
+  for (const job of jobs) {
+    const url = `http://127.0.0.1:${port}/player/?${job.query}&size=${options.size}&capture=1`;
+    const page = await capture(browser, url);
+    const shot = page.image?.match(/^data:image\/png;base64,([A-Za-z0-9+/=]+)$/);
+    if (page.error || !shot) {
+      console.error(`capture: ${job.name}: ${page.error ?? 'the page drew nothing'}`);
+      failed = true;
+      continue;
+    }
+    writeFileSync(join(options.out, `${job.name}.png`), Buffer.from(shot[1], 'base64'));
+    console.log(`capture: ${job.name}.png  ${job.query}`);
   }
-  writeFileSync(join(options.out, `${job.name}.png`), Buffer.from(shot[1], 'base64'));
-  console.log(`capture: ${job.name}.png  ${job.query}`);
+} catch (e) {
+  console.error(`capture: ${e.message}`);
+  failed = true;
+} finally {
+  await browser.close();
+  server.close();
 }
-server.close();
 process.exit(failed ? 1 : 0);
