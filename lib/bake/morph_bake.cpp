@@ -157,8 +157,8 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
   // The measurement: every baked frame, between the keys around it.
   Max position_error, normal_error;
   concurrency::parallel_for(frames, threads, [&](size_t i) {
-    const size_t kb = *std::lower_bound(keys.begin(), keys.end(), i);
-    const size_t ka = kb == i ? i : *(std::lower_bound(keys.begin(), keys.end(), i) - 1);
+    const auto next = std::lower_bound(keys.begin(), keys.end(), i);  // the last frame is a key
+    const size_t kb = *next, ka = kb == i ? i : *(next - 1);
     position_error.add(error(i, ka, kb));
     const double s = fraction(i, ka, kb);
     double worst = 0;
@@ -191,7 +191,11 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
   a.with_normals = with_normals_;
   glb::MorphGlbStats stats;
   MorphClipResult out;
-  out.bytes = glb::encode_morph_glb(*input_.asset, input_.instances, appearance, a, &stats);
+  try {
+    out.bytes = glb::encode_morph_glb(*input_.asset, input_.instances, appearance, a, &stats);
+  } catch (const OutputError& e) {  // past 4 GiB: fewer frames (--fps, --max-error) would fit
+    throw OutputError(what_ + ": " + e.what());
+  }
   out.check = {input_.path, clip_.name, frames, keys.size(), position_error.value, normal_error.value,
                out.bytes.size(), stats.sparse_accessors, a.grid.on()};
   if (stats.targets > kPortableMorphTargets) {

@@ -269,6 +269,16 @@ TEST_F(MorphBakeTest, AQuantizationGridCoarserThanTheBudgetIsRefusedAndLeavesNot
   EXPECT_FALSE(fs::exists(root_ / "unmet" / "twisted_cylinder"));
 }
 
+TEST_F(MorphBakeTest, ABudgetBelowWhatFloatsStoreIsRefusedAndLeavesNothing) {
+  BakeOptions o = options(root_ / "float");
+  o.textures.max_error = 1e-12;  // every frame a key, each still a float rounding away
+  const BakeReport r = bake({model_path("twisted_cylinder.gltf")}, o);
+  ASSERT_TRUE(r.any_failed());
+  EXPECT_NE(r.inputs[0].error.find("clip twist: the morph targets decode with errors up to "), std::string::npos)
+      << r.inputs[0].error;
+  EXPECT_FALSE(fs::exists(root_ / "float" / "twisted_cylinder"));
+}
+
 TEST_F(MorphBakeTest, MoreTargetsThanWebGl2ViewersDrawIsAWarning) {
   const BakeReport r = bake({model_path("twisted_cylinder.gltf")}, options(root_ / "many", 300));  // 301 frames
   ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;

@@ -281,7 +281,7 @@ std::string glb_container(const json& doc, std::string bin) {
   text.resize((text.size() + 3) & ~size_t(3), ' ');
   bin.resize((bin.size() + 3) & ~size_t(3), '\0');
   const size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size());
-  if (total > 0xFFFFFFFFu) throw OutputError("the frame is larger than the 4 GiB a .glb can hold");
+  if (total > 0xFFFFFFFFu) throw OutputError("the .glb would be larger than the 4 GiB the format can hold");
   std::string out;
   out.reserve(total);
   out += "glTF";
