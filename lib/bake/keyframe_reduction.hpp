@@ -17,9 +17,9 @@ using InterpolationError = std::function<double(size_t i, size_t a, size_t b)>;
 // Douglas–Peucker split (Douglas and Peucker 1973, applied to time instead of arc length), the frame of a
 // segment that `error` finds worst (the earliest of equals) becomes a key until every frame of every
 // segment is within `budget`. The split is deterministic and puts keys at the poses the motion turns
-// around, where a forward scan would place them by where it started; like the scan it is not minimal, but
-// it never keeps a frame that every segment around it already reproduces. Costs O(frames × depth) calls
-// of `error`, spread over `threads` threads.
+// around, where a greedy forward scan would place them by where it started; neither is minimal, and the
+// split only ever divides a segment that misses the budget. Costs O(frames × depth) calls of `error`,
+// spread over `threads` threads.
 std::vector<size_t> reduce_keyframes(size_t frames, double budget, const InterpolationError& error, unsigned threads);
 
 }  // namespace dqskin::bake_detail

@@ -35,8 +35,6 @@ namespace {
 // keys) stay within. 200 leaves 56 of the 256 vectors to the material.
 constexpr size_t kPortableMorphTargets = 200;
 
-double degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
-
 // The largest of several threads' values.
 struct Max {
   std::mutex mutex;
@@ -173,7 +171,7 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
         worst = std::max(worst, std::atan2(glm::length(glm::cross(shown, truth)), glm::dot(shown, truth)));
       }
     }
-    normal_error.add(degrees(worst));
+    normal_error.add(glm::degrees(worst));
   });
   if (limit > 0 && position_error.value > limit)
     throw InputError(what_ + ": the morph targets decode with errors up to " + length_text(position_error.value) +

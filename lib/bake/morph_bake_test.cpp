@@ -69,8 +69,6 @@ json glb_json(const std::string& glb) {
   return json::parse(glb.substr(20, length));
 }
 
-double degrees(double radians) { return radians * 180.0 / 3.14159265358979323846; }
-
 class MorphBakeTest : public testing::Test {
 protected:
   BakeOptions options(const fs::path& out, double fps = 10) const {
@@ -153,7 +151,7 @@ void check_morph_bake(const std::string& input, const BakeOptions& o, json& mani
       }
     }
     EXPECT_NEAR(worst, m["max_error"].get<double>(), tolerance);
-    EXPECT_LE(degrees(worst_normal), m["max_normal_degrees"].get<double>() + 1e-3);
+    EXPECT_LE(glm::degrees(worst_normal), m["max_normal_degrees"].get<double>() + 1e-3);
     if (t.max_error > 0) {
       const double budget = t.max_error_relative ? t.max_error * glm::distance(lo, hi) : t.max_error;
       EXPECT_LE(m["max_error"].get<double>(), budget);
