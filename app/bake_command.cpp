@@ -45,6 +45,7 @@ struct BakeSettings {
   std::string max_error;  // "0.001" (scene units) or "0.1%" (of the clip's bounding-box diagonal)
   std::string max_bytes;  // "64M"
   bool no_check = false;
+  bool morph_quantize = false;
 };
 
 // --max-error: a length in scene units, or a percentage of the clip's bounding-box diagonal.
@@ -81,6 +82,7 @@ BakeOptions to_options(const BakeSettings& s) {
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
   o.textures = s.textures;
   o.textures.check = !s.no_check;
+  o.morph.quantize = s.morph_quantize;
   parse_max_error(s.max_error, o.textures);
   if (!s.max_bytes.empty()) o.textures.max_bytes = parse_byte_size(s.max_bytes, "--max-bytes");
   return o;
@@ -172,7 +174,8 @@ Command add_bake_command(CLI::App& app) {
   BakeSettings& bake = *settings;
   CLI::App* bake_cmd = app.add_subcommand(
       "bake", "Deform whole animations and write per-frame meshes (glb, ply, obj), vertex-animation textures "
-              "(vat) and bone textures (bones), with a manifest of every file's SHA-256");
+              "(vat), bone textures (bones) and morph-target animations (morph), with a manifest of every file's "
+              "SHA-256");
   bake_cmd->add_option("INPUT", bake.inputs,
                        ".gltf or .glb files. Without any, the bundled textured_cylinder rig is baked into a new "
                        "temporary folder, which is printed");
@@ -182,7 +185,7 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
       ->type_name("lbs|dqs|dib")
       ->capture_default_str();
-  bake_cmd->add_option("--format", bake.formats, "Outputs, any of glb,ply,obj,vat,bones (comma-separated)")
+  bake_cmd->add_option("--format", bake.formats, "Outputs, any of glb,ply,obj,vat,bones,morph (comma-separated)")
       ->type_name("LIST")
       ->capture_default_str();
   bake_cmd->add_option("--vat-profile", bake.textures.vat_profile,
@@ -214,13 +217,18 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_flag("--pot", bake.textures.pot, "Pad textures to power-of-two sizes");
   bake_cmd->add_option("--max-error", bake.max_error,
                        "Fail a clip whose textures decode further than this from the deformed mesh, at a frame or "
-                       "between two: a length in scene units, or a percentage of the clip's bounding-box diagonal")
+                       "between two: a length in scene units, or a percentage of the clip's bounding-box diagonal. "
+                       "For morph, the keyframe reduction's budget: keep only the frames that interpolating the kept "
+                       "ones cannot reproduce within it, at every baked frame")
       ->type_name("LENGTH|P%");
   bake_cmd->add_option("--max-bytes", bake.max_bytes,
                        "GPU memory a clip's vertex-animation textures may take (uncompressed: 64M, 1.5G). With "
                        "--max-error or --max-bytes the texel type (unless --encoding) and a frame decimation are "
                        "chosen to fit; --dry-run prints the choices")
       ->type_name("BYTES");
+  bake_cmd->add_flag("--morph-quantize", bake.morph_quantize,
+                     "morph: KHR_mesh_quantization, positions on a 15-bit grid that the node's transform decodes "
+                     "(the grid's error counts against --max-error), normals as normalized 16-bit integers");
   bake_cmd->add_flag("--no-check", bake.no_check,
                      "Skip the decode-back check (every texture read back from its file and decoded as its shader "
                      "does, against the deformed meshes)");
@@ -250,7 +258,8 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_flag("-v,--verbose", bake.verbose, "Also print the OpenGL backend and renderer");
   bake_cmd->footer(
       "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{glb,ply,obj} (frame numbers zero-padded, so name order is\n"
-      "frame order), materials.mtl, vat_positions.exr, vat_normals.exr, vat.json, bones_skinK.{exr,json}, and\n"
+      "frame order), materials.mtl, vat_positions.exr, vat_normals.exr, vat.json, bones_skinK.{exr,json},\n"
+      "animation.glb (morph), and\n"
       "OUTDIR/manifest.json (manifest.shard-I-of-N.json for a shard). Files appear complete or not at all.\n"
       "Exit status: 0 success, 1 some inputs failed (the others baked), 2 usage or input error, 3 no OpenGL context.\n"
       "Examples:\n"

@@ -1,9 +1,11 @@
 # One model through the player (web/CMakeLists.txt), at test time:
-#   1. bakes MODEL's clip CLIP at FPS: WORK/openvat (--format vat,bones --vat-profile openvat; the
-#      bone texture in the dq profile) and WORK/houdini (--format vat --vat-profile houdini);
+#   1. bakes MODEL's clip CLIP at FPS: WORK/openvat (--format vat,bones,morph --vat-profile openvat; the
+#      bone texture in the dq profile), WORK/houdini (--format vat --vat-profile houdini) and WORK/morphq
+#      (--format morph --max-error 0.1% --morph-quantize: fewer keys, KHR_mesh_quantization);
 #   2. renders the same frames with `dqskin render --shade normals --size 256x256` into WORK/render;
 #   3. installs the player into WORK/player and draws each of FRAMES through each path (openvat VAT,
-#      houdini VAT, dq bones, morph glb) in headless Chromium (capture.mjs), into WORK/shots;
+#      houdini VAT, dq bones, morph glb, quantized morph glb) in headless Chromium (capture.mjs), into
+#      WORK/shots, all framed on the clip's bounds in WORK/openvat's vat.json;
 #   4. compares every shot with dqskin's render of that frame: `dqskin diff` must pass (or warn) with
 #      --fail ${pixel} --failpercent ${percent}; and each of FAULTS (name=bake:path:frame:fault, a
 #      deliberately wrong decode) must fail it.
@@ -47,24 +49,37 @@ endfunction()
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 string(REPLACE "," ";" openvat_flags "${OPENVAT_FLAGS}")
-run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/openvat" --anim "${CLIP}" --fps ${FPS} --format vat,bones
+run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/openvat" --anim "${CLIP}" --fps ${FPS} --format vat,bones,morph
     --vat-profile openvat ${openvat_flags} -q)
 run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/houdini" --anim "${CLIP}" --fps ${FPS} --format vat --vat-profile houdini -q)
+run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/morphq" --anim "${CLIP}" --fps ${FPS} --format morph --max-error 0.1%
+    --morph-quantize -q)
 run("${DQSKIN}" render "${MODEL}" -o "${WORK}/render" --anim "${CLIP}" --fps ${FPS} --shade normals --size 256x256 -q)
 run(env "THREE_DIR=${THREE_DIR}" bash "${SOURCE_DIR}/scripts/install-player.sh" "${WORK}")
 
 get_filename_component(stem "${MODEL}" NAME_WE)
+# The box dqskin render frames: the clip's bounds over its frames, as the bake measured them.
+file(GLOB vat_json "${WORK}/openvat/*/*/vat.json")
+file(READ "${vat_json}" side)
+set(box "")
+foreach(end min max)
+  foreach(axis 0 1 2)
+    string(JSON value GET "${side}" bounds ${end} ${axis})
+    list(APPEND box ${value})
+  endforeach()
+endforeach()
+string(REPLACE ";" "," box "${box}")
 string(REPLACE "," ";" frames "${FRAMES}")
 string(REPLACE "," ";" faults "${FAULTS}")
 set(captures "")
 set(expect_pass "")
 foreach(frame IN LISTS frames)
-  foreach(case openvat:vat openvat:bones houdini:vat)
+  foreach(case openvat:vat openvat:bones openvat:morph houdini:vat morphq:morph)
     string(REPLACE ":" ";" parts "${case}")
     list(GET parts 0 bake)
     list(GET parts 1 path)
     set(name ${bake}_${path}_${frame})
-    list(APPEND captures "${name}=bake=../${bake}&clip=${CLIP}&path=${path}&frame=${frame}")
+    list(APPEND captures "${name}=bake=../${bake}&clip=${CLIP}&path=${path}&frame=${frame}&box=${box}")
     list(APPEND expect_pass "${name}:${frame}")
   endforeach()
 endforeach()

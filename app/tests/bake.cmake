@@ -28,7 +28,7 @@ dqskin_bake_test(missing_input_exits_2 2 ARGS bake ${bake_scratch}/missing.gltf 
 dqskin_bake_test(some_inputs_failed_exits_1 1 ARGS bake ${bake_scratch}/missing.gltf ${rig} -o ${bake_scratch}/some --quiet
   STDERR "^dqskin: [^\n]*/missing.gltf: [^\n]+\n$")
 dqskin_bake_test(unknown_format_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --format glb,fbx
-  STDERR "^dqskin: --format 'fbx' is not one of glb, ply, obj, vat, bones\n$")
+  STDERR "^dqskin: --format 'fbx' is not one of glb, ply, obj, vat, bones, morph\n$")
 dqskin_bake_test(bad_shard_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --shard 3/3
   STDERR "^dqskin: --shard '3/3': I must be at least 0 and less than N\n$")
 dqskin_bake_test(unknown_mode_exits_2 2 ARGS bake ${rig} -o ${bake_scratch}/x --mode slerp
@@ -57,6 +57,21 @@ set_tests_properties(cli.bake_unmet_max_error_leaves_nothing PROPERTIES DEPENDS 
 dqskin_bake_test(dry_run_prints_the_plan 0 ARGS bake ${twist} -o ${bake_scratch}/plan --format vat --vat-profile openvat
   --encoding half --max-bytes 100K --dry-run STDOUT "twisted_cylinder-remap_info.json"
   STDERR "plan for clip twist \\(--max-bytes 100 KiB\\)[^\n]*\n.*\\* half +6 frames at 5 fps, 792 x 12, 55.7 KiB[^\n]*<- chosen")
+
+# The morph-target animation: listed by a dry run, its flag refused without it, a quantization grid coarser
+# than the budget refused with no file left, two bakes byte for byte the same, and its validator run.
+dqskin_bake_test(morph_dry_run_lists_animation_glb 0 ARGS bake ${rig} -o ${bake_scratch}/morph_dry --format morph --dry-run
+  STDOUT "^[^\n]*morph_dry/bending_arm/bend/animation.glb\n$")
+dqskin_bake_test(morph_quantize_needs_morph 2 ARGS bake ${rig} -o ${bake_scratch}/x --format glb --morph-quantize
+  STDERR "^dqskin: --morph-quantize is for --format morph\n$")
+dqskin_bake_test(morph_unmet_grid_exits_2 2 ARGS bake ${twist} -o ${bake_scratch}/morph_unmet --format morph
+  --morph-quantize --max-error 0.000001 STDERR "^dqskin: [^\n]*twisted_cylinder.gltf: clip twist: --morph-quantize's grid \\(a step of [0-9.]+ um\\) stores positions within [0-9.]+ um, over --max-error 1 um\n$")
+add_test(NAME cli.bake_morph_unmet_grid_leaves_nothing COMMAND sh -c "test ! -e '${bake_scratch}/morph_unmet/twisted_cylinder'")
+set_tests_properties(cli.bake_morph_unmet_grid_leaves_nothing PROPERTIES DEPENDS cli.bake_morph_unmet_grid_exits_2
+  FIXTURES_REQUIRED bake_scratch)
+add_test(NAME cli.bake_morph_is_deterministic COMMAND sh -c
+  "for d in a b; do $<TARGET_FILE:dqskin_cli> bake ${twist} -o '${bake_scratch}/morph_'$d --format morph --max-error 0.5% --morph-quantize --quiet || exit 1; done && cmp '${bake_scratch}/morph_a/twisted_cylinder/twist/animation.glb' '${bake_scratch}/morph_b/twisted_cylinder/twist/animation.glb' && cmp '${bake_scratch}/morph_a/manifest.json' '${bake_scratch}/morph_b/manifest.json'")
+set_tests_properties(cli.bake_morph_is_deterministic PROPERTIES FIXTURES_REQUIRED bake_scratch ENVIRONMENT "${bake_test_environment}")
 
 # The summary, --verbose and the manifest say which deformer ran.
 dqskin_bake_test(fast_cpu_says_so 0 ARGS bake ${rig} -o ${bake_scratch}/fast --format ply --backend fast-cpu -v

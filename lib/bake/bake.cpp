@@ -16,6 +16,8 @@
 #include "dqskin/texture_output.hpp"
 #include "manifest.hpp"
 #include "bones_bake.hpp"
+#include "morph_bake.hpp"
+#include "../io/glb_appearance.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "vat_bake.hpp"
 #include "vat_planner.hpp"
@@ -42,7 +44,8 @@ bool has(unsigned formats, BakeFormat f) { return formats & unsigned(f); }
 // The planner's view of a bake: which inputs, clips, frames and shard.
 PlanOptions plan_options(const BakeOptions& options) {
   PlanOptions plan{options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
-  plan.load.keep_source = has(options.formats, BakeFormat::kGlb);  // what the glb writer copies from the file
+  // What the glb writer and the morph animation copy from the file.
+  plan.load.keep_source = has(options.formats, BakeFormat::kGlb) || has(options.formats, BakeFormat::kMorph);
   return plan;
 }
 
@@ -92,12 +95,18 @@ struct Ledger {
     report.checks.push_back(std::move(check));
   }
 
+  void record_morph(MorphCheck check) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    report.morphs.push_back(std::move(check));
+  }
+
   // An input failed and its files were taken back: they leave the report (and so the manifest) too.
   void forget(const InputPlan& input) {
     const std::lock_guard<std::mutex> lock(mutex);
     const std::string prefix = input.stem + "/";
     std::erase_if(report.outputs, [&](const BakeOutput& o) { return o.path.rfind(prefix, 0) == 0; });
     std::erase_if(report.checks, [&](const TextureCheck& c) { return c.input == input.path; });
+    std::erase_if(report.morphs, [&](const MorphCheck& c) { return c.input == input.path; });
   }
 };
 
@@ -125,11 +134,14 @@ private:
 // Bakes the clips of one input with one deformer.
 class InputBaker {
 public:
-  // `glb`: the input's glb writer when glb is asked for (made while planning the work).
+  // `glb`: the input's glb writer when glb is asked for; `appearance`: what the morph animation copies from
+  // the file when morph is asked for (both made while planning the work). Warnings go to `warnings`.
   InputBaker(const InputPlan& input, const BakeOptions& options, GpuContext* context, Ledger& ledger,
-             OutputJournal& journal, std::unique_ptr<GlbWriter> glb)
+             OutputJournal& journal, std::unique_ptr<GlbWriter> glb, std::unique_ptr<glb::Appearance> appearance,
+             std::vector<std::string>& warnings)
       : input_(input), asset_(*input.asset), options_(options), ledger_(ledger), journal_(journal),
-        jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())), glb_(std::move(glb)) {
+        jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())), glb_(std::move(glb)),
+        appearance_(std::move(appearance)), warnings_(warnings) {
     if (has(options.formats, BakeFormat::kPly) || has(options.formats, BakeFormat::kObj))
       mesh_ = std::make_unique<MeshFrameEncoder>(asset_, input.instances, asset_.materials.empty() ? "" : "materials.mtl");
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
@@ -180,10 +192,21 @@ public:
       frames = frames_to_deform(clip, options_.formats & ~unsigned(BakeFormat::kVat));
       ledger_.progress.add(counted - frames.size(), input_.path, clip.name);
     }
+    // The morph animation takes every frame of the bake's pass (frames_to_deform gives them all).
+    std::unique_ptr<MorphClipBake> morph;
+    if (clip.clip_mine && has(options_.formats, BakeFormat::kMorph)) morph = std::make_unique<MorphClipBake>(input_, clip, options_);
     std::vector<double> times;
     for (size_t f : frames) times.push_back(clip.times[f]);
-    auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, shared); };
+    auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, shared, morph.get()); };
     if (!times.empty()) deformer_->run(clip.clip, times, sink);
+    if (morph) {
+      const Clock::time_point start = Clock::now();
+      MorphClipResult result = morph->finish(*appearance_, jobs_);
+      ledger_.add_time(&BakeStageTimes::encode, since(start));
+      ledger_.write(morph_file(clip), result.bytes, journal_);
+      ledger_.record_morph(std::move(result.check));
+      for (std::string& w : result.warnings) warnings_.push_back(std::move(w));
+    }
     if (vat) {
       Clock::time_point start = Clock::now();
       vat->complete_images();  // the last rows; a PNG is compressed here, whole
@@ -222,15 +245,20 @@ private:
     ledger_.add_time(options_.textures.check ? &BakeStageTimes::check : &BakeStageTimes::sample, since(start));
   }
 
-  // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them.
-  void encode_batch(const DeformedBatch& batch, const ClipPlan& clip, const std::vector<size_t>& frames, VatClipBake* vat) {
+  // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them, the
+  // morph animation's frames on another.
+  void encode_batch(const DeformedBatch& batch, const ClipPlan& clip, const std::vector<size_t>& frames, VatClipBake* vat,
+                    MorphClipBake* morph) {
     ledger_.check_cancel();
-    const size_t tasks = batch.frame_count + (vat ? 1 : 0);
+    const size_t tasks = batch.frame_count + (vat ? 1 : 0) + (morph ? 1 : 0);
     concurrency::parallel_for(tasks, jobs_, [&](size_t task) {
       ledger_.check_cancel();
-      if (task == batch.frame_count) {
+      if (task >= batch.frame_count) {
         const Clock::time_point start = Clock::now();
-        for (size_t k = 0; k < batch.frame_count; ++k) vat->append(frame_view(batch, k));
+        for (size_t k = 0; k < batch.frame_count; ++k) {
+          if (task == batch.frame_count && vat) vat->append(frame_view(batch, k));
+          else morph->append(frame_view(batch, k));
+        }
         ledger_.add_time(&BakeStageTimes::encode, since(start));
         return;
       }
@@ -272,6 +300,8 @@ private:
   OutputJournal& journal_;
   const unsigned jobs_;
   std::unique_ptr<GlbWriter> glb_;
+  std::unique_ptr<glb::Appearance> appearance_;  // when morph is asked for
+  std::vector<std::string>& warnings_;
   std::unique_ptr<MeshFrameEncoder> mesh_;  // when PLY or OBJ is asked for
   BufferPool buffers_;
   std::unique_ptr<Deformer> deformer_;
@@ -287,9 +317,9 @@ unsigned parse_bake_formats(const std::string& list) {
     const std::string name = list.substr(start, comma - start);
     static const std::pair<const char*, BakeFormat> known[] = {{"glb", BakeFormat::kGlb}, {"ply", BakeFormat::kPly},
                                                                {"obj", BakeFormat::kObj}, {"vat", BakeFormat::kVat},
-                                                               {"bones", BakeFormat::kBones}};
+                                                               {"bones", BakeFormat::kBones}, {"morph", BakeFormat::kMorph}};
     const auto it = std::find_if(std::begin(known), std::end(known), [&](const auto& k) { return name == k.first; });
-    if (it == std::end(known)) throw InputError("--format '" + name + "' is not one of glb, ply, obj, vat, bones");
+    if (it == std::end(known)) throw InputError("--format '" + name + "' is not one of glb, ply, obj, vat, bones, morph");
     formats |= unsigned(it->second);
     start = comma + 1;
   }
@@ -316,6 +346,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   if (has(options.formats, BakeFormat::kBones) && !options.textures.encoding.empty() &&
       options.textures.encoding != "float" && options.textures.encoding != "half" && !has(options.formats, BakeFormat::kVat))
     throw InputError("--encoding " + options.textures.encoding + " is for vertex-animation textures; bone textures are float or half");
+  if (options.morph.quantize && !has(options.formats, BakeFormat::kMorph))
+    throw InputError("--morph-quantize is for --format morph");
 
   std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
   for (const InputPlan& plan : plans)
@@ -324,15 +356,17 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   // The work in numbers, before anything is written. The glb writers made for it (they measure a frame's
   // size) are the ones that bake.
   std::vector<std::unique_ptr<GlbWriter>> glb_writers(plans.size());
+  std::vector<std::unique_ptr<glb::Appearance>> appearances(plans.size());
   BakeWork work;
   for (size_t i = 0; i < plans.size(); ++i) {
     InputPlan& plan = plans[i];
     if (!plan.error.empty()) continue;
     try {
-      if (has(options.formats, BakeFormat::kGlb)) {
+      if (has(options.formats, BakeFormat::kGlb))
         glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene);
-        plan.asset->source.reset();  // the writer has copied what it needs: the JSON is not kept through the bake
-      }
+      if (has(options.formats, BakeFormat::kMorph))
+        appearances[i] = std::make_unique<glb::Appearance>(glb::read_appearance(*plan.asset, plan.instances, plan.scene));
+      plan.asset->source.reset();  // the writers have copied what they need: the JSON is not kept through the bake
       work += estimate_work(plan, options, glb_writers[i].get());
     } catch (const std::bad_alloc&) {
       plan.error = kOutOfMemory;
@@ -378,7 +412,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       plans,
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {
         const size_t i = size_t(&plan - plans.data());
-        InputBaker baker(plan, options, context.for_deforming(options.mode), ledger, journal, std::move(glb_writers[i]));
+        InputBaker baker(plan, options, context.for_deforming(options.mode), ledger, journal, std::move(glb_writers[i]),
+                         std::move(appearances[i]), result.warnings);
         for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
       },
       [&](const InputPlan& plan) { ledger.forget(plan); });
@@ -391,6 +426,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   std::sort(report.checks.begin(), report.checks.end(), [](const TextureCheck& a, const TextureCheck& b) {
     return std::tie(a.input, a.clip, a.texture) < std::tie(b.input, b.clip, b.texture);
   });
+  std::sort(report.morphs.begin(), report.morphs.end(),
+            [](const MorphCheck& a, const MorphCheck& b) { return std::tie(a.input, a.clip) < std::tie(b.input, b.clip); });
   if (!std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
     report.wall_seconds = since(start);
     return report;  // nothing baked, nothing to record

@@ -1,10 +1,11 @@
 #include "bake_plan.hpp"
+#include "morph_bake.hpp"
 #include "vat_bake.hpp"
 
 namespace dqskin::bake_detail {
 
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats) {
-  const bool textures = clip.clip_mine && (formats & unsigned(BakeFormat::kVat));
+  const bool textures = clip.clip_mine && (formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kMorph)));
   const bool per_frame = formats & (unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kPly) | unsigned(BakeFormat::kObj));
   std::vector<size_t> out;
   for (size_t f = 0; f < clip.times.size(); ++f)
@@ -43,6 +44,7 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
     for (int skin : input.skins)
       for (const char* extension : {".exr", ".json"})
         files.push_back(clip.folder + "/bones_skin" + std::to_string(skin) + extension);
+  if (formats & unsigned(BakeFormat::kMorph)) files.push_back(morph_file(clip));
   return files;
 }
 

@@ -7,7 +7,8 @@
 
 namespace dqskin::bake_detail {
 
-// Frames to deform: all of them when whole-animation textures are due, else the shard's own.
+// Frames to deform: all of them when whole-animation textures or the morph animation are due, else the
+// shard's own.
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats);
 
 // Every frame time and, between neighbours, the midpoint: t0, (t0+t1)/2, t1, … (2n − 1 times; frame f at

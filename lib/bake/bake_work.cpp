@@ -1,4 +1,5 @@
 #include "bake_work.hpp"
+#include "morph_bake.hpp"
 #include "vat_bake.hpp"
 
 #include "dqskin/mesh_output.hpp"
@@ -76,7 +77,8 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
     for (const std::string& file : planned_files(input, clip, options)) {
       uint64_t size = 0;
       const auto in_vat = std::find_if(vat.begin(), vat.end(), [&](const auto& v) { return v.first == file; });
-      if (ends_with(file, ".glb")) size = glb_frame;
+      if (file == morph_file(clip)) size = planned_morph_bytes(input, clip);
+      else if (ends_with(file, ".glb")) size = glb_frame;
       else if (ends_with(file, ".ply")) size = ply_frame;
       else if (ends_with(file, ".obj")) size = obj_frame;
       else if (ends_with(file, "materials.mtl")) size = encode_mtl(asset).size();

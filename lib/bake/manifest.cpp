@@ -41,6 +41,15 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
                                {"max_midpoint_normal_degrees", k.max_midpoint_normal_degrees},
                                {"samples", k.samples}};
       if (!checks.empty()) c["decode_check"] = std::move(checks);
+      for (const MorphCheck& m : report.morphs)
+        if (m.input == plan.path && m.clip == clip.name)
+          c["morph"] = {{"frames", m.frames},
+                        {"keyframes", m.keyframes},
+                        {"max_error", m.max_error},
+                        {"max_normal_degrees", m.max_normal_degrees},
+                        {"bytes", m.bytes},
+                        {"sparse_accessors", m.sparse_accessors},
+                        {"quantized", m.quantized}};
       clips.push_back(std::move(c));
     }
     in["animations"] = std::move(clips);
@@ -52,7 +61,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
 
   json formats = json::array();
   for (const auto& [bit, name] : {std::pair{BakeFormat::kGlb, "glb"}, {BakeFormat::kPly, "ply"}, {BakeFormat::kObj, "obj"},
-                                  {BakeFormat::kVat, "vat"}, {BakeFormat::kBones, "bones"}})
+                                  {BakeFormat::kVat, "vat"}, {BakeFormat::kBones, "bones"}, {BakeFormat::kMorph, "morph"}})
     if (options.formats & unsigned(bit)) formats.push_back(name);
 
   json manifest = {
@@ -80,6 +89,15 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     }
     textures["decode_check"] = t.check;
     manifest["textures"] = std::move(textures);
+  }
+  // Morph settings only where the morph animation is written; its budget is --max-error, as for textures.
+  if (options.formats & unsigned(BakeFormat::kMorph)) {
+    json morph = {{"quantize", options.morph.quantize}};
+    if (options.textures.max_error > 0) {
+      morph["max_error"] = options.textures.max_error;
+      morph["max_error_relative"] = options.textures.max_error_relative;
+    }
+    manifest["morph"] = std::move(morph);
   }
   const std::string name = options.shard.count > 1 ? "manifest.shard-" + std::to_string(options.shard.index) + "-of-" +
                                                          std::to_string(options.shard.count) + ".json"

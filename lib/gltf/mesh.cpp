@@ -27,8 +27,10 @@ std::vector<V> to_vectors(const std::vector<float>& f) {
 }
 
 // Attribute shapes of glTF 2.0 §3.7.2.1; KHR_mesh_quantization widens them to every integer type.
+// Morph targets (§3.7.2.2): KHR_mesh_quantization allows POSITION displacements as byte or short, plain or
+// normalized, and NORMAL and TANGENT ones as normalized byte or short only.
 struct Shapes {
-  AccessorShape position, normal, tangent, texcoord, joints, weights, target;
+  AccessorShape position, normal, tangent, texcoord, joints, weights, target, target_position;
   // COLOR_n is the same with or without quantization.
   AccessorShape color{{TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, {kFloat, kUByte, kUShort}, true};
 };
@@ -41,13 +43,15 @@ Shapes shapes_for(bool quantized) {
             {{TINYGLTF_TYPE_VEC2}, {kFloat, kByte, kUByte, kShort, kUShort}},
             {{TINYGLTF_TYPE_VEC4}, {kUByte, kUShort}},
             {{TINYGLTF_TYPE_VEC4}, {kFloat, kUByte, kUShort}, true},
-            {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, true}};
+            {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}, true},
+            {{TINYGLTF_TYPE_VEC3}, {kFloat, kByte, kShort}}};
   return {{{TINYGLTF_TYPE_VEC3}, {kFloat}},
           {{TINYGLTF_TYPE_VEC3}, {kFloat}},
           {{TINYGLTF_TYPE_VEC4}, {kFloat}},
           {{TINYGLTF_TYPE_VEC2}, {kFloat, kUByte, kUShort}, true},
           {{TINYGLTF_TYPE_VEC4}, {kUByte, kUShort}},
           {{TINYGLTF_TYPE_VEC4}, {kFloat, kUByte, kUShort}, true},
+          {{TINYGLTF_TYPE_VEC3}, {kFloat}},
           {{TINYGLTF_TYPE_VEC3}, {kFloat}}};
 }
 
@@ -158,7 +162,8 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
                                                          : nullptr;
       if (!dest) continue;  // other attributes (TEXCOORD_n, COLOR_n) do not move the surface
       same_count(accessor, "target " + std::to_string(t) + " " + name);
-      *dest = to_vectors<glm::vec3>(reader.floats(accessor, shape.target, twhat + " " + name));
+      const AccessorShape& target_shape = dest == &target.positions ? shape.target_position : shape.target;
+      *dest = to_vectors<glm::vec3>(reader.floats(accessor, target_shape, twhat + " " + name));
     }
     prim.targets.push_back(std::move(target));
   }

@@ -10,7 +10,10 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <cmath>
+#include <limits>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 namespace dqskin::glb {
@@ -172,6 +175,18 @@ int BinWriter::floats(std::span<const float> values, size_t count, const char* t
   return int(accessors.size()) - 1;
 }
 
+int BinWriter::positions(std::span<const float> xyz) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  for (size_t i = 0; i + 2 < xyz.size(); i += 3) {
+    const glm::vec3 q(xyz[i], xyz[i + 1], xyz[i + 2]);
+    lo = glm::min(lo, q), hi = glm::max(hi, q);
+  }
+  const int a = floats(xyz, xyz.size() / 3, "VEC3");
+  accessors[size_t(a)]["min"] = {lo.x, lo.y, lo.z};
+  accessors[size_t(a)]["max"] = {hi.x, hi.y, hi.z};
+  return a;
+}
+
 int BinWriter::indices(std::span<const uint32_t> indices) {
   const uint32_t largest = indices.empty() ? 0 : *std::max_element(indices.begin(), indices.end());
   int v;
@@ -266,7 +281,7 @@ std::string glb_container(const json& doc, std::string bin) {
   text.resize((text.size() + 3) & ~size_t(3), ' ');
   bin.resize((bin.size() + 3) & ~size_t(3), '\0');
   const size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size());
-  if (total > 0xFFFFFFFFu) throw OutputError("the frame is larger than the 4 GiB a .glb can hold");
+  if (total > 0xFFFFFFFFu) throw OutputError("the .glb would be larger than the 4 GiB the format can hold");
   std::string out;
   out.reserve(total);
   out += "glTF";
@@ -283,5 +298,52 @@ std::string glb_container(const json& doc, std::string bin) {
   return out;
 }
 
+namespace {
+
+// Every extension named in an `extensions` object anywhere in the document (§3.12: extensionsUsed must
+// list them all, and should list no other).
+void collect_extensions(const json& j, std::set<std::string>& names) {
+  if (j.is_array()) {
+    for (const json& v : j) collect_extensions(v, names);
+  } else if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) {
+      if (key == "extras") continue;
+      if (key == "extensions" && value.is_object())
+        for (const auto& [name, unused] : value.items()) names.insert(name);
+      collect_extensions(value, names);
+    }
+  }
+}
+
+}  // namespace
+
+std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& source_required,
+                       const std::vector<std::string>& own) {
+  bin.bytes.resize((bin.bytes.size() + 3) & ~size_t(3), '\0');
+  doc["accessors"] = std::move(bin.accessors);
+  doc["bufferViews"] = std::move(bin.views);
+  if (!bin.bytes.empty()) doc["buffers"] = json::array({{{"byteLength", bin.bytes.size()}}});
+  std::vector<std::string> empty;
+  for (const auto& [key, value] : doc.items())
+    if (value.is_array() && value.empty()) empty.push_back(key);
+  for (const std::string& key : empty) doc.erase(key);
+  std::set<std::string> used;
+  collect_extensions(doc, used);
+  used.insert(own.begin(), own.end());
+  if (!used.empty()) doc["extensionsUsed"] = used;
+  json required = json::array();
+  for (const std::string& e : source_required)
+    if (used.count(e)) required.push_back(e);
+  for (const std::string& e : own) required.push_back(e);
+  if (!required.empty()) doc["extensionsRequired"] = std::move(required);
+  return glb_container(doc, std::move(bin.bytes));
+}
+
+glm::vec3 unit_or(const glm::dvec3& n, const glm::vec3& fallback) {
+  const double length = glm::length(n);
+  if (!(length > 1e-30) || !std::isfinite(length)) return fallback;
+  const glm::vec3 u(n / length);
+  return std::abs(glm::length(u) - 1.0f) <= 1e-4f ? u : fallback;
+}
 
 }  // namespace dqskin::glb

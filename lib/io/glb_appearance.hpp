@@ -1,6 +1,8 @@
-// What a .glb frame takes from the source file unchanged (internal to glb_output.cpp): the appearance
-// objects copied as JSON with every reference checked, the images' bytes, and the vertex attributes that do
-// not move (texture coordinates, colours, indices), written once into the start of the BIN chunk.
+// What a .glb frame takes from the source file unchanged (internal to lib/io, lib/texture and lib/bake: the
+// glb frames, the morph-target animation and the VAT rest mesh): the appearance objects copied as JSON with
+// every reference checked, the images' bytes, and the vertex attributes that do not move (texture
+// coordinates, colours, indices), written once into the start of the BIN chunk; and the pieces every .glb
+// writer shares (BinWriter, the container).
 #pragma once
 
 #include "dqskin/asset.hpp"
@@ -21,6 +23,7 @@ using nlohmann::json;
 constexpr int kArrayBuffer = 34962;
 constexpr int kElementArrayBuffer = 34963;
 // accessor.componentType values (§3.6.2.2 "Accessor data types").
+constexpr int kShort = 5122;
 constexpr int kUnsignedShort = 5123;
 constexpr int kUnsignedInt = 5125;
 constexpr int kFloat = 5126;
@@ -37,6 +40,9 @@ struct BinWriter {
   int view(const void* data, size_t size, int target);
   // A float accessor of `count` elements of `type` (VEC2 …) over `values`, in a view of its own.
   int floats(std::span<const float> values, size_t count, const char* type);
+  // A POSITION accessor (VEC3 float) with the min and max that §3.7.2.1 requires, taken from the floats
+  // written.
+  int positions(std::span<const float> xyz);
   // Indices as UNSIGNED_SHORT when every index is below 65535, else UNSIGNED_INT: §3.7.2.1 forbids the
   // primitive-restart value (the type's largest) as an index.
   int indices(std::span<const uint32_t> indices);
@@ -45,6 +51,18 @@ struct BinWriter {
 // A .glb file (glTF 2.0 §4.4 "Binary glTF"): a 12-byte header, the JSON chunk padded with spaces, the BIN
 // chunk (when not empty) padded with zeros, all little-endian. Throws OutputError past 4 GiB.
 std::string glb_container(const json& doc, std::string bin);
+
+// The .glb of a document whose objects are complete but for the buffer: `bin`'s accessors, views and
+// buffer go in, top-level arrays left empty are removed (§5.1 forbids empty ones), extensionsUsed lists
+// every extension named in an `extensions` object (§3.12) and `own` (extensions the writer's data needs
+// without naming them, such as KHR_mesh_quantization), and extensionsRequired those of `source_required`
+// still used, then `own`.
+std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& source_required,
+                       const std::vector<std::string>& own = {});
+
+// n normalised, or `fallback` when n has no direction: zero or non-finite, as degenerate triangles can give
+// on the GPU. The validator requires unit normals and tangents (§3.7.2.1).
+glm::vec3 unit_or(const glm::dvec3& n, const glm::vec3& fallback);
 
 // A source primitive's attributes that stay the same in every frame.
 struct FixedPrimitive {

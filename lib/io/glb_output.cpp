@@ -10,7 +10,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <set>
 #include <stdexcept>
 
 namespace dqskin {
@@ -64,14 +63,7 @@ Space space_of(const Mat4<double>& world, bool skinned) {
   return s;
 }
 
-// n normalised, or `fallback` when n has no direction: zero or non-finite, as degenerate triangles can give
-// on the GPU. The validator requires unit normals and tangents (§3.7.2.1).
-glm::vec3 unit_or(const DVec3& n, const glm::vec3& fallback) {
-  const double length = glm::length(n);
-  if (!(length > 1e-30) || !std::isfinite(length)) return fallback;
-  const glm::vec3 u(n / length);
-  return std::abs(glm::length(u) - 1.0f) <= 1e-4f ? u : fallback;
-}
+using glb::unit_or;
 
 // The rest normal or tangent of vertex v (in the mesh's own space), else `fallback`.
 template <typename V>
@@ -133,16 +125,7 @@ json instance_mesh(const Asset& asset, const glb::Appearance& fixed, const MeshI
     const glb::FixedPrimitive& f = fixed.meshes[size_t(inst.mesh)][p];
     const Vertices& v = vertices[p];
     json out = {{"attributes", f.attributes}};
-    const int position = bin.floats(v.positions, prim.vertex_count(), "VEC3");
-    // §3.7.2.1: POSITION needs exact bounds; they are taken from the floats written.
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-    for (size_t i = 0; i < v.positions.size(); i += 3) {
-      const glm::vec3 q(v.positions[i], v.positions[i + 1], v.positions[i + 2]);
-      lo = glm::min(lo, q), hi = glm::max(hi, q);
-    }
-    bin.accessors[size_t(position)]["min"] = {lo.x, lo.y, lo.z};
-    bin.accessors[size_t(position)]["max"] = {hi.x, hi.y, hi.z};
-    out["attributes"]["POSITION"] = position;
+    out["attributes"]["POSITION"] = bin.positions(v.positions);
     if (!v.normals.empty()) out["attributes"]["NORMAL"] = bin.floats(v.normals, prim.vertex_count(), "VEC3");
     if (!v.tangents.empty()) out["attributes"]["TANGENT"] = bin.floats(v.tangents, prim.vertex_count(), "VEC4");
 
@@ -198,21 +181,6 @@ std::vector<LocalTransform> local_transforms(const Asset& asset, const Clip* cli
     if (ch.path == TargetPath::kScale) t.scale = {v[0], v[1], v[2]};
   }
   return local;
-}
-
-// Every extension named in an `extensions` object anywhere in the document (§3.12: extensionsUsed must
-// list them all, and should list no other).
-void collect_extensions(const json& j, std::set<std::string>& names) {
-  if (j.is_array()) {
-    for (const json& v : j) collect_extensions(v, names);
-  } else if (j.is_object()) {
-    for (const auto& [key, value] : j.items()) {
-      if (key == "extras") continue;
-      if (key == "extensions" && value.is_object())
-        for (const auto& [name, unused] : value.items()) names.insert(name);
-      collect_extensions(value, names);
-    }
-  }
 }
 
 }  // namespace
@@ -311,29 +279,12 @@ std::string GlbWriter::encode(const FrameView& frame, const Clip* clip, double t
   }
   for (json& node : detached) nodes.push_back(std::move(node));
 
-  bin.bytes.resize((bin.bytes.size() + 3) & ~size_t(3), '\0');
-  doc["accessors"] = std::move(bin.accessors);
-  doc["bufferViews"] = std::move(bin.views);
-  if (!bin.bytes.empty()) doc["buffers"] = json::array({{{"byteLength", bin.bytes.size()}}});
   doc["meshes"] = std::move(meshes);
   doc["nodes"] = std::move(nodes);
   if (scene["nodes"].empty()) scene.erase("nodes");
   doc["scenes"] = json::array({scene});
   doc["scene"] = 0;
-
-  // §5.1: arrays of top-level objects must not be empty when present.
-  std::vector<std::string> empty;
-  for (const auto& [key, value] : doc.items())
-    if (value.is_array() && value.empty()) empty.push_back(key);
-  for (const std::string& key : empty) doc.erase(key);
-  std::set<std::string> used;
-  collect_extensions(doc, used);
-  if (!used.empty()) doc["extensionsUsed"] = used;
-  json required = json::array();
-  for (const std::string& e : w.fixed.source_extensions_required)
-    if (used.count(e)) required.push_back(e);
-  if (!required.empty()) doc["extensionsRequired"] = std::move(required);
-  return glb::glb_container(doc, std::move(bin.bytes));
+  return glb::finish_glb(std::move(doc), std::move(bin), w.fixed.source_extensions_required);
 }
 
 }  // namespace dqskin

@@ -4,9 +4,7 @@
 #include "dqskin/triangles.hpp"
 #include "dqskin/version.hpp"
 
-#include <algorithm>
 #include <cassert>
-#include <limits>
 
 namespace dqskin::texture {
 
@@ -30,17 +28,7 @@ std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>&
       const PrimitiveView& view = rest.primitives[p++];
       const size_t n = view.vertices;
       json attributes;
-      // POSITION needs min and max (§3.7.2.1); they are of the float values as written.
-      float lo[3], hi[3];
-      std::fill(lo, lo + 3, std::numeric_limits<float>::infinity());
-      std::fill(hi, hi + 3, -std::numeric_limits<float>::infinity());
-      for (size_t i = 0; i < 3 * n; ++i) {
-        lo[i % 3] = std::min(lo[i % 3], view.positions[i]);
-        hi[i % 3] = std::max(hi[i % 3], view.positions[i]);
-      }
-      attributes["POSITION"] = bin.floats(view.positions, n, "VEC3");
-      bin.accessors.back()["min"] = {lo[0], lo[1], lo[2]};
-      bin.accessors.back()["max"] = {hi[0], hi[1], hi[2]};
+      attributes["POSITION"] = bin.positions(view.positions.first(3 * n));
       if (!view.normals.empty()) attributes["NORMAL"] = bin.floats(view.normals, n, "VEC3");
       std::vector<float> lookup(2 * n);
       for (size_t v = 0; v < n; ++v) {

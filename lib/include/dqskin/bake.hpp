@@ -18,7 +18,7 @@
 
 namespace dqskin {
 
-enum class BakeFormat : unsigned { kGlb = 1, kPly = 2, kObj = 4, kVat = 8, kBones = 16 };
+enum class BakeFormat : unsigned { kGlb = 1, kPly = 2, kObj = 4, kVat = 8, kBones = 16, kMorph = 32 };
 
 // "glb,ply" → the formats' bits. Throws InputError naming an unknown format.
 unsigned parse_bake_formats(const std::string& list);
@@ -33,10 +33,17 @@ struct TextureOptions {
   std::string exr_compression;         // zip, piz, rle, zips, none; empty: zip
   size_t max_size = 0;                 // largest side of an image in texels; 0: the profile's default
   bool pot = false;                    // pad images to powers of two
-  double max_error = 0;                // largest decoded error allowed, scene units; 0: no limit
+  double max_error = 0;                // largest decoded error allowed, scene units; 0: no limit (also the
+                                       // morph format's keyframe budget, at every baked frame)
   bool max_error_relative = false;     // max_error is a fraction of the clip's bounding-box diagonal
   uint64_t max_bytes = 0;              // GPU memory a clip's vertex-animation textures may take; 0: no limit
   bool check = true;                   // read every texture back and decode it (the decode-back check)
+};
+
+// The morph-target animation (README "--format morph"). Its keyframe budget is TextureOptions::max_error:
+// one --max-error bounds whatever a clip's outputs decode to.
+struct MorphOptions {
+  bool quantize = false;  // KHR_mesh_quantization: positions on a 15-bit grid, normals as normalized SHORT
 };
 
 struct BakeOptions {
@@ -47,6 +54,7 @@ struct BakeOptions {
   BlendMode mode = BlendMode::kDqs;
   unsigned formats = unsigned(BakeFormat::kGlb);
   TextureOptions textures;
+  MorphOptions morph;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   int scene = -1;  // choose_scene
@@ -76,6 +84,18 @@ struct TextureCheck {
   size_t samples = 0;  // vertex samples compared
 };
 
+// One clip's morph-target animation: how many keys it kept and what the file decodes to against the
+// deformed meshes at every baked frame (interpolated between keys as a viewer does).
+struct MorphCheck {
+  std::string input, clip;
+  size_t frames = 0, keyframes = 0;  // baked, and kept (the first is the mesh, each further one a target)
+  double max_error = 0;              // scene units, largest over vertices and frames
+  double max_normal_degrees = 0;     // between the interpolated normal and the deformed one
+  uint64_t bytes = 0;                // the file's size
+  size_t sparse_accessors = 0;       // accessors written sparse
+  bool quantized = false;
+};
+
 // Thread-seconds per stage (encoding runs on several threads at once, so they may add up to more than
 // the wall time).
 struct BakeStageTimes {
@@ -87,6 +107,7 @@ struct BakeReport {
   std::vector<InputResult> inputs;
   std::vector<BakeOutput> outputs;  // sorted by path; with dry_run, what would be written
   std::vector<TextureCheck> checks;  // sorted by input, clip and texture
+  std::vector<MorphCheck> morphs;    // sorted by input and clip
   std::vector<std::string> plans;    // with dry_run and a texture budget: the planner's tables
   std::string manifest;             // path of the manifest written (empty for dry runs)
   GpuContextInfo gpu;               // what deformed: the GPU's context, or backend "fast-cpu" or "cpu"

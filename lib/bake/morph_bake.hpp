@@ -1,0 +1,54 @@
+// One clip's morph-target animation in a bake (internal to lib/bake): the bake's pass hands every frame of
+// the clip in order; finish() chooses the keys (every frame, or under --max-error the fewest that keyframe
+// reduction needs), encodes animation.glb (io/morph_glb.hpp), and measures what it decodes to at every
+// baked frame, interpolated between keys as a viewer does, against the deformed frames.
+#pragma once
+
+#include "bake_plan.hpp"
+#include "../io/glb_appearance.hpp"
+
+#include "dqskin/frame_view.hpp"
+
+#include <string>
+#include <vector>
+
+namespace dqskin::bake_detail {
+
+// <clip folder>/animation.glb, relative to the output folder.
+std::string morph_file(const ClipPlan& clip);
+
+// An upper bound of the file's size (every frame a dense float target), for the planned bytes.
+uint64_t planned_morph_bytes(const InputPlan& input, const ClipPlan& clip);
+
+struct MorphClipResult {
+  std::string bytes;                  // the .glb
+  MorphCheck check;
+  std::vector<std::string> warnings;  // viewer limits the file exceeds
+};
+
+class MorphClipBake {
+public:
+  // Throws InputError when the clip cannot be a glTF animation (frame times not increasing) or has no
+  // vertices.
+  MorphClipBake(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
+
+  // The bake's pass: every frame of the clip, in order.
+  void append(const FrameView& frame);
+
+  // Chooses the keys, encodes and measures, on `threads` threads. Throws InputError naming the clip when
+  // the measured error exceeds --max-error, or when the quantization grid alone cannot meet it (then
+  // before encoding).
+  MorphClipResult finish(const glb::Appearance& appearance, unsigned threads) const;
+
+private:
+  const InputPlan& input_;
+  const ClipPlan& clip_;
+  const BakeOptions& options_;
+  std::string what_;  // "clip <name>" for messages
+  size_t vertices_ = 0;
+  std::vector<size_t> first_;        // per primitive: its first vertex
+  std::vector<bool> with_normals_;   // per primitive: NORMAL written (the source has normals)
+  std::vector<std::vector<float>> positions_, normals_;  // per frame: 3 per vertex, every primitive
+};
+
+}  // namespace dqskin::bake_detail
