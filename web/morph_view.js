@@ -44,11 +44,12 @@ function normalsMaterial(geometry) {
   });
 }
 
-// gltf: GLTFLoader's result. Returns { object, setTime(seconds), duration }.
-export function morphView(gltf, clipName) {
+// gltf: GLTFLoader's result; keepMaterials: draw the file's own materials (lit by the caller) instead of
+// normals. Returns { object, setTime(seconds), duration }.
+export function morphView(gltf, clipName, keepMaterials = false) {
   const object = gltf.scene;
   object.traverse((node) => {
-    if (node.isMesh) node.material = normalsMaterial(node.geometry);
+    if (node.isMesh && !keepMaterials) node.material = normalsMaterial(node.geometry);
   });
   const clip = gltf.animations.find((a) => a.name === clipName) ?? gltf.animations[0];
   if (!clip) throw new Error('animation.glb has no animation');

@@ -12,6 +12,7 @@
 //   box=x0,y0,z0,x1,y1,z1   what the camera frames (default: the clip's bounds from its vat.json, as
 //                 `dqskin render` frames them, else the loaded mesh's own: the bind pose's or first frame's)
 //   size=WxH      canvas pixels (default: the window); background=R,G,B (0 to 1, sRGB; default 0.2)
+//   shade=material   morph only: the glb's own materials under a key and fill light, instead of normals
 //   capture=1     after drawing, put the canvas as a PNG data URL into <pre id="capture"> (tests)
 //   fault=row-order|lbs   a deliberately wrong decode, for the tests that show a wrong decode fails
 import * as THREE from 'three';
@@ -116,7 +117,7 @@ async function bonesPath(bake, fault) {
 
 async function morphPath(bake) {
   const gltf = await gltfLoader.loadAsync(`${bake.folder}/animation.glb`);
-  const view = morphView(gltf, bake.clip.name);
+  const view = morphView(gltf, bake.clip.name, params.get('shade') === 'material');
   gltf.scene.traverse((node) => { if (node.isMesh) node.frustumCulled = false; });
   const times = bake.clip.frame_times;
   return {
@@ -176,6 +177,17 @@ async function main() {
 
   const scene = new THREE.Scene();
   scene.add(played.object);
+  if (params.get('shade') === 'material') {
+    if (bake.path !== 'morph') throw new Error('shade=material: only the morph path carries materials');
+    // Materials are colour-managed: sRGB output, and the lights of a plain viewer.
+    THREE.ColorManagement.enabled = true;
+    renderer.outputColorSpace = THREE.SRGBColorSpace;
+    renderer.setClearColor(new THREE.Color().setRGB(...background, THREE.SRGBColorSpace), 1);
+    scene.add(new THREE.HemisphereLight(0xffffff, 0x444444, 2));
+    const key = new THREE.DirectionalLight(0xffffff, 2);
+    key.position.set(1, 2, 3);
+    scene.add(key);
+  }
   const frames = bake.clip.frame_numbers;
   played.showFrame(0);
   const box = await cameraBox(bake, played);
