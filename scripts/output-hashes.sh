@@ -44,7 +44,7 @@ for m in "${models[@]}"; do
   # Every format, both blends, on the GL path, the fast CPU deformer and the double-precision reference.
   for mode in dqs lbs; do
     for backend in egl fast-cpu cpu; do
-      run "bake-$mode-$backend-$stem" "$DQSKIN" bake "$m" -o out --format glb,ply,obj,vat,bones --fps 10 \
+      run "bake-$mode-$backend-$stem" "$DQSKIN" bake "$m" -o out --format glb,ply,obj,vat,bones,morph --fps 10 \
         --mode "$mode" --backend "$backend" --quiet
     done
   done

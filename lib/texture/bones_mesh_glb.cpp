@@ -1,11 +1,6 @@
 #include "bones_mesh_glb.hpp"
 
-#include "../io/glb_appearance.hpp"
-#include "dqskin/triangles.hpp"
-#include "dqskin/version.hpp"
-
-#include <algorithm>
-#include <limits>
+#include "single_mesh_glb.hpp"
 
 namespace dqskin::texture {
 
@@ -19,17 +14,6 @@ int joints_accessor(glb::BinWriter& bin, const std::vector<uint16_t>& values) {
   bin.accessors.push_back(
       {{"bufferView", view}, {"componentType", glb::kUnsignedShort}, {"count", values.size() / 4}, {"type", "VEC4"}});
   return int(bin.accessors.size()) - 1;
-}
-
-// POSITION needs min and max (§3.7.2.1), of the values as written.
-void add_bounds(json& accessor, const std::vector<glm::vec3>& positions) {
-  glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-  for (const glm::vec3& p : positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  accessor["min"] = {lo.x, lo.y, lo.z};
-  accessor["max"] = {hi.x, hi.y, hi.z};
 }
 
 // glm vectors are tightly packed floats (asserted by glm's own layout tests); an empty vector gives an
@@ -50,8 +34,7 @@ std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInst
     for (const Primitive& source : asset.meshes[size_t(instance.mesh)].primitives) {
       const size_t n = source.vertex_count();
       json attributes;
-      attributes["POSITION"] = bin.floats(flat(source.positions), n, "VEC3");
-      add_bounds(bin.accessors.back(), source.positions);
+      attributes["POSITION"] = bin.positions(flat(source.positions));
       if (source.normals.size() == n) attributes["NORMAL"] = bin.floats(flat(source.normals), n, "VEC3");
       if (source.uv0.size() == n) attributes["TEXCOORD_0"] = bin.floats(flat(source.uv0), n, "VEC2");
       // The loader's influences are vertex-major, `influences` (4 or 8) per vertex; glTF sets hold 4.
@@ -69,24 +52,11 @@ std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInst
       }
       json primitive = {{"attributes", std::move(attributes)},
                         {"extras", {{"skin", instance.skin}, {"bones", "bones_skin" + std::to_string(instance.skin)}}}};
-      if (const std::vector<uint32_t> triangles = triangle_list(source); !triangles.empty()) {
-        primitive["indices"] = bin.indices(triangles);
-      } else {
-        if (!source.indices.empty()) primitive["indices"] = bin.indices(source.indices);
-        primitive["mode"] = int(source.mode);
-      }
+      add_topology(source, bin, primitive);
       primitives.push_back(std::move(primitive));
     }
   }
-  json doc = {{"asset", {{"version", "2.0"}, {"generator", std::string("dqskin ") + kVersion}}},
-              {"scene", 0},
-              {"scenes", json::array({{{"nodes", {0}}}})},
-              {"nodes", json::array({{{"name", name}, {"mesh", 0}}})},
-              {"meshes", json::array({{{"name", name}, {"primitives", std::move(primitives)}}})},
-              {"accessors", std::move(bin.accessors)},
-              {"bufferViews", std::move(bin.views)}};
-  if (!bin.bytes.empty()) doc["buffers"] = json::array({{{"byteLength", bin.bytes.size()}}});
-  return glb::glb_container(doc, std::move(bin.bytes));
+  return single_mesh_glb(std::move(primitives), std::move(bin), name);
 }
 
 }  // namespace dqskin::texture

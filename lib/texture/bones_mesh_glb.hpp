@@ -13,8 +13,8 @@
 namespace dqskin::texture {
 
 // The .glb bytes: one node `name` with no transform drawing one mesh whose primitives are those of the
-// `instances` whose skin is not -1, in instance order. Each primitive has the source's POSITION, NORMAL and
-// TEXCOORD_0 (morph targets are not applied: the textures hold joints only), the influences as the
+// `instances` whose skin is not -1, in instance order. Each primitive has the source's POSITION, NORMAL (the
+// smooth normals dqskin deforms where the source has none) and TEXCOORD_0 (morph targets are not applied: the textures hold joints only), the influences as the
 // application-specific attributes `_JOINTS_0`/`_WEIGHTS_0` (and `_JOINTS_1`/`_WEIGHTS_1` for 8), indices
 // into the skin's `joints` as the texture orders them, and `extras` {"skin": K, "bones": "bones_skinK"}:
 // the texture's name without extension. Weights are as stored; the decode formulas normalize them. Plain

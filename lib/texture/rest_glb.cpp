@@ -1,21 +1,12 @@
 #include "rest_glb.hpp"
 
-#include "../io/glb_appearance.hpp"
-#include "dqskin/triangles.hpp"
-#include "dqskin/version.hpp"
+#include "single_mesh_glb.hpp"
 
 #include <cassert>
 
 namespace dqskin::texture {
 
 using glb::json;
-
-namespace {
-
-// glTF primitive.mode values (§3.7.2.1).
-int gltf_mode(PrimitiveMode mode) { return int(mode); }
-
-}  // namespace
 
 std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& rest,
                             const VatLayout& layout, const std::string& name) {
@@ -44,26 +35,12 @@ std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>&
         attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"];
       }
       json primitive = {{"attributes", std::move(attributes)}};
-      if (const std::vector<uint32_t> triangles = triangle_list(source); !triangles.empty()) {
-        primitive["indices"] = bin.indices(triangles);
-      } else {
-        if (!source.indices.empty()) primitive["indices"] = bin.indices(source.indices);
-        primitive["mode"] = gltf_mode(source.mode);
-      }
+      add_topology(source, bin, primitive);
       primitives.push_back(std::move(primitive));
       first += n;
     }
   }
-  json doc = {{"asset", {{"version", "2.0"}, {"generator", std::string("dqskin ") + kVersion}}},
-              {"scene", 0},
-              {"scenes", json::array({{{"nodes", {0}}}})},
-              {"nodes", json::array({{{"name", name}, {"mesh", 0}}})},
-              {"meshes", json::array({{{"name", name}, {"primitives", std::move(primitives)}}})},
-              {"accessors", std::move(bin.accessors)},
-              {"bufferViews", std::move(bin.views)}};
-  if (!bin.bytes.empty()) doc["buffers"] = json::array({{{"byteLength", bin.bytes.size()}}});
-  // A buffer's byteLength is the data's; the container pads the chunk itself (§4.4.3.3).
-  return glb::glb_container(doc, std::move(bin.bytes));
+  return single_mesh_glb(std::move(primitives), std::move(bin), name);
 }
 
 }  // namespace dqskin::texture
