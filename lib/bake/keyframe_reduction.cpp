@@ -17,7 +17,8 @@ std::vector<size_t> reduce_keyframes(size_t frames, double budget, const Interpo
   std::vector<std::pair<size_t, size_t>> segments = {{0, frames - 1}};
   std::vector<double> errors;
   while (!segments.empty()) {
-    const auto [a, b] = segments.back();
+    // Plain names, not a structured binding: the lambda below captures them (clang 14 cannot).
+    const size_t a = segments.back().first, b = segments.back().second;
     segments.pop_back();
     if (b - a < 2) continue;
     errors.assign(b - a - 1, 0.0);

@@ -146,7 +146,7 @@ json primitive_attributes(const MorphAnimation& a, size_t first, size_t n, bool 
       target["POSITION"] = write_accessor(bin, Elements<int16_t>{d, 3, kShort}, true, true, kArrayBuffer, stats);
     } else {
       std::vector<float> d(3 * n);
-      for (size_t i = 0; i < 3 * n; ++i) d[i] = displacement(p[i], base[i]);
+      for (size_t i = 0; i < 3 * n; ++i) d[i] = displacement(double(p[i]), double(base[i]));
       target["POSITION"] = write_accessor(bin, Elements<float>{d, 3, kFloat}, true, true, kArrayBuffer, stats);
     }
     if (normals) {
@@ -159,7 +159,7 @@ json primitive_attributes(const MorphAnimation& a, size_t first, size_t n, bool 
         if (grid.on() && stats) ++stats->float_normal_targets;
         std::vector<float> d(3 * n);
         for (size_t i = 0; i < 3 * n; ++i)
-          d[i] = displacement(key_n[i], grid.on() ? decode_normal(qn_base[i]) : double(base_n[i]));
+          d[i] = displacement(double(key_n[i]), grid.on() ? decode_normal(qn_base[i]) : double(base_n[i]));
         target["NORMAL"] = write_accessor(bin, Elements<float>{d, 3, kFloat}, true, false, kArrayBuffer, stats);
       }
     }
@@ -192,7 +192,7 @@ double MorphGrid::bound() const { return step * std::sqrt(3.0) / 2; }
 glm::dvec3 stored_position(const MorphGrid& grid, const float* base, const float* p) {
   if (grid.on()) return grid.decode(grid.quantize(p));
   glm::dvec3 out;
-  for (int c = 0; c < 3; ++c) out[c] = double(base[c]) + double(displacement(p[c], base[c]));
+  for (int c = 0; c < 3; ++c) out[c] = double(base[c]) + double(displacement(double(p[c]), double(base[c])));
   return out;
 }
 
@@ -207,11 +207,11 @@ glm::dvec3 stored_normal(const MorphGrid& grid, bool short_target, const float* 
   glm::dvec3 out;
   for (int c = 0; c < 3; ++c) {
     if (!grid.on()) {
-      out[c] = double(base[c]) + double(displacement(n[c], base[c]));
+      out[c] = double(base[c]) + double(displacement(double(n[c]), double(base[c])));
     } else {
       const int qb = quantize_normal(base[c]);
       out[c] = short_target ? decode_normal(qb) + double(quantize_normal(n[c]) - qb) / kNormalMax
-                            : decode_normal(qb) + double(displacement(n[c], decode_normal(qb)));
+                            : decode_normal(qb) + double(displacement(double(n[c]), decode_normal(qb)));
     }
   }
   return out;
