@@ -35,6 +35,11 @@ namespace {
 // keys) stay within. 200 leaves 56 of the 256 vectors to the material.
 constexpr size_t kPortableMorphTargets = 200;
 
+// Texels a WebGL2 viewer can be counted on to hold per primitive: three.js lays a primitive's targets out
+// as rows of MAX_TEXTURE_SIZE texels, one per vertex and attribute morphed (position, then normal), and a
+// layer must fit MAX_TEXTURE_SIZE rows too (WebGLMorphtargets.js, r187); WebGL2 guarantees 2048.
+constexpr size_t kPortableMorphTexels = size_t(2048) * 2048;
+
 // The largest of several threads' values.
 struct Max {
   std::mutex mutex;
@@ -46,6 +51,35 @@ struct Max {
 };
 
 }  // namespace
+
+std::vector<std::string> morph_viewer_warnings(const std::string& what, size_t targets,
+                                               const std::vector<std::pair<size_t, bool>>& primitives) {
+  std::vector<std::string> warnings;
+  if (targets > kPortableMorphTargets) {
+    std::string w = what;
+    w += ": ";
+    w += std::to_string(targets);
+    w += " morph targets; three.js (and model-viewer) on WebGL2 is only sure to draw about ";
+    w += std::to_string(kPortableMorphTargets);
+    w += " (256 array-texture layers and vertex uniform vectors guaranteed); --max-error keeps fewer keyframes";
+    warnings.push_back(std::move(w));
+  }
+  for (size_t p = 0; p < primitives.size(); ++p) {
+    const auto [vertices, normals] = primitives[p];
+    const size_t per_vertex = normals ? 2 : 1;
+    if (vertices * per_vertex <= kPortableMorphTexels) continue;
+    std::string w = what;
+    w += ": primitive ";
+    w += std::to_string(p);
+    w += " has ";
+    w += std::to_string(vertices);
+    w += " vertices; three.js on WebGL2 is only sure to hold ";
+    w += std::to_string(kPortableMorphTexels / per_vertex);
+    w += " in a morph-target texture (2048 x 2048 texels guaranteed)";
+    warnings.push_back(std::move(w));
+  }
+  return warnings;
+}
 
 std::string morph_file(const ClipPlan& clip) { return clip.folder + "/animation.glb"; }
 
@@ -196,15 +230,10 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
   }
   out.check = {input_.path, clip_.name, frames, keys.size(), position_error.value, normal_error.value,
                out.bytes.size(), stats.sparse_accessors, a.grid.on()};
-  if (stats.targets > kPortableMorphTargets) {
-    std::string w = what_;
-    w += ": ";
-    w += std::to_string(stats.targets);
-    w += " morph targets; three.js (and model-viewer) on WebGL2 is only sure to draw about ";
-    w += std::to_string(kPortableMorphTargets);
-    w += " (256 array-texture layers and vertex uniform vectors guaranteed); --max-error keeps fewer keyframes";
-    out.warnings.push_back(std::move(w));
-  }
+  std::vector<std::pair<size_t, bool>> primitives;
+  for (size_t p = 0; p < first_.size(); ++p)
+    primitives.emplace_back((p + 1 < first_.size() ? first_[p + 1] : vertices_) - first_[p], bool(with_normals_[p]));
+  out.warnings = morph_viewer_warnings(what_, stats.targets, primitives);
   return out;
 }
 

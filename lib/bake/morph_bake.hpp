@@ -10,6 +10,7 @@
 #include "dqskin/frame_view.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dqskin::bake_detail {
@@ -19,6 +20,13 @@ std::string morph_file(const ClipPlan& clip);
 
 // An upper bound of the file's size (every frame a dense float target), for the planned bytes.
 uint64_t planned_morph_bytes(const InputPlan& input, const ClipPlan& clip);
+
+// The documented limits of WebGL2 viewers that a morph-target animation of `targets` targets exceeds, one
+// line each starting with `what`: past 200 targets, and a primitive whose vertices (each one texel, two
+// with normals) overflow the 2048 × 2048 texels a morph-target texture is sure to hold. `primitives`:
+// each primitive's vertex count and whether its normals are morphed.
+std::vector<std::string> morph_viewer_warnings(const std::string& what, size_t targets,
+                                               const std::vector<std::pair<size_t, bool>>& primitives);
 
 struct MorphClipResult {
   std::string bytes;                  // the .glb

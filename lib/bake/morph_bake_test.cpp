@@ -2,6 +2,8 @@
 // loader and played by the CPU reference (the weights sampled from the file's animation, morph targets
 // added to the mesh, the node's transform applied) against the source deformed at every baked frame;
 // keyframe reduction, sparse targets, quantization, determinism, viewer-limit warnings and refusals.
+#include "morph_bake.hpp"
+
 #include "dqskin/bake.hpp"
 
 #include "dqskin/animation.hpp"
@@ -284,6 +286,17 @@ TEST_F(MorphBakeTest, MoreTargetsThanWebGl2ViewersDrawIsAWarning) {
   EXPECT_EQ(r.inputs[0].warnings[0].find("clip twist: 300 morph targets; three.js"), 0u) << r.inputs[0].warnings[0];
   const BakeReport few = bake({model_path("twisted_cylinder.gltf")}, options(root_ / "few", 30));
   EXPECT_TRUE(few.inputs[0].warnings.empty());
+}
+
+TEST(MorphViewerWarnings, APrimitivePastTheTexelsWebGl2GuaranteesIsAWarning) {
+  using bake_detail::morph_viewer_warnings;
+  // 2048 × 2048 texels: as many vertices without normals, half as many with them.
+  const size_t texels = size_t(2048) * 2048;
+  EXPECT_TRUE(morph_viewer_warnings("clip c", 10, {{texels, false}, {texels / 2, true}}).empty());
+  const std::vector<std::string> w = morph_viewer_warnings("clip c", 10, {{7, true}, {texels / 2 + 1, true}});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].find("clip c: primitive 1 has 2097153 vertices; three.js on WebGL2"), 0u) << w[0];
+  EXPECT_EQ(morph_viewer_warnings("clip c", 201, {{texels + 1, false}}).size(), 2u);
 }
 
 TEST_F(MorphBakeTest, FrameTimesThatDoNotIncreaseAreRefused) {
