@@ -12,6 +12,7 @@
 #include "dqskin/skinning.hpp"
 #include "../test_support/read_file.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/test_models.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,10 +31,8 @@ using testing_support::read_file;
 
 const unsigned kMorph = unsigned(BakeFormat::kMorph);
 
-std::string model_path(const std::string& name) {
-  return name.find('/') == std::string::npos ? std::string(DQSKIN_TESTDATA_DIR) + "/" + name
-                                             : std::string(DQSKIN_SHARED_TESTDATA_DIR) + "/" + name;
-}
+// The model's path as the bake takes it.
+std::string model_path(const std::string& name) { return testing_support::model_path(name).string(); }
 
 // Every vertex of every drawn primitive, per time, as the CPU reference deforms `clip_name` of `asset`
 // (world space; normals of the primitives whose source has them, else zero).
@@ -201,11 +200,7 @@ INSTANTIATE_TEST_SUITE_P(Models, MorphBakeModels,
                                          "textured_cylinder.gltf", "morph_skin.gltf", "interpolation_modes.gltf",
                                          "CesiumMan/CesiumMan.glb", "Fox/Fox.glb", "RiggedFigure/RiggedFigure.glb",
                                          "AnimatedMorphCube/AnimatedMorphCube.glb"),
-                         [](const testing::TestParamInfo<const char*>& model) {
-                           std::string name = fs::path(model.param).stem().string();
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+                         testing_support::model_test_name);
 
 TEST_F(MorphBakeTest, ReductionKeepsFewerFramesOfASmoothClipWithinTheBudget) {
   BakeOptions o = options(root_ / "reduced", 30);

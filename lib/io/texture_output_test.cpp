@@ -4,6 +4,7 @@
 #include "dqskin/texture_output.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/read_file.hpp"
+#include "../test_support/test_models.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -11,7 +12,6 @@
 #include <unistd.h>
 
 #include <bit>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -179,11 +179,7 @@ INSTANTIATE_TEST_SUITE_P(Models, SharedModelTextures,
                                          "CesiumMan/CesiumMan.glb", "SimpleSkin/SimpleSkin.gltf", "Fox/Fox.glb",
                                          "BrainStem/BrainStem.glb", "RecursiveSkeletons/RecursiveSkeletons.glb",
                                          "raylib_robot/robot.glb", "raylib_greenman/greenman.glb"),
-                         [](const testing::TestParamInfo<const char*>& model) {
-                           std::string name = fs::path(model.param).stem().string();
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+                         testing_support::model_test_name);
 
 }  // namespace
 }  // namespace dqskin

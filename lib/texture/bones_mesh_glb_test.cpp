@@ -4,10 +4,11 @@
 
 #include "dqskin/load.hpp"
 
+#include "../test_support/test_models.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -52,8 +53,7 @@ class BonesMeshGlb : public testing::TestWithParam<const char*> {};
 
 TEST_P(BonesMeshGlb, CarriesTheBindPoseAndInfluencesOfEverySkinnedPrimitive) {
   const std::string param = GetParam();
-  const fs::path path = param.find('/') == std::string::npos ? fs::path(DQSKIN_TESTDATA_DIR) / param
-                                                             : fs::path(DQSKIN_SHARED_TESTDATA_DIR) / param;
+  const fs::path path = testing_support::model_path(param);
   if (!fs::exists(path)) GTEST_SKIP() << "shared test data not found: " << path;
   const Asset asset = load_asset(path.string());
   const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
@@ -104,11 +104,7 @@ INSTANTIATE_TEST_SUITE_P(Models, BonesMeshGlb,
                                          "morph_skin.gltf", "CesiumMan/CesiumMan.glb", "Fox/Fox.glb",
                                          "BrainStem/BrainStem.glb", "RiggedFigure/RiggedFigure.glb",
                                          "raylib_robot/robot.glb"),
-                         [](const testing::TestParamInfo<const char*>& model) {
-                           std::string name = fs::path(model.param).stem().string();
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+                         testing_support::model_test_name);
 
 }  // namespace
 }  // namespace dqskin::texture

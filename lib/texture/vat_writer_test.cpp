@@ -11,6 +11,7 @@
 #include "dqskin/texture_output.hpp"
 #include "../test_support/read_file.hpp"
 #include "../test_support/scratch_dir.hpp"
+#include "../test_support/test_models.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -651,11 +652,7 @@ INSTANTIATE_TEST_SUITE_P(Models, VatSharedRoundTrip,
                                          "raylib_robot/robot.glb", "raylib_greenman/greenman.glb",
                                          "RecursiveSkeletons/RecursiveSkeletons.glb", "SimpleSkin/SimpleSkin.gltf",
                                          "AnimatedMorphCube/AnimatedMorphCube.glb", "InterpolationTest/InterpolationTest.glb"),
-                         [](const testing::TestParamInfo<const char*>& model) {
-                           std::string name = fs::path(model.param).stem().string();
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+                         testing_support::model_test_name);
 
 // The rest mesh of every rig and shared model, for the dqskin and openvat layouts: read back with dqskin's
 // own loader, its positions are the rest frame's and each vertex's TEXCOORD_1 leads back to its texel;
@@ -665,8 +662,7 @@ class RestGlb : public VatWriterTest, public testing::WithParamInterface<const c
 
 TEST_P(RestGlb, LookupLeadsEachVertexToItsTexel) {
   const std::string param = GetParam();
-  const fs::path path = param.find('/') == std::string::npos ? fs::path(DQSKIN_TESTDATA_DIR) / param
-                                                             : fs::path(DQSKIN_SHARED_TESTDATA_DIR) / param;
+  const fs::path path = testing_support::model_path(param);
   if (!fs::exists(path)) GTEST_SKIP() << "shared test data not found: " << path;
   const Deformed d = deform_clip(path.string(), 0, {0.0});
   const char* sample_dir = std::getenv("DQSKIN_REST_GLB_SAMPLE_DIR");
@@ -715,11 +711,7 @@ INSTANTIATE_TEST_SUITE_P(Models, RestGlb,
                                          "morph_skin.gltf", "CesiumMan/CesiumMan.glb", "Fox/Fox.glb",
                                          "BrainStem/BrainStem.glb", "RiggedFigure/RiggedFigure.glb",
                                          "raylib_robot/robot.glb", "AnimatedMorphCube/AnimatedMorphCube.glb"),
-                         [](const testing::TestParamInfo<const char*>& model) {
-                           std::string name = fs::path(model.param).stem().string();
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                           return name;
-                         });
+                         testing_support::model_test_name);
 
 }  // namespace
 }  // namespace dqskin::texture
