@@ -4,41 +4,32 @@
 // material shows world-space normals as `dqskin render --shade normals` does, where a stock material
 // would light the mesh.
 import * as THREE from 'three';
-import { srgbGlsl } from './shading.js';
+import { normalsFragment } from './shading.js';
 
 const vertex = /* glsl */ `
 #include <common>
 #include <morphtarget_pars_vertex>
-varying vec3 world_position;
-varying vec3 world_normal;
+out vec3 world_position;
+out vec3 world_normal;
 void main() {
   #include <beginnormal_vertex>
   #include <morphinstance_vertex>
   #include <morphnormal_vertex>
   #include <begin_vertex>
   #include <morphtarget_vertex>
-  // The inverse transpose: KHR_mesh_quantization puts a scale, possibly different per axis, on the node.
+  // The inverse transpose, right for any node scale (KHR_mesh_quantization puts the grid's on the node).
   world_normal = transpose(inverse(mat3(modelMatrix))) * objectNormal;
   vec4 world = modelMatrix * vec4(transformed, 1.0);
   world_position = world.xyz;
   gl_Position = projectionMatrix * viewMatrix * world;
 }`;
 
-const fragment = /* glsl */ `
-varying vec3 world_position;
-varying vec3 world_normal;
-uniform bool has_normals;
-${srgbGlsl}
-void main() {
-  vec3 face = cross(dFdx(world_position), dFdy(world_position));
-  vec3 n = has_normals ? normalize(world_normal) : normalize(face);
-  gl_FragColor = vec4(srgb_encode(0.5 * n + 0.5), 1.0);
-}`;
-
 function normalsMaterial(geometry) {
+  // GLSL ES 3.00, so that the fragment stage is the one our own materials share.
   return new THREE.ShaderMaterial({
+    glslVersion: THREE.GLSL3,
     vertexShader: vertex,
-    fragmentShader: fragment,
+    fragmentShader: normalsFragment,
     uniforms: { has_normals: { value: geometry.getAttribute('normal') !== undefined } },
     side: THREE.DoubleSide,
   });

@@ -2,7 +2,7 @@
 // as colour, 0.5 n + 0.5, or the triangle's own normal where the mesh has none. dqskin writes that linear
 // colour to an 8-bit sRGB PNG; here the canvas is 8-bit and three.js's colour management is off, so the
 // shader encodes to sRGB itself, with the same curve (IEC 61966-2-1, as lib/io/srgb.hpp).
-export const srgbGlsl = /* glsl */ `
+const srgbGlsl = /* glsl */ `
 vec3 srgb_encode(vec3 c) {
   c = clamp(c, 0.0, 1.0);
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
