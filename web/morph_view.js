@@ -36,7 +36,7 @@ function normalsMaterial(geometry) {
 }
 
 // gltf: GLTFLoader's result; keepMaterials: draw the file's own materials (lit by the caller) instead of
-// normals. Returns { object, setTime(seconds), duration }.
+// normals. Returns { object, setTime(seconds) }.
 export function morphView(gltf, clipName, keepMaterials = false) {
   const object = gltf.scene;
   object.traverse((node) => {
@@ -52,7 +52,6 @@ export function morphView(gltf, clipName, keepMaterials = false) {
   action.play();
   return {
     object,
-    duration: clip.duration,
     setTime(seconds) {
       action.reset();
       action.play();

@@ -164,25 +164,25 @@ async function main() {
     : [window.innerWidth, window.innerHeight];
   const canvas = document.getElementById('view');
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
-  // Colour management off: our shaders write sRGB-encoded values as dqskin's PNG writer does.
-  THREE.ColorManagement.enabled = false;
-  renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
   renderer.setPixelRatio(1);
-  renderer.setSize(width, height, false);
-  canvas.style.width = `${width}px`;
-  canvas.style.height = `${height}px`;
-  // dqskin render's --background is sRGB; its default, 0.2, names the same encoded value here.
+  const resize = (w, h) => {
+    renderer.setSize(w, h, false);
+    canvas.style.width = `${w}px`;
+    canvas.style.height = `${h}px`;
+  };
+  resize(width, height);
+  // dqskin render's --background is sRGB (default 0.2). Our shaders write sRGB-encoded values as dqskin's
+  // PNG writer does, so colour management is off and the value goes out as it is; the glb's own materials
+  // (shade=material) are colour-managed, lit as a plain viewer lights them.
   const background = params.has('background') ? numbers(params.get('background'), 3, 'background') : [0.2, 0.2, 0.2];
-  renderer.setClearColor(new THREE.Color(...background), 1);
-
   const scene = new THREE.Scene();
   scene.add(played.object);
-  if (params.get('shade') === 'material') {
-    if (bake.path !== 'morph') throw new Error('shade=material: only the morph path carries materials');
-    // Materials are colour-managed: sRGB output, and the lights of a plain viewer.
-    THREE.ColorManagement.enabled = true;
-    renderer.outputColorSpace = THREE.SRGBColorSpace;
-    renderer.setClearColor(new THREE.Color().setRGB(...background, THREE.SRGBColorSpace), 1);
+  const lit = params.get('shade') === 'material';
+  if (lit && bake.path !== 'morph') throw new Error('shade=material: only the morph path carries materials');
+  THREE.ColorManagement.enabled = lit;
+  renderer.outputColorSpace = lit ? THREE.SRGBColorSpace : THREE.LinearSRGBColorSpace;
+  renderer.setClearColor(new THREE.Color().setRGB(...background, lit ? THREE.SRGBColorSpace : THREE.LinearSRGBColorSpace), 1);
+  if (lit) {
     scene.add(new THREE.HemisphereLight(0xffffff, 0x444444, 2));
     const key = new THREE.DirectionalLight(0xffffff, 2);
     key.position.set(1, 2, 3);
@@ -230,9 +230,7 @@ async function main() {
   scrub.oninput = () => { position = Number(scrub.value); start = performance.now() - position * 1000 / fps; };
   if (!params.has('size'))
     window.addEventListener('resize', () => {
-      renderer.setSize(window.innerWidth, window.innerHeight, false);
-      canvas.style.width = `${window.innerWidth}px`;
-      canvas.style.height = `${window.innerHeight}px`;
+      resize(window.innerWidth, window.innerHeight);
       camera = frameCamera(box, view, window.innerWidth / window.innerHeight);
     });
   renderer.setAnimationLoop(() => {
