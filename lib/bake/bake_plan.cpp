@@ -38,12 +38,12 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
     files.push_back(clip.folder + "/materials.mtl");
   if (formats & unsigned(BakeFormat::kVat))
     for (auto& [name, size] : planned_vat_files(input, clip, options.textures)) files.push_back(std::move(name));
-  if ((formats & unsigned(BakeFormat::kBones)) && !input.skins.empty())
+  if ((formats & unsigned(BakeFormat::kBones)) && !input.skins.empty()) {
     files.push_back(clip.folder + "/" + kBonesMeshFile);
-  if (formats & unsigned(BakeFormat::kBones))
     for (int skin : input.skins)
       for (const char* extension : {".exr", ".json"})
         files.push_back(clip.folder + "/bones_skin" + std::to_string(skin) + extension);
+  }
   if (formats & unsigned(BakeFormat::kMorph)) files.push_back(morph_file(clip));
   return files;
 }
