@@ -30,6 +30,7 @@ const jobs = [];
 for (let i = 0; i < args.length; ++i) {
   const a = args[i];
   if (a.startsWith('--')) {
+    if (!['--root', '--out', '--chromium', '--size'].includes(a)) usage(`${a}: unknown option`);
     if (i + 1 >= args.length) usage(`${a} needs a value`);
     options[a.slice(2)] = args[++i];
   } else if (a.includes('=')) {
@@ -44,11 +45,10 @@ const root = resolve(options.root);
 
 // Files under root only; anything else is 404.
 const server = createServer((request, response) => {
-  const path = normalize(join(root, decodeURIComponent(new URL(request.url, 'http://x').pathname)));
-  let file = path;
   try {
-    if (statSync(file).isDirectory()) file = join(file, 'index.html');
+    let file = normalize(join(root, decodeURIComponent(new URL(request.url, 'http://x').pathname)));
     if (!(file === root || file.startsWith(root + sep))) throw new Error('outside');
+    if (statSync(file).isDirectory()) file = join(file, 'index.html');
     const body = readFileSync(file);
     response.writeHead(200, { 'Content-Type': types[extname(file)] ?? 'application/octet-stream' });
     response.end(body);
