@@ -10,24 +10,30 @@
 
 namespace dqskin::report_detail {
 
-// Slices across the bone: kSlices equal intervals of the zone's axial coordinate, each a list of indices
-// into `zone`; slices with fewer than 3 vertices are dropped (no spread to measure).
+// Slices across the bone: equal intervals of the zone's axial coordinate, each a list of indices into
+// `zone`; as many as give each about 2·kSliceVertices vertices, at most kSlices (low-polygon limbs have
+// zones of a few dozen vertices). Slices with fewer than kSliceVertices vertices are dropped: the spread
+// of a handful of points swings with every small move, so its ratio says nothing.
 constexpr int kSlices = 8;
+constexpr size_t kSliceVertices = 6;
 std::vector<std::vector<size_t>> slice_zone(const std::vector<ZoneVertex>& zone);
 
-// The spread of `points` around the line through `axis_point` along `axis` (unit): sqrt(det M), M the
-// 2×2 second moment of the points' offsets from the line, projected onto the plane normal to `axis`.
-// A ring of radius r around the line gives r²/2; a ring collapsed onto the line 0. Unit-free as a
-// ratio: report divides it by the same slice's value at the rest pose.
-double section_spread(std::span<const glm::dvec3> points, const glm::dvec3& axis_point, const glm::dvec3& axis);
+// The spread of `points` across `axis` (unit): the 2×2 covariance C of the points projected onto the
+// plane normal to the axis, and its area measure sqrt(det C), with its eigenvalues. A ring of radius r
+// gives r²/2 (whatever its position), a ring collapsed onto a point or a segment 0. Unit-free as a ratio:
+// report divides it by the same slice's value at the rest pose.
+struct Spread {
+  double area = 0;                    // sqrt(det C)
+  double major = 0, minor = 0;        // C's eigenvalues, major ≥ minor ≥ 0
+};
+Spread section_spread(std::span<const glm::dvec3> points, const glm::dvec3& axis);
+
+// A slice is measured only when its rest spread is not flat: minor ≥ kFlatness · major (a sheet-like
+// slice, a fin or an ear, has an area near zero at rest, and any ratio to it is noise).
+constexpr double kFlatness = 0.01;
 
 // The joint's axis at a frame: the bind-space section axis turned by the normalized average of the
-// parent's and the joint's rigid rotations (their real parts brought into one hemisphere first), and the
-// joint's deformed position (its joint matrix world · IBM applied to its bind position).
-struct DeformedAxis {
-  glm::dvec3 point{0.0}, direction{0.0};
-};
-DeformedAxis deformed_axis(const JointRegion& region, const DualQuat<double>& parent, const DualQuat<double>& joint,
-                           const Mat4<double>& joint_matrix);
+// parent's and the joint's rigid rotations (their real parts brought into one hemisphere first).
+glm::dvec3 deformed_axis(const JointRegion& region, const DualQuat<double>& parent, const DualQuat<double>& joint);
 
 }  // namespace dqskin::report_detail

@@ -33,13 +33,15 @@ JointMetrics::JointMetrics(const Asset& asset, const SkinRegions& regions, const
     const JointRegion& region = regions.joints[r];
     Section& section = sections_[r];
     section.slices = slice_zone(region.zone);
-    section.rest = spreads(r, rest, rest_joints[size_t(region.skin)]);
-    // A slice with no spread at rest (all its vertices on the axis) has no ratio: dropped.
-    for (size_t s = section.slices.size(); s-- > 0;)
-      if (!(section.rest[s] > 1e-20)) {
-        section.slices.erase(section.slices.begin() + std::ptrdiff_t(s));
-        section.rest.erase(section.rest.begin() + std::ptrdiff_t(s));
+    // A slice flat at rest (cross_section.hpp, kFlatness) or with no spread at all has no ratio: dropped.
+    const std::vector<Spread> rest_spreads = spreads(r, rest, rest_joints[size_t(region.skin)]);
+    std::vector<std::vector<size_t>> kept;
+    for (size_t s = 0; s < rest_spreads.size(); ++s)
+      if (rest_spreads[s].area > 0 && rest_spreads[s].minor >= kFlatness * rest_spreads[s].major) {
+        kept.push_back(std::move(section.slices[s]));
+        section.rest.push_back(rest_spreads[s].area);
       }
+    section.slices = std::move(kept);
     for (const VertexRef& ref : region.vertices) {
       const BatchPrimitive& bp = regions.primitives[ref.primitive];
       const Primitive& primitive = asset.meshes[size_t(bp.mesh)].primitives[bp.primitive];
@@ -51,18 +53,17 @@ JointMetrics::JointMetrics(const Asset& asset, const SkinRegions& regions, const
   }
 }
 
-std::vector<double> JointMetrics::spreads(size_t r, const FrameView& positions, const JointTransforms& joints) const {
+std::vector<Spread> JointMetrics::spreads(size_t r, const FrameView& positions, const JointTransforms& joints) const {
   const JointRegion& region = regions_.joints[r];
   const Section& section = sections_[r];
   if (section.slices.empty()) return {};
-  const DeformedAxis axis = deformed_axis(region, joints.rigid[size_t(region.parent)], joints.rigid[size_t(region.joint)],
-                                          joints.matrices[size_t(region.joint)]);
-  std::vector<double> out;
+  const glm::dvec3 axis = deformed_axis(region, joints.rigid[size_t(region.parent)], joints.rigid[size_t(region.joint)]);
+  std::vector<Spread> out;
   std::vector<glm::dvec3> points;
   for (const std::vector<size_t>& slice : section.slices) {
     points.clear();
     for (size_t i : slice) points.push_back(position(positions, region.zone[i].ref));
-    out.push_back(section_spread(points, axis.point, axis.direction));
+    out.push_back(section_spread(points, axis));
   }
   return out;
 }
@@ -106,18 +107,18 @@ std::vector<JointFrame> JointMetrics::measure(const FrameInput& frame) const {
 
     const Section& section = sections_[r];
     if (section.slices.empty()) continue;
-    const std::vector<double> lbs = spreads(r, *frame.lbs, joints), dqs = spreads(r, *frame.dqs, joints),
+    const std::vector<Spread> lbs = spreads(r, *frame.lbs, joints), dqs = spreads(r, *frame.dqs, joints),
                               dib = spreads(r, *frame.dib, joints);
     m.area_lbs = m.area_dqs = m.area_dib = m.lbs_over_dib = std::numeric_limits<double>::infinity();
     m.dqs_over_dib = -std::numeric_limits<double>::infinity();
     bool compared = false;
     for (size_t s = 0; s < lbs.size(); ++s) {
-      m.area_lbs = std::min(m.area_lbs, lbs[s] / section.rest[s]);
-      m.area_dqs = std::min(m.area_dqs, dqs[s] / section.rest[s]);
-      m.area_dib = std::min(m.area_dib, dib[s] / section.rest[s]);
-      if (dib[s] > 1e-12 * section.rest[s]) {  // against a dib slice that has not collapsed itself
-        m.lbs_over_dib = std::min(m.lbs_over_dib, lbs[s] / dib[s]);
-        m.dqs_over_dib = std::max(m.dqs_over_dib, dqs[s] / dib[s]);
+      m.area_lbs = std::min(m.area_lbs, lbs[s].area / section.rest[s]);
+      m.area_dqs = std::min(m.area_dqs, dqs[s].area / section.rest[s]);
+      m.area_dib = std::min(m.area_dib, dib[s].area / section.rest[s]);
+      if (dib[s].area > 1e-12 * section.rest[s]) {  // against a dib slice that has not collapsed itself
+        m.lbs_over_dib = std::min(m.lbs_over_dib, lbs[s].area / dib[s].area);
+        m.dqs_over_dib = std::max(m.dqs_over_dib, dqs[s].area / dib[s].area);
         compared = true;
       }
     }

@@ -4,6 +4,7 @@
 // is measured in parallel, each into its own FrameMeasure.
 #pragma once
 
+#include "cross_section.hpp"
 #include "skin_regions.hpp"
 
 #include "dqskin/frame_view.hpp"
@@ -54,7 +55,7 @@ private:
     std::vector<double> rest;                 // each slice's spread at the rest pose
   };
   // The spread of each slice of region r in `positions`, around the axis the transforms give.
-  std::vector<double> spreads(size_t r, const FrameView& positions, const JointTransforms& joints) const;
+  std::vector<Spread> spreads(size_t r, const FrameView& positions, const JointTransforms& joints) const;
 
   const SkinRegions& regions_;
   std::vector<Section> sections_;  // per region; no slices without a blend zone
