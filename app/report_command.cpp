@@ -32,6 +32,7 @@ struct ReportSettings {
   std::string tolerance = "0.5%";
   double twist = 150, candy_wrapper = 0.3, bulge = 0.1;
   int worst_frames = 3, image_size = 320;
+  bool fast_cpu = false;
   bool quiet = false, json_progress = false;
 };
 
@@ -66,6 +67,7 @@ ReportOptions to_options(const ReportSettings& s) {
   o.thresholds.dqs_bulge = s.bulge;
   o.worst_frames = s.worst_frames;
   o.image_size = s.image_size;
+  o.fast_cpu = s.fast_cpu;
   return o;
 }
 
@@ -144,6 +146,9 @@ Command add_report_command(CLI::App& app) {
       ->type_name("PIXELS")
       ->capture_default_str()
       ->check(CLI::Range(16, 4096));
+  cmd->add_flag("--fast-cpu", s.fast_cpu,
+                "Deform lbs and dqs on the fast float CPU deformer instead of the double-precision reference "
+                "(dib always runs there): faster, figures move by float rounding");
   cmd->add_flag("-q,--quiet", s.quiet, "Print nothing but errors");
   cmd->add_flag("--json-progress", s.json_progress, "Print progress and the final summary as JSON lines on standard output");
   cmd->footer(

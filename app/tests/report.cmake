@@ -13,7 +13,7 @@ add_test(NAME cli.report_clean_scratch COMMAND sh -c "rm -rf '${report_scratch}'
 set_tests_properties(cli.report_clean_scratch PROPERTIES FIXTURES_SETUP report_scratch)
 
 dqskin_report_test(help 0 ARGS report --help
-  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--resource-root.*--max-memory.*--tolerance.*--twist.*--candy-wrapper.*--bulge.*--worst-frames.*Exit status")
+  STDOUT "INPUT.*--out.*--anim.*--fps.*--frames.*--resource-root.*--max-memory.*--tolerance.*--twist.*--candy-wrapper.*--bulge.*--worst-frames.*--image-size.*--fast-cpu.*Exit status")
 
 # The rigs: one verdict line each, then the summary; report.json with the figures the rigs are built for.
 dqskin_report_test(rigs 0 ARGS report ${report_rigs} -o ${report_scratch}/rigs --image-size 64
@@ -23,6 +23,13 @@ foreach(rig twisted_cylinder bending_arm eight_influences)
            -P ${PROJECT_SOURCE_DIR}/app/tests/report_json_check.cmake)
   set_tests_properties(cli.report_json_${rig} PROPERTIES DEPENDS cli.report_rigs FIXTURES_REQUIRED report_scratch)
 endforeach()
+
+# --fast-cpu says so in the settings.
+dqskin_report_test(fast_cpu_is_recorded 0 ARGS report ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf -o ${report_scratch}/fast
+  --fast-cpu --quiet --image-size 32)
+add_test(NAME cli.report_fast_cpu_in_settings COMMAND sh -c
+  "grep -q '\"lbs\": \"fast-cpu\"' '${report_scratch}/fast/bending_arm/report.json' && grep -q '\"dib\": \"cpu-reference\"' '${report_scratch}/fast/bending_arm/report.json'")
+set_tests_properties(cli.report_fast_cpu_in_settings PROPERTIES DEPENDS cli.report_fast_cpu_is_recorded FIXTURES_REQUIRED report_scratch)
 
 # Bad input: one line naming the file, exit status 2, and no folder left behind.
 dqskin_report_test(missing_input_exits_2 2 ARGS report ${report_scratch}/missing.gltf -o ${report_scratch}/missing

@@ -25,16 +25,16 @@ constexpr size_t kFramesPerChunk = 32;
 
 // The blends the report compares, each on the double-precision CPU reference: dib has no other path,
 // and lbs and dqs run there too so that every difference measured is the blends', not float rounding's
-// (README "dqskin report").
+// (README "dqskin report"); with options.fast_cpu lbs and dqs run on the fast float deformer.
 constexpr BlendMode kModes[3] = {BlendMode::kLbs, BlendMode::kDqs, BlendMode::kDib};
 
 class Blends {
 public:
-  Blends(const InputPlan& input, const std::atomic<bool>* cancel) {
+  Blends(const InputPlan& input, bool fast_cpu, const std::atomic<bool>* cancel) {
     for (size_t m = 0; m < 3; ++m) {
       DeformerOptions o;
       o.mode = kModes[m];
-      o.backend = Backend::kCpu;
+      o.backend = fast_cpu && kModes[m] != BlendMode::kDib ? Backend::kFastCpu : Backend::kCpu;
       o.before_batch = [cancel] { check_cancelled(cancel); };
       deformers_[m] = make_deformer(nullptr, *input.asset, input.instances, o);
     }
@@ -90,7 +90,7 @@ InputData measure_input(const InputPlan& input, const ReportOptions& options, Pr
   data.skins = input.skins.size();
   data.max_influences = regions.max_influences;
   if (regions.joints.empty()) throw InputError("no skinned mesh in the scene: nothing to report");
-  Blends blends(input, options.cancel);
+  Blends blends(input, options.fast_cpu, options.cancel);
 
   // The rest pose: the reference of the area and volume ratios, and the diagonal.
   const double rest_time[1] = {0.0};

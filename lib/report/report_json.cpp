@@ -56,7 +56,9 @@ nlohmann::json report_json(const InputData& input, const ReportOptions& options)
                      {"dqs_bulge", t.dqs_bulge},
                      {"zone_weight", kZoneWeight},
                      {"slices", kSlices},
-                     {"deformers", {{"lbs", "cpu-reference"}, {"dqs", "cpu-reference"}, {"dib", "cpu-reference"}}},
+                     {"deformers", {{"lbs", options.fast_cpu ? "fast-cpu" : "cpu-reference"},
+                                    {"dqs", options.fast_cpu ? "fast-cpu" : "cpu-reference"},
+                                    {"dib", "cpu-reference"}}},
                      {"volume_scope", "per skinned instance: the closed ones, summed"}};
   doc["verdict"] = verdict_json(input.verdict);
 

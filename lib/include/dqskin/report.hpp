@@ -39,6 +39,9 @@ struct ReportOptions {
   int image_size = 320;      // contact-sheet cell (the render), pixels square
   int worst_frames = 3;      // frames per contact sheet
   Backend backend = Backend::kAuto;  // the context that draws the contact sheets
+  // lbs and dqs on the fast float CPU deformer instead of the double reference (dib always runs there):
+  // faster, and the figures move by float rounding (README "dqskin report").
+  bool fast_cpu = false;
   const std::atomic<bool>* cancel = nullptr;
 };
 
