@@ -24,8 +24,7 @@ struct ReportThresholds {
   double tolerance = 0.005;
   bool tolerance_relative = true;
   double twist_degrees = 150;   // add-twist-joints: |twist| at least this
-  double candy_wrapper = 0.3;   // use-dqs: candy-wrapper index at least this
-  double large_ratio = 4;       // use-dqs: lbs–dib max at least this many times dqs–dib max (and above tolerance)
+  double candy_wrapper = 0.3;   // use-dqs: candy-wrapper index at least this (or dqs within the tolerance)
   double dqs_bulge = 0.1;       // dqs-bulges: bulge at least this
 };
 
