@@ -75,8 +75,12 @@ Verdict asset_verdict(const std::vector<JointData>& joints) {
   std::string others;
   for (size_t k = 0; k < order.size(); ++k) {
     std::vector<std::string> names;
+    const JointData* worst = nullptr;  // the one lbs strays most at: its text gives the figures
     for (const JointData& j : joints)
-      if (j.verdict.code == order[k]) names.push_back(j.region->name);
+      if (j.verdict.code == order[k]) {
+        names.push_back(j.region->name);
+        if (!worst || j.summary.lbs_dib_max > worst->summary.lbs_dib_max) worst = &j;
+      }
     if (names.empty()) continue;
     if (v.code.empty()) {
       v.code = order[k];
@@ -91,6 +95,11 @@ Verdict asset_verdict(const std::vector<JointData>& joints) {
         if (i) v.text += i + 1 == names.size() ? " and " : ", ";
         v.text += names[i];
       }
+      // The worst joint's figures, without its own "use dqs: "-like opening.
+      const std::string& text = worst->verdict.text;
+      const size_t colon = text.find(": ");
+      v.text += " — ";
+      v.text += colon == std::string::npos ? text : text.substr(colon + 2);
     } else {
       others += others.empty() ? "; also " : ", ";
       others += std::to_string(names.size()) + " joint" + (names.size() == 1 ? "" : "s") + " " + order[k];

@@ -13,7 +13,8 @@ Verdict joint_verdict(const JointData& joint, const std::vector<ClipData>& clips
                       double diagonal);
 
 // From the joints' verdicts: the most pressing code any joint has (use-dqs, add-twist-joints, dqs-bulges,
-// dqs-closer, lbs-fine, in that order), naming the joints that have it, and the other codes' counts.
+// dqs-closer, lbs-fine, in that order), naming the joints that have it, with the text of the one where
+// lbs strays most, and the other codes' counts.
 Verdict asset_verdict(const std::vector<JointData>& joints);
 
 }  // namespace dqskin::report_detail
