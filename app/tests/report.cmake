@@ -24,6 +24,10 @@ foreach(rig twisted_cylinder bending_arm eight_influences)
   set_tests_properties(cli.report_json_${rig} PROPERTIES DEPENDS cli.report_rigs FIXTURES_REQUIRED report_scratch)
 endforeach()
 
+# The frame flags of bake and render: 5 frames of the twist, 3 of them on the contact sheet.
+dqskin_report_test(frame_selection 0 ARGS report ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf -o ${report_scratch}/frames
+  --frames 0:8:2 --image-size 32 STDERR "\nreported 5 frames \\(lbs, dqs and dib each\\) of 1 input in")
+
 # --fast-cpu says so in the settings.
 dqskin_report_test(fast_cpu_is_recorded 0 ARGS report ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf -o ${report_scratch}/fast
   --fast-cpu --quiet --image-size 32)
