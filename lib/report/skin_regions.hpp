@@ -33,7 +33,7 @@ struct BatchPrimitive {
 struct ZoneVertex {
   VertexRef ref;
   glm::dvec3 bind{0.0};  // bind-space position (the primitive's POSITION)
-  double axial = 0;      // dot(bind − parent's bind position, axis)
+  double axial = 0;      // dot(bind − the joint's bind position, section axis): only its differences count
 };
 
 struct JointRegion {
