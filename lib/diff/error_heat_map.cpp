@@ -1,6 +1,7 @@
 #include "error_heat_map.hpp"
 #include "diff_numbers.hpp"
 #include "../render/bitmap_font.hpp"
+#include "../render/heat_color.hpp"
 
 #include "dqskin/camera.hpp"
 #include "dqskin/image_output.hpp"
@@ -27,14 +28,6 @@ void label(Image& image, const std::string& text, int x, int y, int scale) {
 }
 
 }  // namespace
-
-glm::vec3 heat_color(float t) {
-  static const glm::vec3 stops[4] = {{0.02f, 0.02f, 0.25f}, {0.0f, 0.6f, 0.8f}, {1.0f, 0.85f, 0.0f}, {0.8f, 0.0f, 0.0f}};
-  t = std::clamp(t, 0.0f, 1.0f);
-  const float x = t * 3.0f;
-  const int i = std::min(int(x), 2);
-  return glm::mix(stops[i], stops[i + 1], x - float(i));
-}
 
 Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int size) {
   const DiffSide& side = map.side;

@@ -21,9 +21,6 @@ struct ErrorHeatMap {
   std::string caption;              // drawn top left ("t = 0.433 s"); only characters of the built-in font
 };
 
-// The render's heat colors (glsl/render.frag heat(), unlit): dark blue at 0, cyan, yellow, red at 1.
-glm::vec3 heat_color(float t);
-
 // Renders the heat map (`size` pixels square, the automatic camera framed on the frame) and draws the
 // legend in a panel to its right: a vertical color bar from 0 to `top`, labelled at 0, half and top in
 // scene units (glTF's meters); and the caption at the top left. The image is `size` high and wider by

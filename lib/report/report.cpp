@@ -1,0 +1,123 @@
+// `dqskin report` as a library call: inputs planned by the job layer, each measured (measure_input.cpp),
+// then its contact sheets drawn and report.json written, all through the input's journal, so that a
+// failed input leaves nothing.
+#include "dqskin/report.hpp"
+
+#include "measure_input.hpp"
+#include "report_json.hpp"
+#include "worst_frames_sheet.hpp"
+
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/image_output.hpp"
+#include "dqskin/job_plan.hpp"
+#include "dqskin/job_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+namespace dqskin {
+
+namespace report_detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The `count` frames with the largest values, in frame order (the earlier frame first on ties).
+std::vector<size_t> worst_frames(const std::vector<double>& values, size_t count) {
+  std::vector<size_t> order(values.size());
+  for (size_t f = 0; f < order.size(); ++f) order[f] = f;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] > values[b]; });
+  order.resize(std::min(count, order.size()));
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+// The contact sheets of an input: per clip its worst frames, drawn on `context`; records each in its clip.
+std::vector<std::pair<std::string, Image>> contact_sheets(GpuContext& context, const InputPlan& input,
+                                                          const ReportOptions& options, InputData& data) {
+  std::vector<std::pair<std::string, Image>> out;
+  std::set<std::string> names;
+  for (size_t c = 0; c < data.clips.size(); ++c) {
+    check_cancelled(options.cancel);
+    ClipData& clip = data.clips[c];
+    ClipImage image;
+    image.file = "worst_" + safe_name(clip.name);
+    // Two clips whose names differ only in characters safe_name replaces: the later one gets its index too.
+    if (names.count(image.file)) {
+      image.file += "_";
+      image.file += std::to_string(c);
+    }
+    names.insert(image.file);
+    image.file += ".png";
+    image.frames = worst_frames(clip.worst_lbs_dib, size_t(options.worst_frames));
+    image.scale = clip.lbs_dqs_max;
+    WorstFrames frames{*input.asset, input.instances, input.clips[c].clip, {}, image.scale, options.image_size};
+    for (size_t f : image.frames) frames.times.push_back(clip.times[f]);
+    out.emplace_back(image.file, worst_frames_sheet(context, frames));
+    clip.image = image;
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace report_detail
+
+bool ReportResult::any_failed() const {
+  return std::any_of(inputs.begin(), inputs.end(), [](const InputResult& r) { return !r.error.empty(); });
+}
+
+ReportResult report(const std::vector<std::string>& inputs, const ReportOptions& options,
+                    const std::function<void(const JobProgress&)>& progress) {
+  using namespace report_detail;
+  const Clock::time_point start = Clock::now();
+  if (options.worst_frames < 1 || options.worst_frames > 16) throw InputError("--worst-frames must be 1 to 16");
+  if (options.image_size < 16 || options.image_size > 4096) throw InputError("--image-size must be 16 to 4096 pixels");
+  const ReportThresholds& t = options.thresholds;
+  if (!(t.tolerance >= 0) || !(t.twist_degrees >= 0) || !(t.candy_wrapper >= 0) || !(t.dqs_bulge >= 0) ||
+      !std::isfinite(t.tolerance) || !std::isfinite(t.twist_degrees) || !std::isfinite(t.candy_wrapper) || !std::isfinite(t.dqs_bulge))
+    throw InputError("thresholds must be finite and not negative");
+
+  PlanOptions plan_options{options.out_dir, options.load, options.clips, options.frames, options.scene, Shard{}};
+  double load_seconds = 0;
+  const std::vector<InputPlan> plans = plan_inputs(inputs, plan_options, load_seconds);
+
+  ReportResult result;
+  for (const InputPlan& plan : plans)
+    for (const ClipPlan& clip : plan.clips) result.frames_total += clip.times.size();
+  JobContext context(options.backend);
+  ProgressCounter counter(result.frames_total, progress);
+  size_t outputs_before = 0, verdicts_before = 0;
+  result.inputs = for_each_input(
+      plans,
+      [&](const InputPlan& plan, OutputJournal& journal, InputResult& input_result) {
+        outputs_before = result.outputs.size(), verdicts_before = result.verdicts.size();
+        InputData data = measure_input(plan, options, counter);
+        const auto images = contact_sheets(context.get(), plan, options, data);
+        const std::string folder = options.out_dir + "/" + plan.stem;
+        journal.make_folders(folder);
+        for (const auto& [file, image] : images) {
+          write_image(folder + "/" + file, image, ImageFormat::kPng, {Overwrite::kReplace, &journal});
+          result.outputs.push_back(plan.stem + "/" + file);
+        }
+        const nlohmann::json doc = report_json(data, options);
+        AtomicFile json(folder + "/report.json");
+        json.write(report_json_text(doc));
+        json.commit({Overwrite::kReplace, &journal});
+        result.outputs.push_back(plan.stem + "/report.json");
+        // report.html: written by report_html() (lib/report/report_html.hpp)
+        result.verdicts.push_back(data.verdict.text);
+        for (const ClipData& clip : data.clips) input_result.frames += clip.times.size();
+      },
+      [&](const InputPlan&) {
+        result.outputs.resize(outputs_before);
+        result.verdicts.resize(verdicts_before);
+      });
+  std::sort(result.outputs.begin(), result.outputs.end());
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace dqskin

@@ -1,0 +1,16 @@
+// report.json (internal to lib/report): what one input's report holds, in the version-1 layout that the
+// HTML page reads (README "dqskin report", "report.json").
+#pragma once
+
+#include "report_data.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace dqskin::report_detail {
+
+nlohmann::json report_json(const InputData& input, const ReportOptions& options);
+
+// report.json's bytes: two-space indentation and a final newline, so that equal reports are equal files.
+std::string report_json_text(const nlohmann::json& report);
+
+}  // namespace dqskin::report_detail
