@@ -182,7 +182,7 @@ std::string line_chart_svg(const ChartSpec& spec) {
   }
   s += "<text class=\"unit\" x=\"" + plot_right + "\" y=\"" + svg_number(kHeight - 3) + "\" text-anchor=\"end\">time (s)</text>\n";
   s += "<path class=\"axis\" d=\"M" + svg_number(kLeft) + " " + svg_number(kTop) + "V" + plot_bottom + "H" + plot_right + "\"/>\n";
-  if (spec.reference_y) {
+  if (spec.reference_y && has_data) {  // with nothing to compare, the line would only cross out empty_text
     const std::string y = svg_number(py(*spec.reference_y));
     s += "<line class=\"reference\" x1=\"" + svg_number(kLeft) + "\" y1=\"" + y + "\" x2=\"" + plot_right + "\" y2=\"" + y + "\"/>\n";
   }

@@ -23,7 +23,8 @@ struct ChartSpec {
   std::vector<double> x;               // seconds, increasing
   std::vector<ChartLine> lines;
   bool include_zero = false;           // the y range reaches down (or up) to 0
-  std::optional<double> reference_y;   // a dashed horizontal line (1 for ratios to rest), inside the range
+  std::optional<double> reference_y;   // a dashed horizontal line (1 for ratios to rest), inside the range;
+                                       // not drawn when no line has a value
   std::optional<double> marker_x;      // a dashed vertical line (the worst frame's time)
   std::string marker_label;
   std::string empty_text = "no data";  // what an empty plot says

@@ -110,10 +110,14 @@ TEST(SvgChart, PathStepsAddUpToTheRoundedPoints) {
 }
 
 TEST(SvgChart, SaysNoDataWhenEveryValueIsNull) {
-  const ChartSpec spec = chart("Joint angles", "\xC2\xB0", {0, 1}, {{"twist", "twist", {std::nullopt, std::nullopt}}});
+  ChartSpec spec = chart("Joint angles", "\xC2\xB0", {0, 1}, {{"twist", "twist", {std::nullopt, std::nullopt}}});
+  spec.reference_y = 1.0;
   const std::string svg = line_chart_svg(spec);
   EXPECT_NE(svg.find(">no data</text>"), std::string::npos);
   EXPECT_EQ(svg.find("<path class=\"twist\""), std::string::npos);
+  EXPECT_EQ(svg.find("class=\"reference\""), std::string::npos);
+  spec.lines[0].values[1] = 0.5;
+  EXPECT_NE(line_chart_svg(spec).find("class=\"reference\""), std::string::npos);
 }
 
 TEST(SvgChart, ALongClipStaysSmall) {
