@@ -9,10 +9,10 @@
 // SwiftShader's WebGL2 (no GPU needed); the page puts the canvas in <pre id="capture"> and marks its body
 // data-ready (or data-error), which this script waits for over the DevTools protocol.
 // Exit status: 0 all written, 1 a page reported an error or drew nothing (its message printed), 2 usage.
-import { spawn } from 'node:child_process';
 import { createServer } from 'node:http';
 import { mkdirSync, readFileSync, statSync, writeFileSync } from 'node:fs';
 import { extname, join, normalize, resolve, sep } from 'node:path';
+import { launchChromium } from './chromium_pipe.mjs';
 
 const types = {
   '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.css': 'text/css',
@@ -60,46 +60,6 @@ const server = createServer((request, response) => {
 await new Promise((done) => server.listen(0, '127.0.0.1', done));
 const port = server.address().port;
 
-// One headless Chromium for every capture, driven over the DevTools protocol on a pipe (file descriptors
-// 3 and 4, NUL-separated JSON): no port to pick, nothing for other processes to connect to.
-function launch() {
-  const child = spawn(options.chromium, [
-    '--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-    '--no-first-run', '--disable-extensions', '--hide-scrollbars', '--remote-debugging-pipe',
-    `--window-size=${options.size.replace('x', ',')}`, 'about:blank',
-  ], { stdio: ['ignore', 'ignore', 'pipe', 'pipe', 'pipe'] });
-  let next = 0, buffer = '', stderr = '';
-  const waiting = new Map();
-  child.stderr.on('data', (d) => { stderr = (stderr + d).slice(-4000); });
-  child.stdio[4].on('data', (data) => {
-    buffer += data;
-    for (let end; (end = buffer.indexOf('\0')) >= 0; buffer = buffer.slice(end + 1)) {
-      const message = JSON.parse(buffer.slice(0, end));
-      const reply = waiting.get(message.id);
-      if (!reply) continue;
-      waiting.delete(message.id);
-      if (message.error) reply.reject(new Error(message.error.message));
-      else reply.resolve(message.result);
-    }
-  });
-  const exited = new Promise((done) => child.on('exit', done));
-  child.on('error', (e) => { for (const w of waiting.values()) w.reject(e); });
-  exited.then(() => { for (const w of waiting.values()) w.reject(new Error(`chromium exited: ${stderr}`)); });
-  return {
-    send(method, params = {}, sessionId = undefined) {
-      const id = ++next;
-      child.stdio[3].write(JSON.stringify({ id, method, params, sessionId }) + '\0');
-      return new Promise((resolve, reject) => waiting.set(id, { resolve, reject }));
-    },
-    async close() {
-      child.stdio[3].end();
-      const timer = setTimeout(() => child.kill('SIGKILL'), 10000);
-      await exited;
-      clearTimeout(timer);
-    },
-  };
-}
-
 // Opens the page in a fresh tab, waits until it says it is done (body data-ready or data-error), and
 // returns what it captured.
 async function capture(browser, url) {
@@ -128,7 +88,8 @@ async function capture(browser, url) {
 }
 
 mkdirSync(options.out, { recursive: true });
-const browser = launch();
+// One headless Chromium for every capture (chromium_pipe.mjs).
+const browser = launchChromium(options.chromium, { size: options.size });
 let failed = false;
 try {
   for (const job of jobs) {

@@ -2,7 +2,7 @@
 // (include/dqskin/diff_report.hpp). Formatting only: nothing here reads an image.
 #include "dqskin/diff_report.hpp"
 #include "diff_numbers.hpp"
-#include "xml_escape.hpp"
+#include "../io/xml_escape.hpp"
 
 #include "dqskin/error.hpp"
 
@@ -19,7 +19,7 @@ namespace {
 using Json = nlohmann::ordered_json;  // keys in the order written
 using diff_detail::number;
 using diff_detail::percent;
-using diff_detail::xml;
+using io::xml;
 
 Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 

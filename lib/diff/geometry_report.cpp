@@ -1,7 +1,7 @@
 // The reports of a GeometryDiffReport (include/dqskin/geometry_report.hpp). Formatting only.
 #include "dqskin/geometry_report.hpp"
 #include "diff_numbers.hpp"
-#include "xml_escape.hpp"
+#include "../io/xml_escape.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -14,7 +14,7 @@ namespace {
 using Json = nlohmann::ordered_json;
 using diff_detail::number;
 using diff_detail::percent;
-using diff_detail::xml;
+using io::xml;
 
 constexpr size_t kNotesShown = 10;
 

@@ -4,7 +4,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "source_document.hpp"
-#include "../test_support/base64.hpp"
+#include "../io/base64.hpp"
 
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
@@ -84,7 +84,7 @@ Bytes glb(const json& doc, Bytes bin) {
   return out;
 }
 
-using testing_support::base64;
+using io::base64;
 
 Asset load_bytes(const Bytes& bytes, const LoadOptions& options = {}) {
   return load_asset_from_memory(bytes, "compressed", ".", options);

@@ -2,7 +2,7 @@
 #include "dqskin/info.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
-#include "../test_support/base64.hpp"
+#include "../io/base64.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -23,7 +23,7 @@ using nlohmann::json;
 // ---------------------------------------------------------------------------------------------------
 // A tiny glTF writer: raw bytes into one buffer, accessors described in JSON, embedded as a data URI.
 
-using testing_support::base64;
+using io::base64;
 
 struct GltfBuilder {
   std::vector<uint8_t> bytes;

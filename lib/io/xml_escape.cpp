@@ -1,9 +1,9 @@
 #include "xml_escape.hpp"
-#include "../io/utf8.hpp"
+#include "utf8.hpp"
 
 #include <cstdint>
 
-namespace dqskin::diff_detail {
+namespace dqskin::io {
 
 std::string xml(const std::string& text, bool attribute) {
   std::string out;
@@ -40,4 +40,4 @@ std::string xml(const std::string& text, bool attribute) {
   return out;
 }
 
-}  // namespace dqskin::diff_detail
+}  // namespace dqskin::io
