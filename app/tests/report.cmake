@@ -24,6 +24,18 @@ foreach(rig twisted_cylinder bending_arm eight_influences)
   set_tests_properties(cli.report_json_${rig} PROPERTIES DEPENDS cli.report_rigs FIXTURES_REQUIRED report_scratch)
 endforeach()
 
+# The pages of those reports in headless Chromium (lib/report/report_check.mjs): no console error, every
+# joint of report.json in the table with its figures, the contact sheets shown. Skipped with a printed reason
+# without Node.js or Chromium.
+foreach(rig twisted_cylinder bending_arm eight_influences)
+  add_test(NAME cli.report_page_${rig}
+           COMMAND ${CMAKE_COMMAND} -DNODE=${DQSKIN_NODE} -DCHROMIUM=${DQSKIN_CHROMIUM}
+                   -DSCRIPT=${PROJECT_SOURCE_DIR}/lib/report/report_check.mjs -DPAGE=${report_scratch}/rigs/${rig}
+                   -DEXPECT=pass -P ${PROJECT_SOURCE_DIR}/lib/report/report_check.cmake)
+  set_tests_properties(cli.report_page_${rig} PROPERTIES DEPENDS cli.report_rigs FIXTURES_REQUIRED report_scratch
+                       LABELS report SKIP_REGULAR_EXPRESSION "report_check: SKIPPED" TIMEOUT 120)
+endforeach()
+
 # The frame flags of bake and render: 5 frames of the twist, 3 of them on the contact sheet.
 dqskin_report_test(frame_selection 0 ARGS report ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf -o ${report_scratch}/frames
   --frames 0:8:2 --image-size 32 STDERR "\nreported 5 frames \\(lbs, dqs and dib each\\) of 1 input in")
@@ -54,7 +66,7 @@ dqskin_report_test(bad_tolerance_exits_2 2 ARGS report ${PROJECT_SOURCE_DIR}/tes
 dqskin_report_test(out_dir_required 2 ARGS report ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf
   STDERR "^dqskin: -o OUTDIR is required\n$")
 
-# Determinism: two runs, the same bytes (report.json and the contact sheet).
+# Determinism: two runs, the same bytes (report.json, the contact sheet and the page).
 add_test(NAME cli.report_is_deterministic COMMAND sh -c
-  "for d in a b; do $<TARGET_FILE:dqskin_cli> report ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf -o '${report_scratch}/same_'$d --image-size 96 --quiet || exit 1; done && cmp '${report_scratch}/same_a/twisted_cylinder/report.json' '${report_scratch}/same_b/twisted_cylinder/report.json' && cmp '${report_scratch}/same_a/twisted_cylinder/worst_twist.png' '${report_scratch}/same_b/twisted_cylinder/worst_twist.png'")
+  "for d in a b; do $<TARGET_FILE:dqskin_cli> report ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf -o '${report_scratch}/same_'$d --image-size 96 --quiet || exit 1; done && cmp '${report_scratch}/same_a/twisted_cylinder/report.json' '${report_scratch}/same_b/twisted_cylinder/report.json' && cmp '${report_scratch}/same_a/twisted_cylinder/worst_twist.png' '${report_scratch}/same_b/twisted_cylinder/worst_twist.png' && cmp '${report_scratch}/same_a/twisted_cylinder/report.html' '${report_scratch}/same_b/twisted_cylinder/report.html'")
 set_tests_properties(cli.report_is_deterministic PROPERTIES FIXTURES_REQUIRED report_scratch ENVIRONMENT "${bake_test_environment}" LABELS gpu)

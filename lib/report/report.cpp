@@ -4,6 +4,7 @@
 #include "dqskin/report.hpp"
 
 #include "measure_input.hpp"
+#include "report_html.hpp"
 #include "report_json.hpp"
 #include "worst_frames_sheet.hpp"
 
@@ -16,6 +17,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <set>
 
 namespace dqskin {
@@ -33,6 +36,14 @@ std::vector<size_t> worst_frames(const std::vector<double>& values, size_t count
   order.resize(std::min(count, order.size()));
   std::sort(order.begin(), order.end());
   return order;
+}
+
+// The bytes of a file just written, to embed it in the page exactly as it lies beside it. Throws OutputError.
+std::vector<uint8_t> read_back(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw OutputError(path + ": cannot be read back");
+  return bytes;
 }
 
 // The contact sheets of an input: per clip its worst frames, drawn on `context`; records each in its clip.
@@ -98,16 +109,21 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
         const auto images = contact_sheets(context.get(), plan, options, data);
         const std::string folder = options.out_dir + "/" + plan.stem;
         journal.make_folders(folder);
+        std::vector<EmbeddedImage> embedded;
         for (const auto& [file, image] : images) {
           write_image(folder + "/" + file, image, ImageFormat::kPng, {Overwrite::kReplace, &journal});
           result.outputs.push_back(plan.stem + "/" + file);
+          embedded.push_back({file, read_back(folder + "/" + file)});
         }
         const nlohmann::json doc = report_json(data, options);
         AtomicFile json(folder + "/report.json");
         json.write(report_json_text(doc));
         json.commit({Overwrite::kReplace, &journal});
         result.outputs.push_back(plan.stem + "/report.json");
-        // report.html: written by report_html() (lib/report/report_html.hpp)
+        AtomicFile html(folder + "/report.html");
+        html.write(report_html(doc, embedded));
+        html.commit({Overwrite::kReplace, &journal});
+        result.outputs.push_back(plan.stem + "/report.html");
         result.verdicts.push_back(data.verdict.text);
         for (const ClipData& clip : data.clips) input_result.frames += clip.times.size();
       },
