@@ -28,7 +28,7 @@ int dqskin::cli::run_cli(int argc, const char* const* argv) {
 
 
   const Command commands[] = {add_info_command(app), add_bench_command(app), add_bake_command(app),
-                              add_render_command(app), add_diff_command(app)};
+                              add_render_command(app), add_diff_command(app), add_lint_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
