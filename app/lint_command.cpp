@@ -61,7 +61,7 @@ int run_lint(LintSettings& s) {
   if (s.fix && results.front().error.empty()) {
     const LintFixSummary fixed = lint_fix(s.inputs.front(), s.output, o);
     std::cerr << "dqskin: lint: wrote " << printable(s.output) << " (influences of " << fixed.primitives
-              << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten); linted again:\n";
+              << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, " << fixed.skeletons << " skeleton properties removed); linted again:\n";
     results.push_back(lint_file(s.output, o));
   }
   for (const LintFileResult& r : results)
@@ -131,7 +131,8 @@ Command add_lint_command(CLI::App& app) {
   cmd->footer(checks_table() +
               "--fix merges a joint's influences, drops negative weights and joints out of range, sorts by weight, keeps\n"
               "--max-influences and renormalizes in the original component type (normalized integers sum exactly to\n"
-              "255 or 65535); it makes rotation keys unit and hemisphere-consistent (CUBICSPLINE tangents with them).\n"
+              "255 or 65535), binds a vertex without weight to its nearest joint; it makes rotation keys unit and\n"
+              "hemisphere-consistent (CUBICSPLINE tangents with them) and removes a skeleton that is not a common root.\n"
               "Joints without a common root, inverse bind matrices and joint scale are reported, not changed.\n"
               "The report then has the input and the fixed file; the exit status is the fixed file's.\n"
               "Exit status: 0 clean or information only, 1 warnings, 2 errors, an unreadable file, or a usage error.\n"

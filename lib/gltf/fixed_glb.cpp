@@ -71,8 +71,7 @@ bool is_influence_attribute(const std::string& name) {
 
 }  // namespace
 
-std::string fixed_glb(const std::string& path, const LoadOptions& options, const std::vector<InfluenceEdit>& influences,
-                      const std::vector<KeyEdit>& keys) {
+std::string fixed_glb(const std::string& path, const LoadOptions& options, const FileEdits& edits) {
   const std::vector<uint8_t> bytes = read_regular_file(path, std::min(options.max_file_bytes, options.max_memory));
   ParsedModel parsed = parse_model(bytes, folder_of(path), options);
   const tinygltf::Model& m = parsed.model;
@@ -112,7 +111,7 @@ std::string fixed_glb(const std::string& path, const LoadOptions& options, const
       image.erase("uri");
     }
 
-  for (const InfluenceEdit& e : influences) {
+  for (const InfluenceEdit& e : edits.influences) {
     json& attributes = doc["meshes"][e.mesh]["primitives"][e.primitive]["attributes"];
     std::vector<std::string> old;
     for (const auto& item : attributes.items())
@@ -130,11 +129,13 @@ std::string fixed_glb(const std::string& path, const LoadOptions& options, const
           vec4_accessor(bin, weights, e.weights_component, e.weights_component != kComponentFloat, glb::kArrayBuffer);
     }
   }
-  for (const KeyEdit& e : keys) {
+  for (const KeyEdit& e : edits.keys) {
     const std::vector<double> values(e.values.begin(), e.values.end());
     doc["animations"][e.animation]["samplers"][e.sampler]["output"] =
         vec4_accessor(bin, values, e.component, e.component != kComponentFloat, 0);
   }
+
+  for (size_t skin : edits.drop_skeleton) doc["skins"][skin].erase("skeleton");
 
   std::vector<std::string> required;
   for (const std::string& e : m.extensionsRequired)

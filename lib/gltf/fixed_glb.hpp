@@ -31,9 +31,16 @@ struct KeyEdit {
   std::vector<float> values;
 };
 
+// Skins whose `skeleton` property is removed (it is optional; one that is not a common root of the joints
+// is wrong, and viewers that trust it misplace the skeleton).
+struct FileEdits {
+  std::vector<InfluenceEdit> influences;
+  std::vector<KeyEdit> keys;
+  std::vector<size_t> drop_skeleton;
+};
+
 // The .glb bytes of `path` with the edits applied. Throws InputError for a file it cannot write back
 // faithfully (EXT_meshopt_compression, KHR_draco_mesh_compression, an image that could not be read).
-std::string fixed_glb(const std::string& path, const LoadOptions& options, const std::vector<InfluenceEdit>& influences,
-                      const std::vector<KeyEdit>& keys);
+std::string fixed_glb(const std::string& path, const LoadOptions& options, const FileEdits& edits);
 
 }  // namespace dqskin::gltf

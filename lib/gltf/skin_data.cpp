@@ -87,7 +87,13 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
       SkinnedPrimitive prim;
       prim.mesh = i;
       prim.primitive = k;
-      prim.vertices = reader.count(position, what + " POSITION");
+      // KHR_mesh_quantization allows every component type for POSITION; the reader decodes each.
+      const std::vector<float> xyz = reader.floats(
+          position, {{TINYGLTF_TYPE_VEC3}, {kComponentFloat, 5120, kComponentUnsignedByte, 5122, kComponentUnsignedShort}},
+          what + " POSITION");
+      prim.vertices = xyz.size() / 3;
+      prim.positions.resize(prim.vertices);
+      for (size_t v = 0; v < prim.vertices; ++v) prim.positions[v] = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
       prim.sets = read_sets(p, reader, prim.vertices, what);
       prim.skins = skins;
       data.primitives.push_back(std::move(prim));

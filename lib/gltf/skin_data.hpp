@@ -31,6 +31,7 @@ struct InfluenceSet {
 struct SkinnedPrimitive {
   size_t mesh = 0, primitive = 0;
   size_t vertices = 0;
+  std::vector<glm::vec3> positions;  // POSITION in bind space (quantized ones decoded)
   std::vector<InfluenceSet> sets;  // JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, … in order
   std::vector<int> skins;          // sorted, unique
 };

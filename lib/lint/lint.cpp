@@ -22,7 +22,7 @@ const std::vector<LintCheckInfo>& lint_checks() {
   using S = LintSeverity;
   static const std::vector<LintCheckInfo> checks = {
       {"weight-sum", S::kError, "a vertex's weights (over every WEIGHTS_n) sum away from 1 beyond what the component type allows", true},
-      {"zero-weight-vertex", S::kError, "a vertex has no weight on any joint", false},
+      {"zero-weight-vertex", S::kError, "a vertex has no weight on any joint (--fix binds it to the nearest joint)", true},
       {"negative-weight", S::kError, "a weight is negative", true},
       {"duplicate-joint", S::kError, "the same joint twice in one vertex, both with weight", true},
       {"joint-out-of-range", S::kError, "a joint index beyond the skin's joints", true},
@@ -30,7 +30,7 @@ const std::vector<LintCheckInfo>& lint_checks() {
       {"too-many-influences", S::kWarning, "more than --max-influences (and at most 8) joints with weight on one vertex", true},
       {"unused-joint", S::kInfo, "a joint of the skin with weight on no vertex", false},
       {"no-common-root", S::kError, "the skin's joints hang under different root nodes", false},
-      {"skeleton-not-root", S::kError, "the skin's skeleton node is not an ancestor of every joint", false},
+      {"skeleton-not-root", S::kError, "the skin's skeleton node is not an ancestor of every joint (--fix removes the property)", true},
       {"inverse-bind-mismatch", S::kWarning, "an inverse bind matrix is not the inverse of the joint's rest world matrix", false},
       {"ibm-not-orthonormal", S::kWarning, "an inverse bind matrix has scale or shear", false},
       {"joint-uniform-scale", S::kInfo, "a joint matrix has uniform scale at rest or at a key (DQS two-phase keeps it)", false},

@@ -1,11 +1,13 @@
 // `dqskin lint --fix`: what can be corrected in the data itself. Influences: per vertex, every set's
 // (joint, weight) merged per joint, weights ≤ 0 and joints beyond the skin dropped, sorted by weight
-// (descending; ties by joint), cut to max_influences and renormalized in the original component type:
+// (descending; ties by joint), cut to max_influences (a vertex left without weight bound to its nearest
+// joint) and renormalized in the original component type:
 // normalized integers by the largest-remainder method, so that the stored integers sum exactly to 255 or
 // 65535 (what the Khronos validator checks). Rotation keys: made unit, and each key negated when its dot
 // product with the previous (already fixed) key is negative, CUBICSPLINE tangents with it (q and −q are
 // the same rotation, so the animation is unchanged for a runtime that takes the shortest path, and
-// becomes right for one that does not).
+// becomes right for one that does not). A skin's `skeleton` that is not a common root of its joints is
+// removed (the property is optional).
 #include "dqskin/lint.hpp"
 
 #include "../gltf/fixed_glb.hpp"
@@ -55,6 +57,11 @@ size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset) {
 // The primitive's influences in fixed form, or nothing when they are already in it.
 std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& p, const Asset& asset, size_t keep) {
   const size_t limit = joint_limit(p, asset);
+  std::vector<Vec3<double>> bind_positions;
+  if (!p.skins.empty())
+    for (const Mat4<double>& ibm : asset.skins[size_t(p.skins.front())].inverse_bind)
+      bind_positions.push_back(Vec3<double>(glm::inverse(ibm)[3]));
+  if (limit > 0 && bind_positions.size() > limit) bind_positions.resize(limit);
   const int weights_component = p.sets.front().weights_component;
   const double scale = weights_component == gltf::kComponentUnsignedByte    ? 255.0
                        : weights_component == gltf::kComponentUnsignedShort ? 65535.0
@@ -77,6 +84,16 @@ std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& 
       return a.weight != b.weight ? a.weight > b.weight : a.joint < b.joint;
     });
     if (in.size() > keep) in.resize(keep);
+    // A vertex without weight would stay where it was bound whatever the skeleton does: it is given to the
+    // joint nearest to it in bind space (the joint's bind position is inverse(inverseBind) · origin).
+    if (in.empty() && !bind_positions.empty()) {
+      size_t nearest = 0;
+      for (size_t j = 1; j < bind_positions.size(); ++j)
+        if (glm::distance(bind_positions[j], Vec3<double>(p.positions[v])) <
+            glm::distance(bind_positions[nearest], Vec3<double>(p.positions[v])))
+          nearest = j;
+      in.push_back({uint32_t(nearest), 1.0});
+    }
     double sum = 0;
     for (const Influence& i : in) sum += i.weight;
     if (sum > 0) {
@@ -176,17 +193,26 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
     throw InputError("--max-influences must be from 1 to 8 for --fix");
   const gltf::SkinData data = gltf::read_skin_data(input, options.load);
   if (!data.rewritable) throw InputError(data.why_not);
-  std::vector<gltf::InfluenceEdit> influences;
+  gltf::FileEdits edits;
   for (const gltf::SkinnedPrimitive& p : data.primitives)
-    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences))) influences.push_back(std::move(*e));
-  std::vector<gltf::KeyEdit> keys;
+    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences))) edits.influences.push_back(std::move(*e));
   for (const gltf::RotationSource& r : data.rotations)
-    if (auto e = fix_rotation(r, data.structure)) keys.push_back(std::move(*e));
-  const std::string glb = gltf::fixed_glb(input, options.load, influences, keys);
+    if (auto e = fix_rotation(r, data.structure)) edits.keys.push_back(std::move(*e));
+  const Asset& a = data.structure;
+  for (size_t s = 0; s < a.skins.size(); ++s) {
+    bool root = true;
+    for (int joint : a.skins[s].joints) {
+      bool below = false;
+      for (int n = joint; n >= 0 && !below; n = a.nodes[size_t(n)].parent) below = n == a.skins[s].skeleton;
+      root = root && below;
+    }
+    if (a.skins[s].skeleton >= 0 && !root) edits.drop_skeleton.push_back(s);
+  }
+  const std::string glb = gltf::fixed_glb(input, options.load, edits);
   AtomicFile file(output);
   file.write(glb);
   file.commit(Overwrite::kReplace);
-  return {influences.size(), keys.size()};
+  return {edits.influences.size(), edits.keys.size(), edits.drop_skeleton.size()};
 }
 
 }  // namespace dqskin

@@ -74,13 +74,16 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options);
 struct LintFixSummary {
   size_t primitives = 0;       // primitives whose influences were rewritten
   size_t rotation_tracks = 0;  // rotation samplers whose keys were rewritten
+  size_t skeletons = 0;        // skins whose wrong `skeleton` property was removed
 };
 
 // Writes a corrected copy of `input` to `output` (.glb, atomically): influences merged per joint, negative
 // weights and joints out of range dropped, sorted by weight and cut to options.max_influences (at most 8),
-// renormalized in their original component type (normalized integers summing exactly to 255 or 65535);
-// rotation keys made unit and hemisphere-consistent. Throws InputError for an input it cannot read or
-// rewrite faithfully (compressed data), OutputError when the output cannot be written.
+// a vertex without weight bound to the joint nearest to it in bind space, renormalized in the original
+// component type (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
+// hemisphere-consistent; a `skeleton` that is not the joints' common root removed. What it cannot fix
+// (joints without a common root, inverse bind matrices, joint scale) stays. Throws InputError for an input
+// it cannot read or rewrite faithfully (compressed data), OutputError when the output cannot be written.
 LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options);
 
 // Reports. Text: per file "FILE: STATUS" then one line per finding; JSON: one document
