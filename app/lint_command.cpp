@@ -61,7 +61,8 @@ int run_lint(LintSettings& s) {
   if (s.fix && results.front().error.empty()) {
     const LintFixSummary fixed = lint_fix(s.inputs.front(), s.output, o);
     std::cerr << "dqskin: lint: wrote " << printable(s.output) << " (influences of " << fixed.primitives
-              << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, " << fixed.skeletons << " skeleton properties removed); linted again:\n";
+              << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, "
+              << fixed.skeletons << " skeleton properties removed); linted again:\n";
     results.push_back(lint_file(s.output, o));
   }
   for (const LintFileResult& r : results)
@@ -96,8 +97,9 @@ Command add_lint_command(CLI::App& app) {
   LintSettings& lint = *settings;
   LintOptions& o = lint.options;
   CLI::App* cmd = app.add_subcommand(
-      "lint", "Report skin-data problems of glTF files: weights, influences, joints, skeletons, inverse bind matrices, "
-              "joint scale, rotation keys; --fix writes a corrected copy");
+      "lint",
+      "Report skin-data problems of glTF files: weights, influences, joints, skeletons, inverse bind matrices, "
+      "joint scale, rotation keys; --fix writes a corrected copy");
   cmd->add_option("FILE", lint.inputs, "glTF files (.gltf, .glb)")->required();
   cmd->add_option("--sum-tolerance", o.sum_tolerance,
                   "A vertex's weights may sum to 1 ± this (normalized integers: at least their rounding, n·0.5/255 "
@@ -128,18 +130,19 @@ Command add_lint_command(CLI::App& app) {
   cmd->add_flag("--json", lint.json, "Print one JSON document instead of text");
   cmd->add_option("--junit", lint.junit, "Also write a JUnit XML report, one testcase per file and check, to FILE")
       ->type_name("FILE");
-  cmd->footer(checks_table() +
-              "--fix merges a joint's influences, drops negative weights and joints out of range, sorts by weight, keeps\n"
-              "--max-influences and renormalizes in the original component type (normalized integers sum exactly to\n"
-              "255 or 65535), binds a vertex without weight to its nearest joint; it makes rotation keys unit and\n"
-              "hemisphere-consistent (CUBICSPLINE tangents with them) and removes a skeleton that is not a common root.\n"
-              "Joints without a common root, inverse bind matrices and joint scale are reported, not changed.\n"
-              "The report then has the input and the fixed file; the exit status is the fixed file's.\n"
-              "Exit status: 0 clean or information only, 1 warnings, 2 errors, an unreadable file, or a usage error.\n"
-              "Examples:\n"
-              "  dqskin lint *.glb --junit lint.xml\n"
-              "  dqskin lint Fox.glb --json --max-influences 8\n"
-              "  dqskin lint --fix character.gltf -o character.fixed.glb");
+  cmd->footer(
+      checks_table() +
+      "--fix merges a joint's influences, drops negative weights and joints out of range, sorts by weight, keeps\n"
+      "--max-influences and renormalizes in the original component type (normalized integers sum exactly to\n"
+      "255 or 65535), binds a vertex without weight to its nearest joint; it makes rotation keys unit and\n"
+      "hemisphere-consistent (CUBICSPLINE tangents with them) and removes a skeleton that is not a common root.\n"
+      "Joints without a common root, inverse bind matrices and joint scale are reported, not changed.\n"
+      "The report then has the input and the fixed file; the exit status is the fixed file's.\n"
+      "Exit status: 0 clean or information only, 1 warnings, 2 errors, an unreadable file, or a usage error.\n"
+      "Examples:\n"
+      "  dqskin lint *.glb --junit lint.xml\n"
+      "  dqskin lint Fox.glb --json --max-influences 8\n"
+      "  dqskin lint --fix character.gltf -o character.fixed.glb");
   // main.cpp runs it through guarded_run, so whatever escapes ends in one line and exit status 2.
   return {cmd, [settings] { return run_lint(*settings); }};
 }

@@ -75,3 +75,13 @@ set_tests_properties(cli.lint_junit PROPERTIES LABELS lint)
 add_test(NAME cli.lint_shared_models COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli>
   -DDIR=${PROJECT_SOURCE_DIR}/../shared/testdata -P ${CMAKE_CURRENT_LIST_DIR}/lint_models.cmake)
 set_tests_properties(cli.lint_shared_models PROPERTIES LABELS lint SKIP_REGULAR_EXPRESSION "lint: SKIPPED" TIMEOUT 600)
+
+# The fixed copy deforms like the original where the fix only changes how the data is stored.
+foreach(input ${bad_skins}/duplicate_joint.gltf ${bad_skins}/hemisphere_flip_keys.gltf
+              ${bad_skins}/non_unit_rotation_keys.gltf ${PROJECT_SOURCE_DIR}/../shared/testdata/raylib_robot/robot.glb)
+  get_filename_component(stem ${input} NAME_WE)
+  add_test(NAME cli.lint_fix_deforms_the_same_${stem} COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli>
+    -DFILE=${input} -DWORK=${lint_scratch}/same_${stem} -P ${CMAKE_CURRENT_LIST_DIR}/lint_same_deformation.cmake)
+  set_tests_properties(cli.lint_fix_deforms_the_same_${stem} PROPERTIES LABELS lint
+    SKIP_REGULAR_EXPRESSION "lint: SKIPPED" TIMEOUT 900)
+endforeach()

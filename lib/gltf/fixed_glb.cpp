@@ -50,7 +50,9 @@ int vec4_accessor(glb::BinWriter& bin, const std::vector<double>& values, int co
   for (double v : values) {
     switch (component) {
       case 5120: put(bytes, int8_t(std::clamp(std::lround(v * 127), -127L, 127L))); break;
-      case kComponentUnsignedByte: put(bytes, uint8_t(std::clamp(std::lround(normalized ? v * 255 : v), 0L, 255L))); break;
+      case kComponentUnsignedByte:
+        put(bytes, uint8_t(std::clamp(std::lround(normalized ? v * 255 : v), 0L, 255L)));
+        break;
       case 5122: put(bytes, int16_t(std::clamp(std::lround(v * 32767), -32767L, 32767L))); break;
       case kComponentUnsignedShort:
         put(bytes, uint16_t(std::clamp(std::lround(normalized ? v * 65535 : v), 0L, 65535L)));
@@ -124,7 +126,8 @@ std::string fixed_glb(const std::string& path, const LoadOptions& options, const
           joints[4 * v + k] = e.joints[(v * e.sets + s) * 4 + k];
           weights[4 * v + k] = e.weights[(v * e.sets + s) * 4 + k];
         }
-      attributes["JOINTS_" + std::to_string(s)] = vec4_accessor(bin, joints, e.joints_component, false, glb::kArrayBuffer);
+      attributes["JOINTS_" + std::to_string(s)] =
+          vec4_accessor(bin, joints, e.joints_component, false, glb::kArrayBuffer);
       attributes["WEIGHTS_" + std::to_string(s)] =
           vec4_accessor(bin, weights, e.weights_component, e.weights_component != kComponentFloat, glb::kArrayBuffer);
     }

@@ -36,7 +36,8 @@ std::vector<InfluenceSet> read_sets(const tinygltf::Primitive& p, const Accessor
                          std::to_string(vertices));
     }
     InfluenceSet set;
-    set.joints = reader.uints(ja, {{TINYGLTF_TYPE_VEC4}, {kComponentUnsignedByte, kComponentUnsignedShort}}, what + " " + js);
+    set.joints =
+        reader.uints(ja, {{TINYGLTF_TYPE_VEC4}, {kComponentUnsignedByte, kComponentUnsignedShort}}, what + " " + js);
     const std::vector<float> w = reader.floats(
         wa, {{TINYGLTF_TYPE_VEC4}, {kComponentFloat, kComponentUnsignedByte, kComponentUnsignedShort}, true},
         what + " " + ws);
@@ -89,7 +90,8 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
       prim.primitive = k;
       // KHR_mesh_quantization allows every component type for POSITION; the reader decodes each.
       const std::vector<float> xyz = reader.floats(
-          position, {{TINYGLTF_TYPE_VEC3}, {kComponentFloat, 5120, kComponentUnsignedByte, 5122, kComponentUnsignedShort}},
+          position,
+          {{TINYGLTF_TYPE_VEC3}, {kComponentFloat, 5120, kComponentUnsignedByte, 5122, kComponentUnsignedShort}},
           what + " POSITION");
       prim.vertices = xyz.size() / 3;
       prim.positions.resize(prim.vertices);

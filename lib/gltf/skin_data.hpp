@@ -20,10 +20,10 @@ constexpr int kComponentFloat = 5126;
 
 // One JOINTS_n / WEIGHTS_n pair (§3.7.3.3): four influences per vertex, vertex-major.
 struct InfluenceSet {
-  int joints_component = kComponentUnsignedByte;   // unsigned byte or short
-  int weights_component = kComponentFloat;         // float, or normalized unsigned byte or short
-  std::vector<uint32_t> joints;                    // 4 per vertex, as stored (not checked against a skin)
-  std::vector<double> weights;                     // 4 per vertex, normalized integers decoded (c / 255 …)
+  int joints_component = kComponentUnsignedByte;  // unsigned byte or short
+  int weights_component = kComponentFloat;        // float, or normalized unsigned byte or short
+  std::vector<uint32_t> joints;                   // 4 per vertex, as stored (not checked against a skin)
+  std::vector<double> weights;                    // 4 per vertex, normalized integers decoded (c / 255 …)
 };
 
 // A mesh primitive with influences, and the skins that deform it (from every node that draws its mesh
@@ -32,8 +32,8 @@ struct SkinnedPrimitive {
   size_t mesh = 0, primitive = 0;
   size_t vertices = 0;
   std::vector<glm::vec3> positions;  // POSITION in bind space (quantized ones decoded)
-  std::vector<InfluenceSet> sets;  // JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, … in order
-  std::vector<int> skins;          // sorted, unique
+  std::vector<InfluenceSet> sets;    // JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, … in order
+  std::vector<int> skins;            // sorted, unique
 };
 
 // Where a rotation channel of `structure.clips` comes from in the file, so that a fix can replace its

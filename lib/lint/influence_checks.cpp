@@ -91,7 +91,8 @@ void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<I
     });
   } else if (positive > size_t(o.max_influences)) {
     out["too-many-influences"].add(double(positive), example(-1, double(positive)), [&] {
-      return std::to_string(positive) + " joints with weight (more than " + std::to_string(o.max_influences) + ")" + at();
+      return std::to_string(positive) + " joints with weight (more than " + std::to_string(o.max_influences) + ")" +
+             at();
     });
   }
   for (size_t a = 0; a < in.size(); ++a) {
@@ -152,8 +153,8 @@ void check_influences(const gltf::SkinData& data, const LintOptions& options, Fi
       e.value = node;
       out["unused-joint"].add(0, e, [&] {
         const std::string& name = asset.nodes[size_t(node)].name;
-        return "joint " + std::to_string(j) + " (node " + std::to_string(node) + (name.empty() ? "" : " '" + name + "'") +
-               ") of skin " + std::to_string(s) + " has weight on no vertex";
+        return "joint " + std::to_string(j) + " (node " + std::to_string(node) +
+               (name.empty() ? "" : " '" + name + "'") + ") of skin " + std::to_string(s) + " has weight on no vertex";
       });
     }
   }

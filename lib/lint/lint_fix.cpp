@@ -77,8 +77,10 @@ std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& 
         const double w = set.weights[4 * v + k];
         if (!(w > 0) || (limit > 0 && j >= limit)) continue;
         auto same = std::find_if(in.begin(), in.end(), [&](const Influence& i) { return i.joint == j; });
-        if (same != in.end()) same->weight += w;
-        else in.push_back({j, w});
+        if (same != in.end())
+          same->weight += w;
+        else
+          in.push_back({j, w});
       }
     std::stable_sort(in.begin(), in.end(), [](const Influence& a, const Influence& b) {
       return a.weight != b.weight ? a.weight > b.weight : a.joint < b.joint;
@@ -195,7 +197,8 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
   if (!data.rewritable) throw InputError(data.why_not);
   gltf::FileEdits edits;
   for (const gltf::SkinnedPrimitive& p : data.primitives)
-    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences))) edits.influences.push_back(std::move(*e));
+    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences)))
+      edits.influences.push_back(std::move(*e));
   for (const gltf::RotationSource& r : data.rotations)
     if (auto e = fix_rotation(r, data.structure)) edits.keys.push_back(std::move(*e));
   const Asset& a = data.structure;

@@ -71,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(BadSkins, FixCatalogue, ::testing::ValuesIn(kFixCases),
 TEST(LintFix, NormalizedWeightsSumExactlyInTheirOwnType) {
   // The broken vertex 10: 200 and 30 of 255, or 60000 and 10000 of 65535; fixed, the same shares of 1.
   for (const auto& [file, component, scale, share] : {std::tuple{"weights_sum_ubyte.gltf", 5121, 255.0, 200.0 / 230},
-                                                       std::tuple{"weights_sum_ushort.gltf", 5123, 65535.0, 6.0 / 7}}) {
+                                                      std::tuple{"weights_sum_ushort.gltf", 5123, 65535.0, 6.0 / 7}}) {
     ScratchDir dir("lint_fix");
     const std::string out = (dir.path() / "fixed.glb").string();
     lint_fix(catalogue(file), out, {});

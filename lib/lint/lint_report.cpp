@@ -12,8 +12,8 @@
 namespace dqskin {
 namespace {
 
-using nlohmann::json;
 using diff_detail::xml;
+using nlohmann::json;
 
 // "clean" when there is nothing to say, else the worst severity.
 std::string status_of(const LintFileResult& r) {
@@ -114,8 +114,8 @@ std::string lint_junit(const std::vector<LintFileResult>& results) {
       std::string inner;
       for (const LintFinding& f : r.findings) {
         if (f.check != check.id) continue;
-        const std::string line = std::string(to_string(f.severity)) + ": " + std::to_string(f.count) + " cases; worst: " +
-                                 f.message;
+        const std::string line =
+            std::string(to_string(f.severity)) + ": " + std::to_string(f.count) + " cases; worst: " + f.message;
         if (f.severity == LintSeverity::kError) {
           ++failures;
           inner = "      <failure type=\"error\" message=\"" + xml(f.message, true) + "\">" + xml(line, false) +

@@ -74,10 +74,9 @@ TEST_P(Catalogue, FindsItsProblemAndNothingElse) {
   EXPECT_TRUE(listed) << f.check;
 }
 
-INSTANTIATE_TEST_SUITE_P(BadSkins, Catalogue, ::testing::ValuesIn(kCases),
-                         [](const ::testing::TestParamInfo<Case>& p) {
-                           return std::filesystem::path(p.param.file).stem().string();
-                         });
+INSTANTIATE_TEST_SUITE_P(BadSkins, Catalogue, ::testing::ValuesIn(kCases), [](const ::testing::TestParamInfo<Case>& p) {
+  return std::filesystem::path(p.param.file).stem().string();
+});
 
 TEST(LintCounts, CountsEveryCaseAndKeepsTheFirstOfEqualWorst) {
   // Two flips of equal size (keys 0-1 and 1-2): both counted, the first is the example.

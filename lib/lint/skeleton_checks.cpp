@@ -153,24 +153,38 @@ void check_joint_scale(const Asset& rig, const LintOptions& o, Findings& out) {
         if (score <= w.score) continue;
         w.score = score;
         w.example = joint_example(skin_name(s) + " " + when, j, score);
-        w.message = "joint matrix of joint " + std::to_string(j) + " (" + node_name(rig, skin.joints[j]) + ", " +
-                    skin_name(s) + ") " + when + " has " +
-                    (is_uniform ? "uniform scale " + number((split.scale[0][0] + split.scale[1][1] + split.scale[2][2]) / 3) +
-                                      " (DQS with the two-phase rule keeps it)"
-                                : "non-uniform scale or shear (|S − sI| up to " + number(score) +
-                                      "; DQS needs the two-phase path)");
+        w.message =
+            "joint matrix of joint " + std::to_string(j) + " (" + node_name(rig, skin.joints[j]) + ", " + skin_name(s) +
+            ") " + when + " has " +
+            (is_uniform
+                 ? "uniform scale " + number((split.scale[0][0] + split.scale[1][1] + split.scale[2][2]) / 3) +
+                       " (DQS with the two-phase rule keeps it)"
+                 : "non-uniform scale or shear (|S − sI| up to " + number(score) + "; DQS needs the two-phase path)");
       }
     }
   };
   visit(sample_pose(rig, nullptr, 0), "at rest");
   for (size_t c = 0; c < rig.clips.size(); ++c) {
     const Clip& clip = rig.clips[c];
-    std::set<float> times;
-    for (const Channel& ch : clip.channels) times.insert(ch.times.begin(), ch.times.end());
-    for (float t : times)
-      visit(sample_pose(rig, &clip, double(t)), "in animation '" + clip.name + "' at " + number(double(t)) + " s");
+    std::set<float> key_times;
+    for (const Channel& ch : clip.channels) key_times.insert(ch.times.begin(), ch.times.end());
+    const std::vector<float> times(key_times.begin(), key_times.end());
+    // Each pose costs about (nodes + channels) steps. A clip with more key times than kPoseWork allows is
+    // sampled at evenly spaced ones, first and last included, so that a hostile file cannot make lint run
+    // for hours (the shared models stay far below it: BrainStem has 22 nodes and at most 1,309 keys a channel).
+    constexpr size_t kPoseWork = 50'000'000;
+    const size_t per_pose = rig.nodes.size() + clip.channels.size() + 1;
+    const size_t poses = std::max<size_t>(2, kPoseWork / per_pose);
+    const size_t step = times.size() > poses ? (times.size() + poses - 1) / poses : 1;
+    for (size_t i = 0; i < times.size(); i += step) {
+      const size_t k = i + step >= times.size() ? times.size() - 1 : i;
+      const double t = double(times[k]);
+      visit(sample_pose(rig, &clip, t), "in animation '" + clip.name + "' at " + number(t) + " s");
+      if (k == times.size() - 1) break;
+    }
   }
-  for (const auto& [check, joints] : {std::pair{"joint-uniform-scale", &uniform}, std::pair{"joint-nonuniform-scale", &nonuniform}})
+  for (const auto& [check, joints] :
+       {std::pair{"joint-uniform-scale", &uniform}, std::pair{"joint-nonuniform-scale", &nonuniform}})
     for (const auto& entry : *joints) {
       const JointWorst& w = entry.second;
       out[check].add(w.score, w.example, [&] { return w.message; });

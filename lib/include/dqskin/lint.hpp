@@ -38,7 +38,7 @@ struct LintExample {
   long long vertex = -1;
   long long joint = -1;  // as stored in JOINTS_n, or the skin's joint index
   long long key = -1;
-  double value = 0;      // what the check measures (a sum, a count, a deviation, a length, a dot product)
+  double value = 0;  // what the check measures (a sum, a count, a deviation, a length, a dot product)
 };
 
 struct LintFinding {
