@@ -58,12 +58,23 @@ int run_lint(LintSettings& s) {
 
   std::vector<LintFileResult> results;
   for (const std::string& input : s.inputs) results.push_back(lint_file(input, o));
-  if (s.fix && results.front().error.empty()) {
-    const LintFixSummary fixed = lint_fix(s.inputs.front(), s.output, o);
-    std::cerr << "dqskin: lint: wrote " << printable(s.output) << " (influences of " << fixed.primitives
-              << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, "
-              << fixed.skeletons << " skeleton properties removed); linted again:\n";
-    results.push_back(lint_file(s.output, o));
+  // A fix that cannot be made (an input it cannot rewrite faithfully, an output that cannot be written) is
+  // one line; the input's report is still printed, and the status is 2.
+  bool fix_failed = s.fix && !results.front().error.empty();
+  if (s.fix && !fix_failed) {
+    try {
+      const LintFixSummary fixed = lint_fix(s.inputs.front(), s.output, o);
+      std::cerr << "dqskin: lint: wrote " << printable(s.output) << " (influences of " << fixed.primitives
+                << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, "
+                << fixed.skeletons << " skeleton properties removed); linted again:\n";
+      results.push_back(lint_file(s.output, o));
+    } catch (const InputError& e) {
+      print_error(s.inputs.front(), std::string("--fix: ") + e.what());
+      fix_failed = true;
+    } catch (const OutputError& e) {
+      print_error(e.what());
+      fix_failed = true;
+    }
   }
   for (const LintFileResult& r : results)
     if (!r.error.empty()) print_error(r.path, r.error);
@@ -73,6 +84,7 @@ int run_lint(LintSettings& s) {
     junit.write(lint_junit(results));
     junit.commit(Overwrite::kReplace);
   }
+  if (fix_failed) return kLintFail;
   // With --fix the verdict is the fixed file's: what remains after fixing.
   if (s.fix && results.size() == 2) return exit_status({results.back()}, s.werror);
   return exit_status(results, s.werror);

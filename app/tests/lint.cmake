@@ -85,3 +85,13 @@ foreach(input ${bad_skins}/duplicate_joint.gltf ${bad_skins}/hemisphere_flip_key
   set_tests_properties(cli.lint_fix_deforms_the_same_${stem} PROPERTIES LABELS lint
     SKIP_REGULAR_EXPRESSION "lint: SKIPPED" TIMEOUT 900)
 endforeach()
+
+# A compressed file (gltfpack -c) is linted, but --fix refuses to write it back; an output that cannot be
+# written is one line and exit status 2.
+add_test(NAME cli.lint_fix_refuses_compressed COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli>
+  -DTOOLS=${CMAKE_BINARY_DIR}/tools/node_modules/.bin -DFILE=${bad_skins}/clean.gltf -DWORK=${lint_scratch}/compressed
+  -P ${CMAKE_CURRENT_LIST_DIR}/lint_compressed.cmake)
+set_tests_properties(cli.lint_fix_refuses_compressed PROPERTIES LABELS lint SKIP_REGULAR_EXPRESSION "lint: SKIPPED")
+dqskin_cli_test(cli.lint_fix_unwritable_output 2 ARGS lint --fix ${bad_skins}/clean.gltf
+  -o /proc/dqskin-cannot-write-here/x.glb STDOUT "clean.gltf: clean\n"
+  STDERR "^dqskin: /proc/dqskin-cannot-write-here/x.glb: [^\n]*\n$" LABELS lint)
