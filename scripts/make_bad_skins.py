@@ -44,6 +44,7 @@ class Rig:
         self.skeleton = None
         self.rotation_keys = [quat_z(0), quat_z(20), quat_z(40)]
         self.scale_keys = None  # (joint, [scale at 0, 0.5, 1 s])
+        self.cubic = False  # CUBICSPLINE rotation keys, each tangent a tenth of its key (so a sign shows)
 
     def rest_world(self, parent, translation, scale):
         """World translation and scale of a joint from its parent's (no rotations at rest)."""
@@ -108,7 +109,14 @@ class Rig:
         g.add("skins", skin)
 
         times = g.accessor([0.0, 0.5, 1.0], "SCALAR", with_bounds=True)
-        samplers = [{"input": times, "output": g.accessor(self.rotation_keys, "VEC4"), "interpolation": "LINEAR"}]
+        if self.cubic:
+            keys = []
+            for q in self.rotation_keys:
+                tangent = [0.1 * x for x in q]
+                keys += [tangent, q, tangent]
+            samplers = [{"input": times, "output": g.accessor(keys, "VEC4"), "interpolation": "CUBICSPLINE"}]
+        else:
+            samplers = [{"input": times, "output": g.accessor(self.rotation_keys, "VEC4"), "interpolation": "LINEAR"}]
         channels = [{"sampler": 0, "target": {"node": 2, "path": "rotation"}}]
         if self.scale_keys is not None:
             joint, keys = self.scale_keys
@@ -206,6 +214,11 @@ def hemisphere_flip_keys(r):
     r.rotation_keys[1] = [-x for x in quat_z(20)]
 
 
+def hemisphere_flip_cubic(r):
+    r.cubic = True
+    r.rotation_keys[1] = [-x for x in quat_z(20)]
+
+
 # file name -> (how the rig is broken, the lint check that must find it; None for the clean file)
 CATALOGUE = {
     "clean.gltf": (None, None),
@@ -227,6 +240,7 @@ CATALOGUE = {
     "non_orthonormal_ibm.gltf": (non_orthonormal_ibm, "ibm-not-orthonormal"),
     "non_unit_rotation_keys.gltf": (non_unit_rotation_keys, "rotation-not-unit"),
     "hemisphere_flip_keys.gltf": (hemisphere_flip_keys, "hemisphere-flip"),
+    "hemisphere_flip_cubic.gltf": (hemisphere_flip_cubic, "hemisphere-flip"),
 }
 
 

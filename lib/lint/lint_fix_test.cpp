@@ -41,6 +41,7 @@ const FixCase kFixCases[] = {
     {"skeleton_not_root.gltf", "skeleton-not-root", true},
     {"non_unit_rotation_keys.gltf", "rotation-not-unit", true},
     {"hemisphere_flip_keys.gltf", "hemisphere-flip", true},
+    {"hemisphere_flip_cubic.gltf", "hemisphere-flip", true},
     {"unused_joint.gltf", "unused-joint", false},
     {"no_common_root.gltf", "no-common-root", false},
     {"wrong_inverse_bind.gltf", "inverse-bind-mismatch", false},
@@ -139,6 +140,25 @@ TEST(LintFix, RotationKeysAreUnitAndInOneHemisphere) {
       EXPECT_GE(dot, 0.0) << file << " key " << k;
     }
   }
+}
+
+TEST(LintFix, CubicSplineTangentsTurnWithTheirKey) {
+  // Key 1 was stored negated, its tangents a tenth of it: after the fix all three are negated back.
+  ScratchDir dir("lint_fix");
+  const std::string out = (dir.path() / "fixed.glb").string();
+  lint_fix(catalogue("hemisphere_flip_cubic.gltf"), out, {});
+  const gltf::SkinData before = gltf::read_skin_data(catalogue("hemisphere_flip_cubic.gltf"), {});
+  const gltf::SkinData after = gltf::read_skin_data(out, {});
+  const Channel& a = before.structure.clips[0].channels[0];
+  const Channel& b = after.structure.clips[0].channels[0];
+  ASSERT_EQ(b.interpolation, Interpolation::kCubicSpline);
+  ASSERT_EQ(a.values.size(), b.values.size());
+  for (size_t i = 0; i < a.values.size(); ++i) {
+    const bool key1 = i / 12 == 1;  // in-tangent, value, out-tangent of key 1
+    EXPECT_FLOAT_EQ(b.values[i], key1 ? -a.values[i] : a.values[i]) << "component " << i;
+  }
+  EXPECT_GT(b.values[12 + 4 + 3], 0.0f);  // the value's w and its in-tangent's are positive again
+  EXPECT_GT(b.values[12 + 3], 0.0f);
 }
 
 TEST(LintFix, SameInputSameBytes) {

@@ -46,6 +46,7 @@ const Case kCases[] = {
     {"non_orthonormal_ibm.gltf", "ibm-not-orthonormal", -1, 9, -1, 1.0},
     {"non_unit_rotation_keys.gltf", "rotation-not-unit", -1, -1, 1, 1.25},
     {"hemisphere_flip_keys.gltf", "hemisphere-flip", -1, -1, 1, -0.984808},
+    {"hemisphere_flip_cubic.gltf", "hemisphere-flip", -1, -1, 1, -0.984808},
 };
 
 class Catalogue : public ::testing::TestWithParam<Case> {};
