@@ -3,8 +3,9 @@
 // `dqskin info --json` and `dqskin lint --json` (with --fix for a third of the inputs) on it, then one of
 // three bakes, chosen by the input's size so that mutations reach all of them: every format on the CPU
 // reference, a dry run, and dib. Bakes run on the CPU reference (no GL context: libFuzzer needs a process
-// that stays fast and deterministic) under --max-memory 32M, which bounds the work an input may ask for. A finding is a crash, a sanitizer report, an exception escaping
-// run_cli, a hang, a leak, or an exit status other than 0, 1 (some inputs failed) and 2 (input error).
+// that stays fast and deterministic) under --max-memory 32M, which bounds the work an input may ask for.
+// A finding is a crash, a sanitizer report, an exception escaping run_cli, a hang, a leak, or an exit
+// status other than 0, 1 (some inputs failed) and 2 (input error).
 // What it cannot see: an unexpected std::exception inside one input becomes that input's error, as it
 // does for users (fuzz_load, which calls the loader directly, treats anything but InputError as a finding).
 #include "commands.hpp"
