@@ -24,21 +24,16 @@ std::string number(double value) {
   return text;
 }
 
-namespace {
-
-// The largest stored integer of a normalized weight type: its unit of rounding.
-double integer_scale(int component) {
-  return component == gltf::kComponentUnsignedByte ? 255.0 : component == gltf::kComponentUnsignedShort ? 65535.0 : 0.0;
+double normalized_max(int component) {
+  switch (component) {
+    case 5120: return 127;    // byte
+    case 5121: return 255;    // unsigned byte
+    case 5122: return 32767;  // short
+    case 5123: return 65535;  // unsigned short
+    default: return 0;
+  }
 }
 
-struct Influence {
-  uint32_t joint;
-  double weight;
-  double rounding;  // half a stored unit: 0.5/255, 0.5/65535, or 0 for float
-};
-
-// The smallest joint count of the skins that deform the primitive (an index must fit every one of them),
-// or 0 when none does.
 size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset) {
   size_t limit = 0;
   for (size_t k = 0; k < p.skins.size(); ++k) {
@@ -47,6 +42,14 @@ size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset) {
   }
   return limit;
 }
+
+namespace {
+
+struct Influence {
+  uint32_t joint;
+  double weight;
+  double rounding;  // half a stored unit: 0.5/255, 0.5/65535, or 0 for float
+};
 
 void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<Influence>& in, size_t limit,
                   const LintOptions& o, Findings& out) {
@@ -130,7 +133,7 @@ void check_influences(const gltf::SkinData& data, const LintOptions& options, Fi
     for (size_t v = 0; v < p.vertices; ++v) {
       in.clear();
       for (const gltf::InfluenceSet& set : p.sets) {
-        const double scale = integer_scale(set.weights_component);
+        const double scale = normalized_max(set.weights_component);
         for (size_t k = 0; k < 4; ++k)
           in.push_back({set.joints[4 * v + k], set.weights[4 * v + k], scale > 0 ? 0.5 / scale : 0.0});
       }

@@ -30,8 +30,7 @@ void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options,
                               std::to_string(ch.node) + (name.empty() ? "" : " '" + name + "'") + ")";
     // Normalized integer keys (§3.11) round each component by up to half a unit: a length error up to
     // 1/largest value is their rounding, not the file's.
-    const int c = source.output_component;
-    const double unit = c == 5120 ? 127 : c == 5121 ? 255 : c == 5122 ? 32767 : c == 5123 ? 65535 : 0;
+    const double unit = normalized_max(source.output_component);
     const double tolerance = std::max(options.unit_tolerance, unit > 0 ? 1 / unit : 0.0);
     Q previous{};
     double previous_length = 0;

@@ -46,6 +46,14 @@ void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options,
 // "mesh 0 primitive 1"
 std::string primitive_name(const gltf::SkinnedPrimitive& p);
 
+// The largest stored value of a normalized integer component type (glTF 2.0 §3.11: the value is c / it,
+// so it is also the unit of rounding), 0 for float.
+double normalized_max(int component);
+
+// The smallest joint count of the skins that deform the primitive (an index must fit every one of them),
+// or 0 when none does.
+size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset);
+
 // A number for messages: 6 significant digits (%g).
 std::string number(double value);
 

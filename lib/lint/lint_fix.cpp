@@ -12,6 +12,7 @@
 
 #include "../gltf/fixed_glb.hpp"
 #include "../gltf/skin_data.hpp"
+#include "lint_checks.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
 
@@ -45,27 +46,16 @@ std::vector<double> round_to_sum(const std::vector<double>& w, double scale) {
   return floor;
 }
 
-size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset) {
-  size_t limit = 0;
-  for (size_t k = 0; k < p.skins.size(); ++k) {
-    const size_t n = asset.skins[size_t(p.skins[k])].joints.size();
-    limit = k == 0 ? n : std::min(limit, n);
-  }
-  return limit;
-}
-
 // The primitive's influences in fixed form, or nothing when they are already in it.
 std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& p, const Asset& asset, size_t keep) {
-  const size_t limit = joint_limit(p, asset);
+  const size_t limit = lint::joint_limit(p, asset);
   std::vector<Vec3<double>> bind_positions;
   if (!p.skins.empty())
     for (const Mat4<double>& ibm : asset.skins[size_t(p.skins.front())].inverse_bind)
       bind_positions.push_back(Vec3<double>(glm::inverse(ibm)[3]));
   if (limit > 0 && bind_positions.size() > limit) bind_positions.resize(limit);
   const int weights_component = p.sets.front().weights_component;
-  const double scale = weights_component == gltf::kComponentUnsignedByte    ? 255.0
-                       : weights_component == gltf::kComponentUnsignedShort ? 65535.0
-                                                                            : 0.0;
+  const double scale = lint::normalized_max(weights_component);
   std::vector<std::vector<Influence>> fixed(p.vertices);
   size_t most = 1;
   uint32_t largest_joint = 0;
@@ -140,22 +130,11 @@ std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& 
   return e;
 }
 
-// The largest stored value of a normalized rotation component type (§3.11), 0 for float.
-double rotation_scale(int component) {
-  switch (component) {
-    case 5120: return 127;
-    case 5121: return 255;
-    case 5122: return 32767;
-    case 5123: return 65535;
-    default: return 0;
-  }
-}
-
 std::optional<gltf::KeyEdit> fix_rotation(const gltf::RotationSource& source, const Asset& asset) {
   const Channel& ch = asset.clips[source.clip].channels[source.channel];
   const bool cubic = ch.interpolation == Interpolation::kCubicSpline;
   const size_t stride = cubic ? 12 : 4, offset = cubic ? 4 : 0;
-  const double scale = rotation_scale(source.output_component);
+  const double scale = lint::normalized_max(source.output_component);
   // What the type can hold: a length error below it is rounding, not something to fix.
   const double representable = scale > 0 ? 1 / scale : 1e-6;
   gltf::KeyEdit e;
