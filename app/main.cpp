@@ -24,6 +24,7 @@ int dqskin::cli::run_cli(int argc, const char* const* argv) {
              "Examples:\n"
              "  dqskin info Fox.glb\n"
              "  dqskin bake Fox.glb -o out --format glb,vat\n"
+             "  dqskin lint *.glb --junit lint.xml\n"
              "  dqskin bench --quick");
 
 
