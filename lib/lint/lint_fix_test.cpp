@@ -118,7 +118,8 @@ TEST(LintFix, ZeroWeightVertexGoesToTheNearestJoint) {
   ScratchDir dir("lint_fix");
   const std::string out = (dir.path() / "fixed.glb").string();
   lint_fix(catalogue("zero_weight_vertex.gltf"), out, {});
-  const gltf::InfluenceSet& set = gltf::read_skin_data(out, {}).primitives[0].sets[0];
+  const gltf::SkinData fixed = gltf::read_skin_data(out, {});
+  const gltf::InfluenceSet& set = fixed.primitives[0].sets[0];
   EXPECT_EQ(set.joints[4 * 7], 3u);  // vertex 7 sits at x = 1.5, joint 3's place
   EXPECT_EQ(set.weights[4 * 7], 1.0);
 }
