@@ -9,11 +9,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
+
 namespace dqskin {
 namespace {
 
 using diff_detail::xml;
-using nlohmann::json;
+using json = nlohmann::ordered_json;  // keys in the order written, as diff's reports
 
 // "clean" when there is nothing to say, else the worst severity.
 std::string status_of(const LintFileResult& r) {
@@ -60,10 +62,10 @@ std::string lint_text(const std::vector<LintFileResult>& results) {
 
 std::string lint_json(const std::vector<LintFileResult>& results, const LintOptions& options) {
   json files = json::array();
-  json summary = {{"files", results.size()}, {"clean", 0}, {"info", 0}, {"warning", 0}, {"error", 0}};
+  std::map<std::string, size_t> counts;  // by status
   for (const LintFileResult& r : results) {
     const std::string status = status_of(r);
-    summary[status] = summary[status].get<size_t>() + 1;
+    ++counts[status];
     json file = {{"file", r.path}, {"status", status}};
     if (!r.error.empty()) {
       file["problem"] = r.error;
@@ -84,7 +86,8 @@ std::string lint_json(const std::vector<LintFileResult>& results, const LintOpti
     }
     files.push_back(std::move(file));
   }
-  summary["status"] = overall(results);
+  json summary = {{"status", overall(results)}, {"files", results.size()}};
+  for (const char* status : {"clean", "info", "warning", "error"}) summary[status] = counts[status];
   const json doc = {{"files", std::move(files)},
                     {"options",
                      {{"sum_tolerance", options.sum_tolerance},

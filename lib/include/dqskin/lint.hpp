@@ -86,9 +86,12 @@ struct LintFixSummary {
 // it cannot read or rewrite faithfully (compressed data), OutputError when the output cannot be written.
 LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options);
 
-// Reports. Text: per file "FILE: STATUS" then one line per finding; JSON: one document
-// {"files": [...], "options", "summary"}; JUnit XML: a testcase per file and check, failures for errors,
-// warnings in <system-out>. Same results, same bytes.
+// Reports, in the conventions of `dqskin diff` (diff_report.hpp). Text: per file "FILE: STATUS" (clean,
+// info, warning, error) then "  SEVERITY CHECK (COUNT): MESSAGE" per finding, then "summary: STATUS (N files:
+// …)". JSON: one document {"files": [{file, status, findings: [{check, severity, count, message, worst:
+// {where, vertex, joint, key, value}}]} or {file, status, problem}], "options", "summary"}, fields that do
+// not apply null. JUnit XML: a testcase per file and check (one per unreadable file), a <failure> for an
+// error, warnings and information in <system-out>. Same results, same bytes.
 std::string lint_text(const std::vector<LintFileResult>& results);
 std::string lint_json(const std::vector<LintFileResult>& results, const LintOptions& options);
 std::string lint_junit(const std::vector<LintFileResult>& results);
