@@ -175,7 +175,7 @@ def joint_out_of_range(r):
 
 
 def unused_joint(r):
-    r.extra_joints.append(("helper", 0, [0.0, 1.0, 0.0]))
+    r.extra_joints.append(("spare", 0, [0.0, 1.0, 0.0]))
 
 
 def no_common_root(r):
