@@ -31,6 +31,7 @@ Command add_bake_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
 Command add_diff_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
+Command add_lint_command(CLI::App& app);
 
 // How every command that reads glTF files reads them (--resource-root, --max-memory), shared so that info,
 // bake and render read the same flags the same way.

@@ -1,10 +1,11 @@
 // libFuzzer target for the command line as a user runs it: the input is a glTF file (.glb or .gltf by its
 // first bytes), written into a scratch folder, and run_cli (app/main.cpp, compiled without main()) runs
-// `dqskin info --json` on it, then one of three bakes, chosen by the input's size so that mutations reach
-// all of them: every format on the CPU reference, a dry run, and dib. Bakes run on the CPU reference (no
-// GL context: libFuzzer needs a process that stays fast and deterministic) under --max-memory 32M, which
-// bounds the work an input may ask for. A finding is a crash, a sanitizer report, an exception escaping
-// run_cli, a hang, a leak, or an exit status other than 0, 1 (some inputs failed) and 2 (input error).
+// `dqskin info --json` and `dqskin lint --json` (with --fix for a third of the inputs) on it, then one of
+// three bakes, chosen by the input's size so that mutations reach all of them: every format on the CPU
+// reference, a dry run, and dib. Bakes run on the CPU reference (no GL context: libFuzzer needs a process
+// that stays fast and deterministic) under --max-memory 32M, which bounds the work an input may ask for.
+// A finding is a crash, a sanitizer report, an exception escaping run_cli, a hang, a leak, or an exit
+// status other than 0, 1 (some inputs failed) and 2 (input error).
 // What it cannot see: an unexpected std::exception inside one input becomes that input's error, as it
 // does for users (fuzz_load, which calls the loader directly, treats anything but InputError as a finding).
 #include "commands.hpp"
@@ -79,6 +80,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   info.insert(info.end(), limits.begin(), limits.end());
   expect_status(run(info));
 
+  // lint reads what the loader refuses (JOINTS_2 and up, joints out of range); --fix writes it back.
+  std::vector<std::string> lint = {"lint", "--json", model};
+  if (size % 3 == 0) lint.insert(lint.end(), {"--fix", "-o", (scratch() / "fixed.glb").string()});
+  lint.insert(lint.end(), limits.begin(), limits.end());
+  expect_status(run(lint));
+
   std::vector<std::string> bake = {"bake", model, "-o", out, "--backend", "cpu", "-q"};
   switch (size % 3) {
     case 0:
@@ -97,5 +104,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::error_code ignored;
   fs::remove_all(out, ignored);
   fs::remove(model, ignored);
+  fs::remove(scratch() / "fixed.glb", ignored);
   return 0;
 }

@@ -10,6 +10,8 @@
 #include "memory_estimate.hpp"
 #include "mesh.hpp"
 #include "model_io.hpp"
+#include "structure.hpp"
+#include "structure.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -178,10 +180,12 @@ Interpolation parse_interpolation(const std::string& name, const std::string& wh
   fail(what + ": unknown interpolation '" + name + "'");
 }
 
-int morph_target_count(const Asset& asset, int node) {
+// Read from the file rather than the Asset's meshes, so that read_structure (which reads no mesh) can read
+// animations too; read_meshes checks that every primitive has as many targets as the first.
+int morph_target_count(const tinygltf::Model& model, const Asset& asset, int node) {
   const int mesh = asset.nodes[size_t(node)].mesh;
   if (mesh < 0) return 0;
-  const Mesh& m = asset.meshes[size_t(mesh)];
+  const tinygltf::Mesh& m = model.meshes[size_t(mesh)];
   return m.primitives.empty() ? int(m.weights.size()) : int(m.primitives.front().targets.size());
 }
 
@@ -207,7 +211,7 @@ void read_animations(const tinygltf::Model& m, const AccessorReader& reader, Ass
       else if (ch.target_path == "scale") channel.path = TargetPath::kScale, channel.components = 3;
       else if (ch.target_path == "weights") {
         channel.path = TargetPath::kWeights;
-        channel.components = morph_target_count(asset, ch.target_node);
+        channel.components = morph_target_count(m, asset, ch.target_node);
         if (channel.components == 0) fail(what + ": animates weights of a node without morph targets");
       } else {
         fail(what + ": unknown target path '" + ch.target_path + "'");
@@ -313,6 +317,22 @@ Asset convert(tinygltf::Model& m, uint64_t json_bytes, const std::string& path, 
 }
 
 }  // namespace
+
+Asset gltf::read_structure(tinygltf::Model& m, uint64_t json_bytes, const std::string& path,
+                           const LoadOptions& options) {
+  for (const std::string& ext : m.extensionsRequired)
+    if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
+  check_memory(m, json_bytes, options);
+  gltf::decode_draco(m);
+  Asset asset;
+  asset.path = path;
+  const AccessorReader reader{m, options.max_unbacked_elements};
+  read_nodes(m, asset);
+  read_scenes(m, asset);
+  read_skins(m, reader, asset);
+  read_animations(m, reader, asset);
+  return asset;
+}
 
 Mat4<double> LocalTransform::to_matrix() const {
   if (has_matrix) return matrix;

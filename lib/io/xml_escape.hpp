@@ -1,5 +1,5 @@
-// XML and HTML escaping (internal to the library): the JUnit reports of `dqskin diff` and the HTML page of
-// `dqskin report`. HTML5 accepts the same references, &apos; included.
+// XML and HTML escaping (internal to the library): the JUnit reports of `dqskin diff` and `dqskin lint`, and
+// the HTML page of `dqskin report`. HTML5 accepts the same references, &apos; included.
 #pragma once
 
 #include <string>

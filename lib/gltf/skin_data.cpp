@@ -1,0 +1,121 @@
+// Reading a file's raw skin data for `dqskin lint` (skin_data.hpp): the structure as the loader reads it,
+// then every JOINTS_n/WEIGHTS_n set leniently (glTF 2.0 §3.7.3.3), and where each rotation channel comes
+// from.
+#include "skin_data.hpp"
+
+#include "accessor.hpp"
+#include "dqskin/error.hpp"
+#include "model_io.hpp"
+#include "structure.hpp"
+
+#include <algorithm>
+#include <map>
+
+namespace dqskin::gltf {
+namespace {
+
+int find_attribute(const std::map<std::string, int>& attributes, const std::string& name) {
+  const auto it = attributes.find(name);
+  return it == attributes.end() ? -1 : it->second;
+}
+
+// Every influence set of one primitive. Values are read as they are (negative weights, any joint index);
+// only the shapes §3.7.3.3 allows are accepted, as anything else has no meaning as a weight.
+std::vector<InfluenceSet> read_sets(const tinygltf::Primitive& p, const AccessorReader& reader, size_t vertices,
+                                    const std::string& what) {
+  std::vector<InfluenceSet> sets;
+  for (int n = 0;; ++n) {
+    const std::string js = "JOINTS_" + std::to_string(n), ws = "WEIGHTS_" + std::to_string(n);
+    const int ja = find_attribute(p.attributes, js), wa = find_attribute(p.attributes, ws);
+    if (ja < 0 && wa < 0) break;
+    if (ja < 0 || wa < 0) throw InputError(what + ": has " + (ja < 0 ? ws : js) + " without " + (ja < 0 ? js : ws));
+    for (const auto& [accessor, name] : {std::pair{ja, js}, std::pair{wa, ws}}) {
+      const size_t count = reader.count(accessor, what + " " + name);
+      if (count != vertices)
+        throw InputError(what + ": " + name + " has " + std::to_string(count) + " elements, POSITION has " +
+                         std::to_string(vertices));
+    }
+    InfluenceSet set;
+    set.joints =
+        reader.uints(ja, {{TINYGLTF_TYPE_VEC4}, {kComponentUnsignedByte, kComponentUnsignedShort}}, what + " " + js);
+    const std::vector<float> w = reader.floats(
+        wa, {{TINYGLTF_TYPE_VEC4}, {kComponentFloat, kComponentUnsignedByte, kComponentUnsignedShort}, true},
+        what + " " + ws);
+    set.weights.assign(w.begin(), w.end());
+    set.joints_component = reader.model.accessors[size_t(ja)].componentType;
+    set.weights_component = reader.model.accessors[size_t(wa)].componentType;
+    sets.push_back(std::move(set));
+  }
+  return sets;
+}
+
+// Why a fix could not write this file back faithfully, or "" when it can: compressed data is decoded when
+// read, and writing it back uncompressed or re-encoding it is not what a fix should silently do.
+std::string why_not_rewritable(const tinygltf::Model& model) {
+  for (const std::string& e : model.extensionsUsed)
+    if (e == "EXT_meshopt_compression" || e == "KHR_draco_mesh_compression")
+      return "it uses " + e + ", which --fix does not write back";
+  return "";
+}
+
+}  // namespace
+
+SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
+  const std::vector<uint8_t> bytes = read_regular_file(path, std::min(options.max_file_bytes, options.max_memory));
+  if (bytes.empty()) throw InputError("the file is empty");
+  ParsedModel parsed = parse_model(bytes, folder_of(path), options);
+  tinygltf::Model& m = parsed.model;
+  SkinData data;
+  data.why_not = why_not_rewritable(m);
+  data.rewritable = data.why_not.empty();
+  data.structure = read_structure(m, parsed.json_bytes, path, options);
+  const Asset& asset = data.structure;
+  const AccessorReader reader{m, options.max_unbacked_elements};
+
+  std::vector<std::vector<int>> mesh_skins(m.meshes.size());
+  for (const Node& node : asset.nodes)
+    if (node.mesh >= 0 && node.skin >= 0) mesh_skins[size_t(node.mesh)].push_back(node.skin);
+  for (size_t i = 0; i < m.meshes.size(); ++i) {
+    std::vector<int>& skins = mesh_skins[i];
+    std::sort(skins.begin(), skins.end());
+    skins.erase(std::unique(skins.begin(), skins.end()), skins.end());
+    for (size_t k = 0; k < m.meshes[i].primitives.size(); ++k) {
+      const tinygltf::Primitive& p = m.meshes[i].primitives[k];
+      const std::string what = "mesh " + std::to_string(i) + " primitive " + std::to_string(k);
+      if (find_attribute(p.attributes, "JOINTS_0") < 0 && find_attribute(p.attributes, "WEIGHTS_0") < 0) continue;
+      const int position = find_attribute(p.attributes, "POSITION");
+      if (position < 0) throw InputError(what + ": has no POSITION");
+      SkinnedPrimitive prim;
+      prim.mesh = i;
+      prim.primitive = k;
+      // KHR_mesh_quantization allows every component type for POSITION; the reader decodes each.
+      const std::vector<float> xyz = reader.floats(
+          position,
+          {{TINYGLTF_TYPE_VEC3}, {kComponentFloat, 5120, kComponentUnsignedByte, 5122, kComponentUnsignedShort}},
+          what + " POSITION");
+      prim.vertices = xyz.size() / 3;
+      prim.positions.resize(prim.vertices);
+      for (size_t v = 0; v < prim.vertices; ++v) prim.positions[v] = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
+      prim.sets = read_sets(p, reader, prim.vertices, what);
+      prim.skins = skins;
+      data.primitives.push_back(std::move(prim));
+    }
+  }
+
+  // read_structure skips channels without a target node (§3.11), so clip channels are matched to the
+  // file's channels by walking them the same way.
+  for (size_t a = 0; a < m.animations.size(); ++a) {
+    size_t c = 0;
+    for (const tinygltf::AnimationChannel& ch : m.animations[a].channels) {
+      if (ch.target_node < 0) continue;
+      if (ch.target_path == "rotation") {
+        const int output = m.animations[a].samplers[size_t(ch.sampler)].output;
+        data.rotations.push_back({a, c, a, size_t(ch.sampler), m.accessors[size_t(output)].componentType});
+      }
+      ++c;
+    }
+  }
+  return data;
+}
+
+}  // namespace dqskin::gltf

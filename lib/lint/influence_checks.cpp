@@ -1,0 +1,166 @@
+// The per-vertex checks of `dqskin lint` over every JOINTS_n/WEIGHTS_n set of a primitive (glTF 2.0
+// §3.7.3.3: weights are non-negative and sum to 1; a joint index is below the skin's joint count; the
+// Khronos validator also refuses the same joint twice in a vertex), and the joints no vertex uses.
+#include "lint_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+namespace dqskin::lint {
+
+std::string primitive_name(const gltf::SkinnedPrimitive& p) {
+  std::string s = "mesh ";
+  s += std::to_string(p.mesh);
+  s += " primitive ";
+  s += std::to_string(p.primitive);
+  return s;
+}
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+double normalized_max(int component) {
+  switch (component) {
+    case 5120: return 127;    // byte
+    case 5121: return 255;    // unsigned byte
+    case 5122: return 32767;  // short
+    case 5123: return 65535;  // unsigned short
+    default: return 0;
+  }
+}
+
+size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset) {
+  size_t limit = 0;
+  for (size_t k = 0; k < p.skins.size(); ++k) {
+    const size_t n = asset.skins[size_t(p.skins[k])].joints.size();
+    limit = k == 0 ? n : std::min(limit, n);
+  }
+  return limit;
+}
+
+namespace {
+
+struct Influence {
+  uint32_t joint;
+  double weight;
+  double rounding;  // half a stored unit: 0.5/255, 0.5/65535, or 0 for float
+};
+
+void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<Influence>& in, size_t limit,
+                  const LintOptions& o, Findings& out) {
+  const std::string where = primitive_name(p);
+  auto example = [&](long long joint, double value) {
+    LintExample e;
+    e.where = where;
+    e.vertex = static_cast<long long>(v);
+    e.joint = joint;
+    e.value = value;
+    return e;
+  };
+  auto at = [&] { return " at " + where + " vertex " + std::to_string(v); };
+
+  double sum = 0, most_negative = 0;
+  long long negative_joint = -1;
+  size_t positive = 0;
+  for (const Influence& i : in) {
+    sum += i.weight;
+    if (i.weight > 0) ++positive;
+    if (i.weight < most_negative) most_negative = i.weight, negative_joint = i.joint;
+  }
+  double rounding = 0;
+  for (const Influence& i : in)
+    if (i.weight != 0) rounding += i.rounding;
+  const double allowed = std::max(o.sum_tolerance, rounding);
+
+  if (most_negative < 0)
+    out["negative-weight"].add(-most_negative, example(negative_joint, most_negative), [&] {
+      return "weight " + number(most_negative) + " on joint " + std::to_string(negative_joint) + at();
+    });
+  if (positive == 0) {
+    out["zero-weight-vertex"].add(0, example(-1, 0), [&] { return "no joint has weight" + at(); });
+  } else if (std::abs(sum - 1) > allowed) {
+    out["weight-sum"].add(std::abs(sum - 1), example(-1, sum), [&] {
+      return "weights sum to " + number(sum) + " (1 ± " + number(allowed) + " allowed)" + at();
+    });
+  }
+  if (positive > 8) {
+    out["over-8-influences"].add(double(positive), example(-1, double(positive)), [&] {
+      return std::to_string(positive) + " joints with weight (dqskin and most engines take at most 8)" + at();
+    });
+  } else if (positive > size_t(o.max_influences)) {
+    out["too-many-influences"].add(double(positive), example(-1, double(positive)), [&] {
+      return std::to_string(positive) + " joints with weight (more than " + std::to_string(o.max_influences) + ")" +
+             at();
+    });
+  }
+  for (size_t a = 0; a < in.size(); ++a) {
+    if (in[a].weight == 0) continue;
+    for (size_t b = a + 1; b < in.size(); ++b)
+      if (in[b].weight != 0 && in[b].joint == in[a].joint) {
+        const double both = in[a].weight + in[b].weight;
+        out["duplicate-joint"].add(std::abs(both), example(in[a].joint, both), [&] {
+          return "joint " + std::to_string(in[a].joint) + " appears twice (weights " + number(in[a].weight) + " and " +
+                 number(in[b].weight) + ")" + at();
+        });
+      }
+  }
+  if (limit > 0)
+    for (const Influence& i : in)
+      if (i.joint >= limit)
+        out["joint-out-of-range"].add(std::abs(i.weight), example(i.joint, double(i.joint)), [&] {
+          return "joint index " + std::to_string(i.joint) + " (weight " + number(i.weight) + "), but the skin has " +
+                 std::to_string(limit) + " joints" + at();
+        });
+}
+
+}  // namespace
+
+void check_influences(const gltf::SkinData& data, const LintOptions& options, Findings& out) {
+  const Asset& asset = data.structure;
+  std::vector<std::vector<bool>> used(asset.skins.size());
+  std::vector<bool> skinned(asset.skins.size(), false);
+  for (size_t s = 0; s < asset.skins.size(); ++s) used[s].assign(asset.skins[s].joints.size(), false);
+
+  std::vector<Influence> in;
+  for (const gltf::SkinnedPrimitive& p : data.primitives) {
+    const size_t limit = joint_limit(p, asset);
+    for (int s : p.skins) skinned[size_t(s)] = true;
+    for (size_t v = 0; v < p.vertices; ++v) {
+      in.clear();
+      for (const gltf::InfluenceSet& set : p.sets) {
+        const double scale = normalized_max(set.weights_component);
+        for (size_t k = 0; k < 4; ++k)
+          in.push_back({set.joints[4 * v + k], set.weights[4 * v + k], scale > 0 ? 0.5 / scale : 0.0});
+      }
+      check_vertex(p, v, in, limit, options, out);
+      for (int s : p.skins)
+        for (const Influence& i : in)
+          if (i.weight > 0 && i.joint < used[size_t(s)].size()) used[size_t(s)][i.joint] = true;
+    }
+  }
+
+  // A skin no primitive uses is not linted for unused joints: nothing is deformed by it at all.
+  for (size_t s = 0; s < asset.skins.size(); ++s) {
+    if (!skinned[s]) continue;
+    for (size_t j = 0; j < used[s].size(); ++j) {
+      if (used[s][j]) continue;
+      const int node = asset.skins[s].joints[j];
+      LintExample e;
+      e.where = "skin " + std::to_string(s);
+      e.joint = static_cast<long long>(j);
+      e.value = node;
+      out["unused-joint"].add(0, e, [&] {
+        const std::string& name = asset.nodes[size_t(node)].name;
+        return "joint " + std::to_string(j) + " (node " + std::to_string(node) +
+               (name.empty() ? "" : " '" + name + "'") + ") of skin " + std::to_string(s) + " has weight on no vertex";
+      });
+    }
+  }
+}
+
+}  // namespace dqskin::lint

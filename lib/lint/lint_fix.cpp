@@ -1,0 +1,200 @@
+// `dqskin lint --fix`: what can be corrected in the data itself. Influences: per vertex, every set's
+// (joint, weight) merged per joint, weights ≤ 0 and joints beyond the skin dropped, sorted by weight
+// (descending; ties by joint), cut to max_influences (a vertex left without weight bound to its nearest
+// joint) and renormalized in the original component type:
+// normalized integers by the largest-remainder method, so that the stored integers sum exactly to 255 or
+// 65535 (what the Khronos validator checks). Rotation keys: made unit, and each key negated when its dot
+// product with the previous (already fixed) key is negative, CUBICSPLINE tangents with it (q and −q are
+// the same rotation, so the animation is unchanged for a runtime that takes the shortest path, and
+// becomes right for one that does not). A skin's `skeleton` that is not a common root of its joints is
+// removed (the property is optional).
+#include "dqskin/lint.hpp"
+
+#include "../gltf/fixed_glb.hpp"
+#include "../gltf/skin_data.hpp"
+#include "lint_checks.hpp"
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <optional>
+
+namespace dqskin {
+namespace {
+
+struct Influence {
+  uint32_t joint;
+  double weight;
+};
+
+// Largest-remainder rounding of weights that sum to 1 onto integers summing to exactly `scale`.
+std::vector<double> round_to_sum(const std::vector<double>& w, double scale) {
+  std::vector<double> floor(w.size()), remainder(w.size());
+  double total = 0;
+  for (size_t i = 0; i < w.size(); ++i) {
+    floor[i] = std::floor(w[i] * scale);
+    remainder[i] = w[i] * scale - floor[i];
+    total += floor[i];
+  }
+  std::vector<size_t> order(w.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return remainder[a] > remainder[b]; });
+  for (size_t k = 0; k < order.size() && total < scale; ++k, total += 1) floor[order[k]] += 1;
+  for (double& f : floor) f /= scale;
+  return floor;
+}
+
+// The primitive's influences in fixed form, or nothing when they are already in it.
+std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& p, const Asset& asset, size_t keep) {
+  const size_t limit = lint::joint_limit(p, asset);
+  std::vector<Vec3<double>> bind_positions;
+  if (!p.skins.empty())
+    for (const Mat4<double>& ibm : asset.skins[size_t(p.skins.front())].inverse_bind)
+      bind_positions.push_back(Vec3<double>(glm::inverse(ibm)[3]));
+  if (limit > 0 && bind_positions.size() > limit) bind_positions.resize(limit);
+  const int weights_component = p.sets.front().weights_component;
+  const double scale = lint::normalized_max(weights_component);
+  std::vector<std::vector<Influence>> fixed(p.vertices);
+  size_t most = 1;
+  uint32_t largest_joint = 0;
+  for (size_t v = 0; v < p.vertices; ++v) {
+    std::vector<Influence>& in = fixed[v];
+    for (const gltf::InfluenceSet& set : p.sets)
+      for (size_t k = 0; k < 4; ++k) {
+        const uint32_t j = set.joints[4 * v + k];
+        const double w = set.weights[4 * v + k];
+        if (!(w > 0) || (limit > 0 && j >= limit)) continue;
+        auto same = std::find_if(in.begin(), in.end(), [&](const Influence& i) { return i.joint == j; });
+        if (same != in.end())
+          same->weight += w;
+        else
+          in.push_back({j, w});
+      }
+    std::stable_sort(in.begin(), in.end(), [](const Influence& a, const Influence& b) {
+      return a.weight != b.weight ? a.weight > b.weight : a.joint < b.joint;
+    });
+    if (in.size() > keep) in.resize(keep);
+    // A vertex without weight would stay where it was bound whatever the skeleton does: it is given to the
+    // joint nearest to it in bind space (the joint's bind position is inverse(inverseBind) · origin).
+    if (in.empty() && !bind_positions.empty()) {
+      size_t nearest = 0;
+      for (size_t j = 1; j < bind_positions.size(); ++j)
+        if (glm::distance(bind_positions[j], Vec3<double>(p.positions[v])) <
+            glm::distance(bind_positions[nearest], Vec3<double>(p.positions[v])))
+          nearest = j;
+      in.push_back({uint32_t(nearest), 1.0});
+    }
+    double sum = 0;
+    for (const Influence& i : in) sum += i.weight;
+    if (sum > 0) {
+      std::vector<double> w(in.size());
+      for (size_t i = 0; i < in.size(); ++i) w[i] = in[i].weight / sum;
+      if (scale > 0) w = round_to_sum(w, scale);
+      for (size_t i = 0; i < in.size(); ++i) in[i].weight = scale > 0 ? w[i] : double(float(w[i]));
+    }
+    // A weight that rounds to 0 is dropped: the Khronos validator wants joint 0 beside a zero weight.
+    in.erase(std::remove_if(in.begin(), in.end(), [](const Influence& i) { return i.weight == 0; }), in.end());
+    most = std::max(most, in.size());
+    for (const Influence& i : in) largest_joint = std::max(largest_joint, i.joint);
+  }
+
+  gltf::InfluenceEdit e;
+  e.mesh = p.mesh;
+  e.primitive = p.primitive;
+  e.vertices = p.vertices;
+  e.sets = (most + 3) / 4;
+  e.weights_component = weights_component;
+  e.joints_component = largest_joint > 255 ? gltf::kComponentUnsignedShort : gltf::kComponentUnsignedByte;
+  for (const gltf::InfluenceSet& set : p.sets)
+    if (set.joints_component == gltf::kComponentUnsignedShort) e.joints_component = gltf::kComponentUnsignedShort;
+  e.joints.assign(p.vertices * e.sets * 4, 0);
+  e.weights.assign(p.vertices * e.sets * 4, 0.0);
+  for (size_t v = 0; v < p.vertices; ++v)
+    for (size_t i = 0; i < fixed[v].size(); ++i) {
+      e.joints[v * e.sets * 4 + i] = fixed[v][i].joint;
+      e.weights[v * e.sets * 4 + i] = fixed[v][i].weight;
+    }
+
+  bool same = e.sets == p.sets.size();
+  for (size_t s = 0; same && s < p.sets.size(); ++s)
+    same = p.sets[s].weights_component == e.weights_component && p.sets[s].joints_component == e.joints_component;
+  for (size_t v = 0; same && v < p.vertices; ++v)
+    for (size_t s = 0; same && s < e.sets; ++s)
+      for (size_t k = 0; same && k < 4; ++k) {
+        const size_t i = (v * e.sets + s) * 4 + k;
+        same = float(p.sets[s].weights[4 * v + k]) == float(e.weights[i]) && p.sets[s].joints[4 * v + k] == e.joints[i];
+      }
+  if (same) return std::nullopt;
+  return e;
+}
+
+std::optional<gltf::KeyEdit> fix_rotation(const gltf::RotationSource& source, const Asset& asset) {
+  const Channel& ch = asset.clips[source.clip].channels[source.channel];
+  const bool cubic = ch.interpolation == Interpolation::kCubicSpline;
+  const size_t stride = cubic ? 12 : 4, offset = cubic ? 4 : 0;
+  const double scale = lint::normalized_max(source.output_component);
+  // What the type can hold: a length error below it is rounding, not something to fix.
+  const double representable = scale > 0 ? 1 / scale : 1e-6;
+  gltf::KeyEdit e;
+  e.animation = source.animation;
+  e.sampler = source.sampler;
+  e.component = source.output_component;
+  e.values = ch.values;
+  bool changed = false;
+  auto dot = [](const float* a, const float* b) {
+    double d = 0;
+    for (int i = 0; i < 4; ++i) d += double(a[i]) * double(b[i]);
+    return d;
+  };
+  const float* previous = nullptr;
+  for (size_t k = 0; k < ch.times.size(); ++k) {
+    float* key = &e.values[k * stride];
+    float* q = key + offset;
+    const double length = std::sqrt(dot(q, q));
+    if (length > 0 && std::abs(length - 1) > representable) {
+      for (size_t i = 0; i < stride; ++i) key[i] = float(double(key[i]) / length);  // tangents scale with their key
+      changed = true;
+    }
+    if (previous && dot(previous, q) < 0) {
+      for (size_t i = 0; i < stride; ++i) key[i] = -key[i];
+      changed = true;
+    }
+    previous = q;
+  }
+  if (!changed) return std::nullopt;
+  return e;
+}
+
+}  // namespace
+
+LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options) {
+  if (options.max_influences < 1 || options.max_influences > 8)
+    throw InputError("--max-influences must be from 1 to 8 for --fix");
+  const gltf::SkinData data = gltf::read_skin_data(input, options.load);
+  if (!data.rewritable) throw InputError(data.why_not);
+  gltf::FileEdits edits;
+  for (const gltf::SkinnedPrimitive& p : data.primitives)
+    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences)))
+      edits.influences.push_back(std::move(*e));
+  for (const gltf::RotationSource& r : data.rotations)
+    if (auto e = fix_rotation(r, data.structure)) edits.keys.push_back(std::move(*e));
+  const Asset& a = data.structure;
+  for (size_t s = 0; s < a.skins.size(); ++s) {
+    bool root = true;
+    for (int joint : a.skins[s].joints) {
+      bool below = false;
+      for (int n = joint; n >= 0 && !below; n = a.nodes[size_t(n)].parent) below = n == a.skins[s].skeleton;
+      root = root && below;
+    }
+    if (a.skins[s].skeleton >= 0 && !root) edits.drop_skeleton.push_back(s);
+  }
+  const std::string glb = gltf::fixed_glb(input, options.load, edits);
+  AtomicFile file(output);
+  file.write(glb);
+  file.commit(Overwrite::kReplace);
+  return {edits.influences.size(), edits.keys.size(), edits.drop_skeleton.size()};
+}
+
+}  // namespace dqskin
