@@ -288,7 +288,9 @@ TEST_F(ReportPage, WritesThePagesForTheBrowserCheck) {
   EXPECT_EQ(no_image.find("data-file=\"worst_Walk.png\""), std::string::npos);
 
   const char* dir = std::getenv("DQSKIN_REPORT_PAGE_DIR");
-  if (!dir) GTEST_SKIP() << "DQSKIN_REPORT_PAGE_DIR is not set: the pages are made and checked, not written";
+  // Only report.page_fixture (lib/CMakeLists.txt) sets it; in the ordinary run the pages are made and
+  // their breakages checked above, and there is nowhere they are needed.
+  if (!dir) return;
   const auto write = [&](const std::string& name, const json& document, const std::string& html) {
     const fs::path folder = fs::path(dir) / name;
     fs::remove_all(folder);
