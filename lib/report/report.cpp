@@ -28,14 +28,27 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The `count` frames with the largest values, in frame order (the earlier frame first on ties).
+// The `count` frames with the largest values, in frame order (the earlier frame first on ties), each at
+// least a gap of frames/(2·count) from the others: a peak spans several frames, and three neighbours of
+// one peak would show one pose three times where the clip has other bad moments. The gap is relaxed to
+// no gap when the clip is too short to keep it.
 std::vector<size_t> worst_frames(const std::vector<double>& values, size_t count) {
   std::vector<size_t> order(values.size());
   for (size_t f = 0; f < order.size(); ++f) order[f] = f;
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] > values[b]; });
-  order.resize(std::min(count, order.size()));
-  std::sort(order.begin(), order.end());
-  return order;
+  count = std::min(count, order.size());
+  std::vector<size_t> chosen;
+  for (size_t gap = std::max<size_t>(1, values.size() / (2 * std::max<size_t>(count, 1)));; gap = 1) {
+    chosen.clear();
+    for (size_t f : order) {
+      if (chosen.size() == count) break;
+      const bool apart = std::all_of(chosen.begin(), chosen.end(), [&](size_t c) { return (f > c ? f - c : c - f) >= gap; });
+      if (apart) chosen.push_back(f);
+    }
+    if (chosen.size() == count || gap == 1) break;
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
 }
 
 // The bytes of a file just written, to embed it in the page exactly as it lies beside it. Throws OutputError.
