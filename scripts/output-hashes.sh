@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The output fingerprint of a dqskin build: runs a fixed set of commands (info; bake into every format with
 # lbs and dqs, on the GL path, the fast CPU deformer and the CPU reference; dib; render; the golden render
-# set; diff) on every bundled rig and every shared sample model, and prints one line per file written, "SHA-256  path",
-# followed by each command's exit status. Two builds that print the same lines wrote the same bytes: a
+# set; diff; report; lint and its fix, also on the bad-skin catalogue) on every bundled rig and every shared
+# sample model, and prints one line per file written, "SHA-256  path", followed by each command's exit
+# status. Two builds that print the same lines wrote the same bytes: a
 # refactor must not change them (compare with diff).
 #
 # Usage: scripts/output-hashes.sh [DQSKIN] > hashes.txt
@@ -50,6 +51,12 @@ for m in "${models[@]}"; do
   done
   run "bake-dib-$stem" "$DQSKIN" bake "$m" -o out --format ply --frames 0:2 --mode dib --quiet
   run "render-$stem" "$DQSKIN" render "$m" -o out --size 96x96 --frames 0:1 --backend cpu --quiet
+  # The skinning report (every blend on the CPU reference) and the skin lint with its corrected copy.
+  run "report-$stem" "$DQSKIN" report "$m" -o out --fps 10 --image-size 64 --quiet
+  run "lint-$stem" "$DQSKIN" lint "$m" --json --max-influences 8 --fix -o fixed.glb
+done
+for m in "$ROOT"/testdata/bad_skins/*.gltf; do
+  run "lint-bad-$(basename "$m")" "$DQSKIN" lint "$m" --json --fix -o fixed.glb
 done
 stem=twisted_cylinder.gltf
 run "render-sheet-$stem" "$DQSKIN" render "$ROOT/testdata/$stem" -o out --size 64x64 --fps 5 --sheet --gif \
