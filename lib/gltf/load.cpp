@@ -11,7 +11,6 @@
 #include "mesh.hpp"
 #include "model_io.hpp"
 #include "structure.hpp"
-#include "structure.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>

@@ -9,7 +9,9 @@
 #include "structure.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
+#include <string_view>
 
 namespace dqskin::gltf {
 namespace {
@@ -19,16 +21,46 @@ int find_attribute(const std::map<std::string, int>& attributes, const std::stri
   return it == attributes.end() ? -1 : it->second;
 }
 
+// Influence sets read at most: 8 sets are 32 influences per vertex, four times what any runtime takes, so a
+// file past them is refused rather than read. Without a bound, a few bytes of JSON (JOINTS_0 … JOINTS_999
+// naming one accessor) would decode to gigabytes and make the per-vertex checks quadratic in the sets.
+constexpr int kMaxInfluenceSets = 8;
+
+// The highest n of the primitive's JOINTS_n and WEIGHTS_n attributes, or -1 when it has none.
+int highest_influence_set(const tinygltf::Primitive& p) {
+  int highest = -1;
+  for (const auto& [name, accessor] : p.attributes)
+    for (const char* prefix : {"JOINTS_", "WEIGHTS_"}) {
+      const std::string_view view(name), pre(prefix);
+      if (view.substr(0, pre.size()) != pre || view.size() == pre.size() || view.size() > pre.size() + 9) continue;
+      const std::string_view digits = view.substr(pre.size());
+      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+      highest = std::max(highest, std::stoi(std::string(digits)));
+    }
+  return highest;
+}
+
 // Every influence set of one primitive. Values are read as they are (negative weights, any joint index);
-// only the shapes §3.7.3.3 allows are accepted, as anything else has no meaning as a weight.
+// only the shapes §3.7.3.3 allows are accepted, as anything else has no meaning as a weight. Sets must be
+// numbered from 0 without gaps (§3.7.3.3, "TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n": indices must start
+// with 0 and be continuous). `memory_left` is what decoding may still take; each set takes 48 bytes a vertex.
 std::vector<InfluenceSet> read_sets(const tinygltf::Primitive& p, const AccessorReader& reader, size_t vertices,
-                                    const std::string& what) {
+                                    const std::string& what, uint64_t& memory_left) {
+  const int highest = highest_influence_set(p);
+  if (highest >= kMaxInfluenceSets)
+    throw InputError(what + ": has JOINTS_" + std::to_string(highest) + "/WEIGHTS_" + std::to_string(highest) +
+                     ": more than " + std::to_string(4 * kMaxInfluenceSets) + " influences per vertex, which lint does not read");
   std::vector<InfluenceSet> sets;
-  for (int n = 0;; ++n) {
+  for (int n = 0; n <= highest; ++n) {
     const std::string js = "JOINTS_" + std::to_string(n), ws = "WEIGHTS_" + std::to_string(n);
     const int ja = find_attribute(p.attributes, js), wa = find_attribute(p.attributes, ws);
-    if (ja < 0 && wa < 0) break;
+    if (ja < 0 && wa < 0)
+      throw InputError(what + ": has JOINTS_" + std::to_string(highest) + " or WEIGHTS_" + std::to_string(highest) +
+                       " but not " + js + " or " + ws + " (sets are numbered from 0 without gaps)");
     if (ja < 0 || wa < 0) throw InputError(what + ": has " + (ja < 0 ? ws : js) + " without " + (ja < 0 ? js : ws));
+    const uint64_t bytes = uint64_t(vertices) * 4 * (sizeof(uint32_t) + sizeof(double));
+    if (bytes > memory_left) throw InputError(what + ": its influence sets need more memory than --max-memory allows");
+    memory_left -= bytes;
     for (const auto& [accessor, name] : {std::pair{ja, js}, std::pair{wa, ws}}) {
       const size_t count = reader.count(accessor, what + " " + name);
       if (count != vertices)
@@ -71,6 +103,10 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
   data.structure = read_structure(m, parsed.json_bytes, path, options);
   const Asset& asset = data.structure;
   const AccessorReader reader{m, options.max_unbacked_elements};
+  // What the raw sets may take besides what loading the structure took (primitives may share accessors,
+  // so the file's size says nothing about it): the rest of --max-memory after the file and its model.
+  const uint64_t used = uint64_t(bytes.size()) * 2 + parsed.json_bytes;
+  uint64_t memory_left = options.max_memory > used ? options.max_memory - used : 0;
 
   std::vector<std::vector<int>> mesh_skins(m.meshes.size());
   for (const Node& node : asset.nodes)
@@ -82,7 +118,7 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
     for (size_t k = 0; k < m.meshes[i].primitives.size(); ++k) {
       const tinygltf::Primitive& p = m.meshes[i].primitives[k];
       const std::string what = "mesh " + std::to_string(i) + " primitive " + std::to_string(k);
-      if (find_attribute(p.attributes, "JOINTS_0") < 0 && find_attribute(p.attributes, "WEIGHTS_0") < 0) continue;
+      if (highest_influence_set(p) < 0) continue;
       const int position = find_attribute(p.attributes, "POSITION");
       if (position < 0) throw InputError(what + ": has no POSITION");
       SkinnedPrimitive prim;
@@ -94,9 +130,12 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
           {{TINYGLTF_TYPE_VEC3}, {kComponentFloat, 5120, kComponentUnsignedByte, 5122, kComponentUnsignedShort}},
           what + " POSITION");
       prim.vertices = xyz.size() / 3;
+      if (uint64_t(prim.vertices) * sizeof(glm::vec3) > memory_left)
+        throw InputError(what + ": its positions need more memory than --max-memory allows");
+      memory_left -= uint64_t(prim.vertices) * sizeof(glm::vec3);
       prim.positions.resize(prim.vertices);
       for (size_t v = 0; v < prim.vertices; ++v) prim.positions[v] = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
-      prim.sets = read_sets(p, reader, prim.vertices, what);
+      prim.sets = read_sets(p, reader, prim.vertices, what, memory_left);
       prim.skins = skins;
       data.primitives.push_back(std::move(prim));
     }

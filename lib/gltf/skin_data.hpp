@@ -54,8 +54,9 @@ struct SkinData {
   std::string why_not;
 };
 
-// Reads `path` (.gltf or .glb) under `options`' limits. Influence sets must come in pairs with POSITION's
-// count, JOINTS_n as unsigned byte or short, WEIGHTS_n as float or normalized unsigned byte or short
+// Reads `path` (.gltf or .glb) under `options`' limits (the raw sets and positions count against
+// max_memory too). Influence sets must come in pairs numbered from 0 without gaps, at most 8 of them (32
+// influences), with POSITION's count, JOINTS_n as unsigned byte or short, WEIGHTS_n as float or normalized unsigned byte or short
 // (§3.7.3.3); their values are not judged. Throws InputError for a file that is not valid glTF otherwise.
 SkinData read_skin_data(const std::string& path, const LoadOptions& options);
 

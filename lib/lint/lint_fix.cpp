@@ -157,7 +157,8 @@ std::optional<gltf::KeyEdit> fix_rotation(const gltf::RotationSource& source, co
       for (size_t i = 0; i < stride; ++i) key[i] = float(double(key[i]) / length);  // tangents scale with their key
       changed = true;
     }
-    if (previous && dot(previous, q) < 0) {
+    // STEP keys are never interpolated, so their hemispheres do not matter (and the check reports none).
+    if (previous && ch.interpolation != Interpolation::kStep && dot(previous, q) < 0) {
       for (size_t i = 0; i < stride; ++i) key[i] = -key[i];
       changed = true;
     }

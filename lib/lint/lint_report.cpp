@@ -44,7 +44,7 @@ std::string lint_text(const std::vector<LintFileResult>& results) {
     counts[status == "clean" ? 0 : status == "info" ? 1 : status == "warning" ? 2 : 3]++;
     t += printable(r.path) + ": ";
     if (!r.error.empty()) {
-      t += "error: " + r.error + "\n";
+      t += "error: " + printable(r.error) + "\n";  // loader messages quote the file's own strings
       continue;
     }
     t += status + "\n";

@@ -4,6 +4,7 @@
 #include "dqskin/lint.hpp"
 
 #include "lint_checks.hpp"
+#include "../test_support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -134,6 +135,50 @@ TEST(LintInfluences, ZeroWeightDuplicatesAreNotDuplicates) {
   lint::check_influences(one_vertex(gltf::kComponentFloat, {1, 0, 0, 0}, {0, 0, 0, 0}), {}, f);
   EXPECT_EQ(f.count("duplicate-joint"), 0u);
   EXPECT_EQ(f.count("weight-sum"), 0u);
+}
+
+TEST(LintInfluences, CountsAVertexOnceHoweverManySlotsShareItsProblem) {
+  // Joint 1 three times, joint 9 (beyond the skin's 4 joints) in the last slot, and 7 beyond too: one
+  // vertex each, the worst case kept.
+  lint::Findings dup;
+  lint::check_influences(one_vertex(gltf::kComponentFloat, {0.25, 0.25, 0.5, 0}, {1, 1, 1, 0}), {}, dup);
+  ASSERT_EQ(dup.count("duplicate-joint"), 1u);
+  EXPECT_EQ(dup.at("duplicate-joint").count, 1u);
+  lint::Findings beyond;
+  lint::check_influences(one_vertex(gltf::kComponentFloat, {0.5, 0.1, 0, 0.4}, {0, 7, 0, 9}), {}, beyond);
+  ASSERT_EQ(beyond.count("joint-out-of-range"), 1u);
+  EXPECT_EQ(beyond.at("joint-out-of-range").count, 1u);
+  EXPECT_EQ(beyond.at("joint-out-of-range").worst.joint, 9);
+}
+
+// The clean catalogue file with its primitive's influence attributes replaced, written into `dir`.
+std::string with_influence_sets(const std::filesystem::path& dir, const std::vector<int>& sets) {
+  std::ifstream in(catalogue("clean.gltf"));
+  nlohmann::json doc = nlohmann::json::parse(in);
+  nlohmann::json& attributes = doc["meshes"][0]["primitives"][0]["attributes"];
+  const nlohmann::json joints = attributes["JOINTS_0"], weights = attributes["WEIGHTS_0"];
+  attributes.erase("JOINTS_0");
+  attributes.erase("WEIGHTS_0");
+  for (int n : sets) {
+    attributes["JOINTS_" + std::to_string(n)] = joints;
+    attributes["WEIGHTS_" + std::to_string(n)] = weights;
+  }
+  const std::filesystem::path path = dir / "sets.gltf";
+  std::ofstream(path) << doc.dump();
+  return path.string();
+}
+
+TEST(LintFile, RefusesMoreThanEightSetsAndGapsInTheirNumbers) {
+  const testing_support::ScratchDir dir("lint");
+  // Nine sets naming one accessor pair: a few bytes of JSON that would decode to 9 times the data.
+  const LintFileResult nine = lint_file(with_influence_sets(dir.path(), {0, 1, 2, 3, 4, 5, 6, 7, 8}), {});
+  EXPECT_NE(nine.error.find("JOINTS_8/WEIGHTS_8: more than 32 influences per vertex"), std::string::npos) << nine.error;
+  const LintFileResult gap = lint_file(with_influence_sets(dir.path(), {0, 2}), {});
+  EXPECT_NE(gap.error.find("but not JOINTS_1 or WEIGHTS_1"), std::string::npos) << gap.error;
+  // Eight sets are read (and their repeated joints found).
+  const LintFileResult eight = lint_file(with_influence_sets(dir.path(), {0, 1, 2, 3, 4, 5, 6, 7}), {});
+  EXPECT_EQ(eight.error, "");
+  EXPECT_TRUE(eight.has("duplicate-joint"));
 }
 
 TEST(LintInfluences, MaxInfluencesMovesTheWarning) {

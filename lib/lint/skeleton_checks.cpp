@@ -169,11 +169,13 @@ void check_joint_scale(const Asset& rig, const LintOptions& o, Findings& out) {
     std::set<float> key_times;
     for (const Channel& ch : clip.channels) key_times.insert(ch.times.begin(), ch.times.end());
     const std::vector<float> times(key_times.begin(), key_times.end());
-    // Each pose costs about (nodes + channels) steps. A clip with more key times than kPoseWork allows is
-    // sampled at evenly spaced ones, first and last included, so that a hostile file cannot make lint run
-    // for hours (the shared models stay far below it: BrainStem has 22 nodes and at most 1,309 keys a channel).
+    // Each pose costs about (nodes + channels + every skin's joints: one polar decomposition each) steps. A
+    // clip with more key times than kPoseWork allows is sampled at evenly spaced ones, first and last
+    // included, so that a hostile file cannot make lint run for hours (the shared models stay far below it:
+    // BrainStem has 22 nodes and at most 1,309 keys a channel).
     constexpr size_t kPoseWork = 50'000'000;
-    const size_t per_pose = rig.nodes.size() + clip.channels.size() + 1;
+    size_t per_pose = rig.nodes.size() + clip.channels.size() + 1;
+    for (const Skin& skin : rig.skins) per_pose += skin.joints.size();
     const size_t poses = std::max<size_t>(2, kPoseWork / per_pose);
     const size_t step = times.size() > poses ? (times.size() + poses - 1) / poses : 1;
     for (size_t i = 0; i < times.size(); i += step) {
