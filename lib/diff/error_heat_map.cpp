@@ -2,6 +2,7 @@
 #include "diff_numbers.hpp"
 #include "../render/bitmap_font.hpp"
 #include "../render/heat_color.hpp"
+#include "../render/image_label.hpp"
 
 #include "dqskin/camera.hpp"
 #include "dqskin/image_output.hpp"
@@ -11,23 +12,6 @@
 #include <cstdio>
 
 namespace dqskin::diff_detail {
-namespace {
-
-void fill(Image& image, int x0, int y0, int w, int h, const glm::vec3& color) {
-  for (int y = std::max(0, y0); y < std::min(image.height, y0 + h); ++y)
-    for (int x = std::max(0, x0); x < std::min(image.width, x0 + w); ++x) {
-      float* p = image.rgba.data() + (size_t(y) * size_t(image.width) + size_t(x)) * 4;
-      p[0] = color.r, p[1] = color.g, p[2] = color.b, p[3] = 1.0f;
-    }
-}
-
-// White text on a black box with a one-font-pixel margin.
-void label(Image& image, const std::string& text, int x, int y, int scale) {
-  fill(image, x - scale, y - scale, font::text_width(text, scale) + 2 * scale, (font::kGlyphHeight + 2) * scale, glm::vec3(0));
-  font::draw(text, x, y, scale, [&](int px, int py) { fill(image, px, py, 1, 1, glm::vec3(1)); });
-}
-
-}  // namespace
 
 Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int size) {
   const DiffSide& side = map.side;
@@ -63,18 +47,18 @@ Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int si
   for (int y = 0; y < size; ++y) {
     std::copy_n(frame.rgba.data() + size_t(y) * size_t(size) * 4, size_t(size) * 4,
                 image.rgba.data() + size_t(y) * size_t(image.width) * 4);
-    fill(image, size, y, panel, 1, glm::vec3(options.background));
+    fill_rect(image, size, y, panel, 1, glm::vec3(options.background));
   }
   const int bar_top = 24 * scale, bar_bottom = size - 16 * scale, bar_x = size + margin;
   if (bar_bottom > bar_top) {
     for (int y = bar_top; y < bar_bottom; ++y)
-      fill(image, bar_x, y, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));
+      fill_rect(image, bar_x, y, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));
     const int x = bar_x + bar_w + 3 * scale, half = font::kGlyphHeight * scale / 2;
-    label(image, length_with_unit(map.top, map.top), x, bar_top - half, scale);
-    label(image, length_with_unit(map.top / 2, map.top), x, (bar_top + bar_bottom) / 2 - half, scale);
-    label(image, length_with_unit(0, map.top), x, bar_bottom - 1 - half, scale);
+    draw_label(image, length_with_unit(map.top, map.top), x, bar_top - half, scale);
+    draw_label(image, length_with_unit(map.top / 2, map.top), x, (bar_top + bar_bottom) / 2 - half, scale);
+    draw_label(image, length_with_unit(0, map.top), x, bar_bottom - 1 - half, scale);
   }
-  label(image, map.caption, 3 * scale, 3 * scale, scale);
+  draw_label(image, map.caption, 3 * scale, 3 * scale, scale);
   return image;
 }
 

@@ -1,6 +1,7 @@
 #include "worst_frames_sheet.hpp"
 #include "../render/bitmap_font.hpp"
 #include "../render/heat_color.hpp"
+#include "../render/image_label.hpp"
 
 #include "dqskin/camera.hpp"
 #include "dqskin/deformer.hpp"
@@ -14,21 +15,6 @@ namespace dqskin::report_detail {
 namespace {
 
 constexpr int kGap = 2;
-
-void fill(Image& image, int x0, int y0, int w, int h, const glm::vec3& color) {
-  for (int y = std::max(0, y0); y < std::min(image.height, y0 + h); ++y)
-    for (int x = std::max(0, x0); x < std::min(image.width, x0 + w); ++x) {
-      float* p = image.rgba.data() + (size_t(y) * size_t(image.width) + size_t(x)) * 4;
-      p[0] = color.r, p[1] = color.g, p[2] = color.b, p[3] = 1.0f;
-    }
-}
-
-// White text on a black box with a one-font-pixel margin (the built-in font: digits, ". - + = %", and
-// the letters of "c e k m s t u").
-void label(Image& image, const std::string& text, int x, int y, int scale) {
-  fill(image, x - scale, y - scale, font::text_width(text, scale) + 2 * scale, (font::kGlyphHeight + 2) * scale, glm::vec3(0));
-  font::draw(text, x, y, scale, [&](int px, int py) { fill(image, px, py, 1, 1, glm::vec3(1)); });
-}
 
 std::string printf_text(const char* pattern, double value) {
   char text[48];
@@ -71,7 +57,7 @@ Image worst_frames_sheet(GpuContext& context, const WorstFrames& frames) {
   options.width = options.height = size;
   options.shade = Shade::kModeDiff;
   Image sheet{width, height, std::vector<float>(size_t(width) * size_t(height) * 4)};
-  fill(sheet, 0, 0, width, height, glm::vec3(options.background));
+  fill_rect(sheet, 0, 0, width, height, glm::vec3(options.background));
   if (box.empty()) return sheet;
   Renderer renderer(context, frames.asset, frames.instances, options);
   const Camera camera = frame_camera(box, CameraOptions{}, 1.0);
@@ -93,18 +79,18 @@ Image worst_frames_sheet(GpuContext& context, const WorstFrames& frames) {
     for (int y = 0; y < size; ++y)
       std::copy_n(cell.rgba.data() + size_t(y) * size_t(size) * 4, size_t(size) * 4,
                   sheet.rgba.data() + (size_t(y + kGap) * size_t(width) + size_t(x0)) * 4);
-    label(sheet, printf_text("t = %.3f s", frames.times[f]), x0 + 3 * scale, kGap + 3 * scale, scale);
+    draw_label(sheet, printf_text("t = %.3f s", frames.times[f]), x0 + 3 * scale, kGap + 3 * scale, scale);
   }
 
   // The legend: a bar from 0 (bottom) to the scale (top), labelled at 0, half and top in scene units.
   const int bar_top = 24 * scale, bar_bottom = size - 16 * scale, bar_x = width - panel + margin;
   if (bar_bottom > bar_top) {
     for (int y = bar_top; y < bar_bottom; ++y)
-      fill(sheet, bar_x, y + kGap, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));
+      fill_rect(sheet, bar_x, y + kGap, bar_w, 1, heat_color(float(bar_bottom - 1 - y) / float(std::max(1, bar_bottom - bar_top - 1))));
     const int x = bar_x + bar_w + 3 * scale, half = font::kGlyphHeight * scale / 2;
-    label(sheet, printf_text("%.3g m", frames.scale), x, kGap + bar_top - half, scale);
-    label(sheet, printf_text("%.3g m", frames.scale / 2), x, kGap + (bar_top + bar_bottom) / 2 - half, scale);
-    label(sheet, "0 m", x, kGap + bar_bottom - 1 - half, scale);
+    draw_label(sheet, printf_text("%.3g m", frames.scale), x, kGap + bar_top - half, scale);
+    draw_label(sheet, printf_text("%.3g m", frames.scale / 2), x, kGap + (bar_top + bar_bottom) / 2 - half, scale);
+    draw_label(sheet, "0 m", x, kGap + bar_bottom - 1 - half, scale);
   }
   return sheet;
 }
