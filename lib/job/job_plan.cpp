@@ -136,9 +136,12 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
         cp.name = cp.clip ? cp.clip->name : "rest";
         const size_t index = cp.clip ? size_t(cp.clip - asset.clips.data()) : 0;
         std::string folder = cp.clip ? (cp.clip->name.empty() ? "animation_" + std::to_string(index) : safe_name(cp.name)) : "rest";
-        if (!folders.insert(folder).second) {  // two clips of one name: the later gets its index
-          folder.append("_").append(std::to_string(index));
-          folders.insert(folder);
+        // Two clips of one name: the later gets its index, and a count after it should another clip be
+        // named so already ("Walk_2", "Walk", "Walk").
+        if (!folders.insert(folder).second) {
+          const std::string base = folder + "_" + std::to_string(index);
+          folder = base;
+          for (size_t k = 2; !folders.insert(folder).second; ++k) folder = base + "_" + std::to_string(k);
         }
         cp.folder = plan.stem;
         cp.folder.append("/").append(folder);

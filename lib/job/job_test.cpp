@@ -8,9 +8,11 @@
 #include "../test_support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <new>
 #include <thread>
 
@@ -29,6 +31,28 @@ std::vector<InputPlan> plan(const std::vector<std::string>& inputs, Shard shard,
   o.shard = shard;
   double seconds = 0;
   return plan_inputs(inputs, o, seconds);
+}
+
+TEST(JobPlan, ClipFoldersStayUniqueWhenAnIndexedNameIsTaken) {
+  // Clips "Walk_2", "Walk", "Walk": the third would be "Walk_2" by its index, which the first has.
+  ScratchDir out("job");
+  std::ifstream in(rig("twisted_cylinder.gltf"));
+  nlohmann::json doc = nlohmann::json::parse(in);
+  const nlohmann::json clip = doc["animations"][0];
+  doc["animations"] = nlohmann::json::array();
+  for (const char* name : {"Walk_2", "Walk", "Walk"}) {
+    doc["animations"].push_back(clip);
+    doc["animations"].back()["name"] = name;
+  }
+  const fs::path file = out.path() / "walks.gltf";
+  std::ofstream(file) << doc.dump();
+  const std::vector<InputPlan> plans = plan({file.string()}, {}, out.path());
+  ASSERT_EQ(plans.size(), 1u);
+  ASSERT_EQ(plans[0].error, "");
+  ASSERT_EQ(plans[0].clips.size(), 3u);
+  EXPECT_EQ(plans[0].clips[0].folder, "walks/Walk_2");
+  EXPECT_EQ(plans[0].clips[1].folder, "walks/Walk");
+  EXPECT_EQ(plans[0].clips[2].folder, "walks/Walk_2_2");
 }
 
 TEST(ParseShard, AcceptsIOfNAndRejectsTheRest) {

@@ -4,25 +4,29 @@
 
 #include <algorithm>
 #include <map>
+#include <tuple>
 
 namespace dqskin::report_detail {
 
 bool is_closed(std::span<const std::array<uint32_t, 3>> triangles) {
   if (triangles.empty()) return false;
-  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  // Each undirected edge with the direction the triangle runs it in: a closed, consistently wound surface
+  // has every edge twice, once each way. An inconsistently wound one has no meaningful signed volume.
+  std::vector<std::tuple<uint32_t, uint32_t, bool>> edges;
   edges.reserve(triangles.size() * 3);
   for (const auto& t : triangles)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
       if (a == b) return false;  // a degenerate triangle: its "edge" is no edge of a surface
-      edges.emplace_back(std::min(a, b), std::max(a, b));
+      edges.emplace_back(std::min(a, b), std::max(a, b), a < b);
     }
   std::sort(edges.begin(), edges.end());
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i != 2) return false;
-    i = j;
+  for (size_t i = 0; i < edges.size(); i += 2) {
+    if (i + 1 >= edges.size()) return false;
+    const auto& [a0, b0, forward0] = edges[i];
+    const auto& [a1, b1, forward1] = edges[i + 1];
+    if (a0 != a1 || b0 != b1 || forward0 == forward1) return false;
+    if (i + 2 < edges.size() && std::get<0>(edges[i + 2]) == a0 && std::get<1>(edges[i + 2]) == b0) return false;
   }
   return true;
 }

@@ -20,7 +20,8 @@ struct BatchTriangle {
 
 // The triangles of every skinned instance that is closed: after welding the instance's vertices at
 // identical bind positions (primitives of one instance weld together), every edge is shared by exactly
-// two triangles. Instances are judged one by one; an open one adds nothing. Empty when none is closed.
+// two triangles that run it in opposite directions (consistent winding, without which a signed volume
+// means nothing). Instances are judged one by one; an open one adds nothing. Empty when none is closed.
 std::vector<BatchTriangle> closed_triangles(const Asset& asset, const std::vector<MeshInstance>& instances,
                                             const SkinRegions& regions);
 

@@ -85,5 +85,11 @@ TEST(ClosedVolume, MissingOrDoubledTriangleIsOpen) {
   EXPECT_FALSE(is_closed({}));
 }
 
+TEST(ClosedVolume, InconsistentWindingIsNotClosed) {
+  Soup s = cube(1.0f);
+  std::swap(s.triangles.front()[1], s.triangles.front()[2]);  // one face turned inside out
+  EXPECT_FALSE(is_closed(s.triangles));
+}
+
 }  // namespace
 }  // namespace dqskin::report_detail

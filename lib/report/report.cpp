@@ -19,7 +19,6 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
-#include <set>
 
 namespace dqskin {
 
@@ -63,19 +62,14 @@ std::vector<uint8_t> read_back(const std::string& path) {
 std::vector<std::pair<std::string, Image>> contact_sheets(GpuContext& context, const InputPlan& input,
                                                           const ReportOptions& options, InputData& data) {
   std::vector<std::pair<std::string, Image>> out;
-  std::set<std::string> names;
   for (size_t c = 0; c < data.clips.size(); ++c) {
     check_cancelled(options.cancel);
     ClipData& clip = data.clips[c];
     ClipImage image;
-    image.file = "worst_" + safe_name(clip.name);
-    // Two clips whose names differ only in characters safe_name replaces: the later one gets its index too.
-    if (names.count(image.file)) {
-      image.file += "_";
-      image.file += std::to_string(c);
-    }
-    names.insert(image.file);
-    image.file += ".png";
+    // Named as the clip's folder in a bake (job_plan.hpp), which the planner keeps unique among the input's
+    // clips: "<stem>/<anim>" gives worst_<anim>.png.
+    const std::string& folder = input.clips[c].folder;
+    image.file = "worst_" + folder.substr(std::min(folder.size(), input.stem.size() + 1)) + ".png";
     image.frames = worst_frames(clip.worst_lbs_dib, size_t(options.worst_frames));
     image.scale = clip.lbs_dqs_max;
     WorstFrames frames{*input.asset, input.instances, input.clips[c].clip, {}, image.scale, options.image_size};

@@ -330,12 +330,18 @@ std::string clip_sections(const json& report, const std::vector<EmbeddedImage>& 
     }
 
     // The clip's contact sheet, and any other image of "images" for this clip, each once.
+    // Clip names may repeat (glTF does not forbid it), so an entry of "images" found by name is taken only
+    // when it is no clip's own "image": each clip's sheet is shown under that clip alone.
     std::vector<std::string> files;
     if (member(clip, "image").is_string()) files.push_back(member(clip, "image").get<std::string>());
     for (const json& entry : array_member(report, "images"))
       if (string_of(member(entry, "clip")) == name) {
         const std::string file = string_of(member(entry, "file"));
-        if (!file.empty() && std::find(files.begin(), files.end(), file) == files.end()) files.push_back(file);
+        const bool another_clips = std::any_of(clips.begin(), clips.end(), [&](const json& other) {
+          return member(other, "image").is_string() && member(other, "image").get<std::string>() == file;
+        });
+        if (!file.empty() && !another_clips && std::find(files.begin(), files.end(), file) == files.end())
+          files.push_back(file);
       }
     for (const std::string& file : files) s += image_figure(report, times, file, images);
     s += "</div>\n</div>\n";
@@ -353,20 +359,25 @@ std::string joint_article(const json& report, const json& joint, size_t index) {
                   joint_anchor(index) + "\">\n<h3>" + text(string_of(member(joint, "name"))) + "<span class=\"meta\">skin " +
                   shown(member(joint, "skin")) + ", joint " + shown(member(joint, "joint")) + ", " + shown(member(joint, "vertices")) +
                   " vertices</span></h3>\n<p>" + badge(verdict) + text(string_of(member(verdict, "text"))) + "</p>\n";
-  for (const json& entry : array_member(joint, "clips")) {
+  const json& clips = array_member(report, "clips");
+  const json& joint_clips = array_member(joint, "clips");
+  for (size_t c = 0; c < joint_clips.size(); ++c) {
+    const json& entry = joint_clips[c];
     const std::string clip_name = string_of(member(entry, "clip"));
+    // A joint's clips are the report's, in its order; the name is checked, as clip names may repeat, and
+    // searched for only in a document that does not keep the order.
     const json* clip = nullptr;
-    for (const json& c : array_member(report, "clips"))
-      if (string_of(member(c, "name")) == clip_name) {
-        clip = &c;
-        break;
-      }
+    if (c < clips.size() && string_of(member(clips[c], "name")) == clip_name) clip = &clips[c];
+    for (size_t k = 0; k < clips.size() && !clip; ++k)
+      if (string_of(member(clips[k], "name")) == clip_name) clip = &clips[k];
     const json& series = member(entry, "series");
     const std::vector<std::optional<double>> lbs_dib = series_of(member(series, "lbs_dib_max"));
     static const json null;
     const std::vector<double> times = times_of(clip ? *clip : null, lbs_dib.size());
     std::optional<double> marker;
-    if (string_of(member(worst, "clip")) == clip_name) marker = time_of_frame(times, member(worst, "frame"));
+    const std::optional<double> worst_clip = number_of(member(worst, "clip_index"));
+    if (worst_clip ? *worst_clip == double(c) : string_of(member(worst, "clip")) == clip_name)
+      marker = time_of_frame(times, member(worst, "frame"));
 
     ChartSpec displacement = chart("Distance to dib, max over the region", "m", times, marker,
                                    {{"lbs", "lbs", lbs_dib}, {"dqs", "dqs", series_of(member(series, "dqs_dib_max"))}});

@@ -108,7 +108,8 @@ nlohmann::json report_json(const InputData& input, const ReportOptions& options)
                         {"twist_max", number(s.twist_max)},
                         {"bend_max", number(s.bend_max)},
                         {"flips", s.flips},
-                        {"worst", {{"clip", input.clips.empty() ? "" : input.clips[s.worst_clip].name}, {"frame", s.worst_frame}}}};
+                        {"worst", {{"clip", input.clips.empty() ? "" : input.clips[s.worst_clip].name}, {"clip_index", s.worst_clip},
+                                   {"frame", s.worst_frame}}}};
     joint["verdict"] = {{"code", j.verdict.code}, {"text", j.verdict.text}};
     nlohmann::json per_clip = nlohmann::json::array();
     for (size_t c = 0; c < j.clips.size(); ++c) {
@@ -138,7 +139,8 @@ nlohmann::json report_json(const InputData& input, const ReportOptions& options)
 }
 
 std::string report_json_text(const nlohmann::json& report) {
-  std::string text = report.dump(2);
+  // Replace, not throw: the input's file name may be any bytes (as in the manifest).
+  std::string text = report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
   text += '\n';
   return text;
 }
