@@ -51,18 +51,10 @@ struct BakeSettings {
 // --max-error: a length in scene units, or a percentage of the clip's bounding-box diagonal.
 void parse_max_error(const std::string& text, TextureOptions& t) {
   if (text.empty()) return;
-  const bool relative = text.back() == '%';
-  const std::string number = relative ? text.substr(0, text.size() - 1) : text;
-  size_t used = 0;
-  double value = -1;
-  try {
-    value = std::stod(number, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != number.size() || !(value > 0) || !std::isfinite(value))
-    throw InputError("--max-error '" + text + "' is not a positive length or percentage (0.001, 0.1%)");
-  t.max_error = relative ? value / 100 : value;
-  t.max_error_relative = relative;
+  const LengthOrPercent e = parse_length_or_percent(
+      text, false, "--max-error '" + text + "' is not a positive length or percentage (0.001, 0.1%)");
+  t.max_error = e.value;
+  t.max_error_relative = e.relative;
 }
 
 BakeOptions to_options(const BakeSettings& s) {

@@ -61,4 +61,15 @@ void add_frame_selection(CLI::App& command, FrameSelection& selection, const cha
 // The FrameSpec they ask for. Throws InputError for a bad range or list, or more than one way given.
 FrameSpec to_frame_spec(const FrameSelection& selection);
 
+// A length in scene units ("0.002") or a percentage of a bounding-box diagonal ("0.5%", as the fraction
+// 0.005 with relative set): bake's --max-error and report's --tolerance.
+struct LengthOrPercent {
+  double value = 0;
+  bool relative = false;
+};
+
+// Parses `text`: a finite number, more than zero (or not negative with allow_zero), with an optional '%'.
+// Throws InputError(problem) otherwise.
+LengthOrPercent parse_length_or_percent(const std::string& text, bool allow_zero, const std::string& problem);
+
 }  // namespace dqskin::cli

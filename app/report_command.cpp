@@ -37,20 +37,12 @@ struct ReportSettings {
 };
 
 // --tolerance: a length in scene units, or a percentage of the rest pose's bounding-box diagonal (as
-// bake's --max-error).
+// bake's --max-error, but 0 allowed).
 void parse_tolerance(const std::string& text, ReportThresholds& t) {
-  const bool relative = !text.empty() && text.back() == '%';
-  const std::string number = relative ? text.substr(0, text.size() - 1) : text;
-  size_t used = 0;
-  double value = -1;
-  try {
-    value = std::stod(number, &used);
-  } catch (const std::exception&) {
-  }
-  if (number.empty() || used != number.size() || !(value >= 0) || !std::isfinite(value))
-    throw InputError("--tolerance '" + text + "' is not a length or percentage (0.002, 0.5%)");
-  t.tolerance = relative ? value / 100 : value;
-  t.tolerance_relative = relative;
+  const LengthOrPercent l = parse_length_or_percent(
+      text, true, "--tolerance '" + text + "' is not a length or percentage (0.002, 0.5%)");
+  t.tolerance = l.value;
+  t.tolerance_relative = l.relative;
 }
 
 ReportOptions to_options(const ReportSettings& s) {
