@@ -31,18 +31,8 @@ cp build/release/app/dqskin "$TMP/dqskin"
 DQSKIN="$TMP/dqskin"
 GLTFPACK=build/release/tools/node_modules/.bin/gltfpack
 
-# The median wall time, in seconds, of RUNS runs of a command (its output discarded).
-median_seconds() {
-  local times=()
-  for _ in $(seq "$RUNS"); do
-    local start end
-    start=$(date +%s.%N)
-    "$@" >/dev/null 2>&1 || true
-    end=$(date +%s.%N)
-    times+=("$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')")
-  done
-  printf '%s\n' "${times[@]}" | sort -g | awk '{ v[NR] = $1 } END { printf "%.2f", v[int((NR + 1) / 2)] }'
-}
+# shellcheck source=bench_median.sh
+source "$ROOT/scripts/bench_median.sh"
 
 echo "dqskin $($DQSKIN --version 2>/dev/null | head -1); $(nproc) cores; runs: $RUNS (median); diff args: ${EXTRA[*]:-none}"
 printf '%-10s %8s %8s %9s %9s %10s %8s\n' model vertices times diff_s bake_s diff/bake corr_s
