@@ -67,6 +67,33 @@ void find_missing_shards(const std::vector<const JobManifest*>& manifests, std::
       }
 }
 
+// Whether a folder under `root` (relative, "" for root itself) is reached through a symbolic link: verify
+// follows none, so that a link in a copied folder cannot make it read, or walk, what lies elsewhere.
+class LinkCheck {
+public:
+  explicit LinkCheck(const fs::path& root) : root_(root) {}
+  bool linked(const std::string& folder) {
+    if (folder.empty()) return false;
+    if (const auto it = known_.find(folder); it != known_.end()) return it->second;
+    const size_t slash = folder.find_last_of('/');
+    bool result = linked(slash == std::string::npos ? "" : folder.substr(0, slash));
+    if (!result) {
+      std::error_code ec;
+      result = fs::symlink_status(root_ / folder, ec).type() == fs::file_type::symlink;
+    }
+    return known_[folder] = result;
+  }
+
+private:
+  const fs::path root_;
+  std::map<std::string, bool> known_;
+};
+
+std::string parent_of(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash);
+}
+
 }  // namespace
 
 VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const std::vector<const JobManifest*>& manifests,
@@ -95,7 +122,14 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   report.files = listed.size();
   for (const auto& [path, entry] : listed) report.bytes += entry.size;
 
-  const std::vector<std::pair<std::string, Listed>> files(listed.begin(), listed.end());
+  LinkCheck links(folder);
+  std::vector<std::pair<std::string, Listed>> files;
+  for (const auto& [path, entry] : listed) {
+    if (links.linked(parent_of(path)))
+      report.problems.push_back({path, "missing", "lies behind a symbolic link, which verify does not follow"});
+    else
+      files.emplace_back(path, entry);
+  }
   std::vector<std::optional<FolderProblem>> results(files.size());
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   concurrency::parallel_for(files.size(), threads,
@@ -104,6 +138,10 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
     if (p) report.problems.push_back(std::move(*p));
 
   for (const std::string& stem : owned) {
+    if (links.linked(stem)) {
+      report.problems.push_back({stem, "unlisted", "is a symbolic link, which verify does not follow"});
+      continue;
+    }
     std::error_code ec;
     for (fs::recursive_directory_iterator it(folder / stem, ec), end; !ec && it != end; it.increment(ec)) {
       std::error_code type_error;  // folders hold the files; a link to one is a file here, not followed

@@ -1,0 +1,181 @@
+// dqskin verify and merge through the library on bakes of a bundled rig (deformed on the CPU, so no GL
+// context is needed): shards merge into the unsharded bake byte for byte, and every way a folder can
+// differ from its manifests is named.
+#include "dqskin/verify.hpp"
+
+#include "dqskin/bake.hpp"
+#include "dqskin/error.hpp"
+#include "../test_support/read_file.hpp"
+#include "../test_support/scratch_dir.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+namespace dqskin {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_support::read_file;
+
+const unsigned kFormats = unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones) |
+                          unsigned(BakeFormat::kMorph);
+
+// Every file under `dir`, relative path → bytes.
+std::map<std::string, std::string> tree(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) out[fs::relative(e.path(), dir).generic_string()] = read_file(e.path());
+  return out;
+}
+
+std::vector<std::string> kinds(const VerifyReport& r) {
+  std::vector<std::string> out;
+  for (const FolderProblem& p : r.problems) out.push_back(p.kind + " " + p.path);
+  return out;
+}
+
+class VerifyTest : public testing::Test {
+protected:
+  void bake_into(const std::string& folder, Shard shard = {}, BlendMode mode = BlendMode::kDqs) {
+    BakeOptions o;
+    o.out_dir = (root_ / folder).string();
+    o.formats = kFormats;
+    o.backend = Backend::kFastCpu;
+    o.mode = mode;
+    o.jobs = 2;
+    o.shard = shard;
+    o.frames.fps = 10;
+    ASSERT_FALSE(bake({rig_}, o).any_failed());
+  }
+  std::string at(const std::string& folder) const { return (root_ / folder).string(); }
+
+  const testing_support::ScratchDir scratch_{"verify"};
+  const fs::path root_ = scratch_.path();
+  const std::string rig_ = std::string(DQSKIN_TESTDATA_DIR) + "/bending_arm.gltf";
+};
+
+TEST_F(VerifyTest, ShardsMergeIntoTheUnshardedBake) {
+  bake_into("whole");
+  for (size_t i = 0; i < 3; ++i) bake_into("sharded", {i, 3});
+  const VerifyReport before = verify_folder(at("sharded"));
+  EXPECT_TRUE(before.ok()) << testing::PrintToString(kinds(before));
+  EXPECT_EQ(before.manifests.size(), 3u);
+
+  const MergeReport merged = merge_shards(at("sharded"));
+  ASSERT_TRUE(merged.ok()) << testing::PrintToString(merged.refusals);
+  ASSERT_EQ(merged.merged.size(), 1u);
+  EXPECT_EQ(merged.merged[0].manifest, "manifest.json");
+  EXPECT_EQ(merged.merged[0].shards, 3u);
+  EXPECT_EQ(read_file(root_ / "sharded" / "manifest.json"), read_file(root_ / "whole" / "manifest.json"));
+  EXPECT_TRUE(tree(root_ / "sharded") == tree(root_ / "whole")) << "the shard manifests are gone, the rest is the bake";
+  const VerifyReport after = verify_folder(at("sharded"));
+  EXPECT_TRUE(after.ok());
+  EXPECT_EQ(after.files, before.files);
+  EXPECT_TRUE(merge_shards(at("sharded")).ok()) << "merging a merged folder again changes nothing";
+  EXPECT_TRUE(tree(root_ / "sharded") == tree(root_ / "whole"));
+}
+
+TEST_F(VerifyTest, AnUnfinishedShardIsNamedAndNothingIsMerged) {
+  bake_into("sharded", {0, 3});
+  bake_into("sharded", {2, 3});
+  const auto before = tree(root_ / "sharded");
+  const VerifyReport v = verify_folder(at("sharded"));
+  ASSERT_FALSE(v.problems.empty());
+  EXPECT_EQ(v.problems.front().kind, "shard-missing");
+  EXPECT_EQ(v.problems.front().path, "manifest.shard-1-of-3.json");
+  const MergeReport m = merge_shards(at("sharded"));
+  EXPECT_FALSE(m.ok());
+  EXPECT_TRUE(m.merged.empty());
+  EXPECT_TRUE(tree(root_ / "sharded") == before) << "a refused merge writes and deletes nothing";
+}
+
+TEST_F(VerifyTest, ShardsRunWithOtherFlagsAreRefused) {
+  bake_into("sharded", {0, 2});
+  bake_into("sharded", {1, 2}, BlendMode::kLbs);
+  EXPECT_TRUE(verify_folder(at("sharded")).ok()) << "each shard's files are as its manifest says";
+  const MergeReport m = merge_shards(at("sharded"));
+  ASSERT_EQ(m.refusals.size(), 1u);
+  EXPECT_NE(m.refusals[0].find("manifest.shard-1-of-2.json"), std::string::npos) << m.refusals[0];
+  EXPECT_NE(m.refusals[0].find("(mode: \"lbs\" here, \"dqs\" there)"), std::string::npos) << m.refusals[0];
+  EXPECT_FALSE(fs::exists(root_ / "sharded" / "manifest.json"));
+}
+
+TEST_F(VerifyTest, NamesEachWayAFolderDiffersFromItsManifest) {
+  bake_into("out");
+  ASSERT_TRUE(verify_folder(at("out")).ok());
+  const fs::path clip = root_ / "out" / "bending_arm" / "bend";
+  ASSERT_TRUE(fs::exists(clip / "frame_0003.glb"));
+  {
+    std::fstream f(clip / "frame_0001.glb", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\xff');
+  }
+  fs::resize_file(clip / "frame_0002.glb", 50);
+  fs::remove(clip / "frame_0003.glb");
+  std::ofstream(clip / "notes.txt") << "extra";
+  std::ofstream(clip / ".frame_0004.glb.tmp-4242-0") << "partial";
+  std::ofstream(root_ / "out" / ".manifest.json.tmp-4242-1") << "partial";
+  const VerifyReport r = verify_folder(at("out"), 2);
+  const std::vector<std::string> expected = {
+      "temporary .manifest.json.tmp-4242-1",
+      "temporary bending_arm/bend/.frame_0004.glb.tmp-4242-0",
+      "hash bending_arm/bend/frame_0001.glb",
+      "size bending_arm/bend/frame_0002.glb",
+      "missing bending_arm/bend/frame_0003.glb",
+      "unlisted bending_arm/bend/notes.txt",
+  };
+  EXPECT_EQ(kinds(r), expected);
+  EXPECT_NE(r.problems[3].message.find("50 bytes"), std::string::npos) << r.problems[3].message;
+  const auto json = nlohmann::json::parse(verify_json(r));
+  EXPECT_FALSE(json["ok"].get<bool>());
+  EXPECT_EQ(json["problems"].size(), expected.size());
+}
+
+// A manifest is data from elsewhere: a path out of the folder is a problem, never a file read.
+TEST_F(VerifyTest, AManifestCannotPointOutOfItsFolder) {
+  bake_into("out");
+  const fs::path manifest = root_ / "out" / "manifest.json";
+  auto json = nlohmann::json::parse(read_file(manifest));
+  json["outputs"][0]["path"] = "../whole/secret";
+  std::ofstream(manifest) << json.dump();
+  const VerifyReport r = verify_folder(at("out"));
+  ASSERT_FALSE(r.problems.empty());
+  EXPECT_EQ(r.problems[0].kind, "manifest");
+  EXPECT_NE(r.problems[0].message.find("outside the folder"), std::string::npos) << r.problems[0].message;
+  std::ofstream(manifest) << "{ not json";
+  EXPECT_EQ(verify_folder(at("out")).problems[0].message, "the manifest is not valid JSON");
+  fs::create_directories(root_ / "empty");
+  EXPECT_EQ(verify_folder(at("empty")).problems.at(0).kind, "manifest");
+  EXPECT_THROW(verify_folder(at("absent")), InputError);
+}
+
+// Links are not followed: an output folder that is a link to elsewhere is named, not walked or read.
+TEST_F(VerifyTest, SymbolicLinksAreNotFollowed) {
+  bake_into("out");
+  fs::rename(root_ / "out" / "bending_arm", root_ / "elsewhere");
+  fs::create_directory_symlink(root_ / "elsewhere", root_ / "out" / "bending_arm");
+  const VerifyReport r = verify_folder(at("out"));
+  ASSERT_FALSE(r.ok());
+  for (const FolderProblem& p : r.problems) EXPECT_NE(p.message.find("symbolic link"), std::string::npos) << p.path;
+  EXPECT_EQ(r.problems.size(), r.files + 1) << "every listed file, and the folder itself";
+}
+
+// A shard killed mid-bake leaves temporaries; its rerun keeps the finished files and removes them.
+TEST_F(VerifyTest, ARerunShardRemovesWhatItsKilledRunLeft) {
+  bake_into("sharded", {0, 2});
+  bake_into("sharded", {1, 2});
+  const fs::path clip = root_ / "sharded" / "bending_arm" / "bend";
+  std::ofstream(clip / ".frame_0000.glb.tmp-1-0") << "partial";  // frame 0 is shard 0's
+  fs::remove(root_ / "sharded" / "manifest.shard-0-of-2.json");
+  EXPECT_FALSE(merge_shards(at("sharded")).ok());
+  bake_into("sharded", {0, 2});
+  EXPECT_FALSE(fs::exists(clip / ".frame_0000.glb.tmp-1-0"));
+  EXPECT_TRUE(merge_shards(at("sharded")).ok());
+}
+
+}  // namespace
+}  // namespace dqskin
