@@ -107,6 +107,10 @@ MpiDefault=none
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 SchedulerType=sched/backfill
+# A finished array task's CPU goes to the next one at once rather than up to 3 s later (the default
+# delay batches the scheduling of many submissions, of no use to one node): 16 two-CPU rounds of short
+# tasks take 10 s instead of 24 s.
+SchedulerParameters=batch_sched_delay=0
 # Take the node as written here, whatever slurmd detects (a container may report other numbers).
 SlurmdParameters=config_overrides
 ReturnToService=2
