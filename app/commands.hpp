@@ -32,6 +32,8 @@ Command add_render_command(CLI::App& app);
 Command add_diff_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_lint_command(CLI::App& app);
+Command add_verify_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
 
 // How every command that reads glTF files reads them (--resource-root, --max-memory), shared so that info,
 // bake and render read the same flags the same way.

@@ -1,11 +1,9 @@
 #include "manifest.hpp"
 
-#include "dqskin/sha256.hpp"
+#include "../job/job_manifest.hpp"
 #include "dqskin/version.hpp"
 
 #include <nlohmann/json.hpp>
-
-#include <filesystem>
 
 namespace dqskin::bake_detail {
 
@@ -14,22 +12,9 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
   json inputs = json::array();
   for (size_t i = 0; i < plans.size(); ++i) {
     const InputPlan& plan = plans[i];
-    json in = {{"path", plan.path}, {"output_folder", plan.stem}};
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(plan.path, ec);
-    if (!ec) {
-      in["size"] = uint64_t(size);
-      try {
-        in["sha256"] = sha256_file(plan.path);
-      } catch (const std::exception&) {  // unreadable inputs have an error below already
-      }
-    }
-    const std::string& error = report.inputs[i].error;
-    if (!error.empty()) in["error"] = error;
-    json clips = json::array();
-    for (const ClipPlan& clip : plan.clips) {
-      json c = {{"name", clip.name}, {"folder", clip.folder}, {"frame_times", clip.times}, {"frame_numbers", clip.numbers}};
-      if (clip.fps > 0) c["fps"] = clip.fps;
+    json in = job_manifest::input_record(plan, report.inputs[i].error);
+    for (size_t c = 0; c < plan.clips.size(); ++c) {
+      const ClipPlan& clip = plan.clips[c];
       json checks = json::object();
       for (const TextureCheck& k : report.checks)
         if (k.input == plan.path && k.clip == clip.name)
@@ -40,20 +25,18 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
                                {"max_normal_degrees", k.max_normal_degrees},
                                {"max_midpoint_normal_degrees", k.max_midpoint_normal_degrees},
                                {"samples", k.samples}};
-      if (!checks.empty()) c["decode_check"] = std::move(checks);
+      json& record = in["animations"][c];
+      if (!checks.empty()) record["decode_check"] = std::move(checks);
       for (const MorphCheck& m : report.morphs)
         if (m.input == plan.path && m.clip == clip.name)
-          c["morph"] = {{"frames", m.frames},
-                        {"keyframes", m.keyframes},
-                        {"max_error", m.max_error},
-                        {"max_normal_degrees", m.max_normal_degrees},
-                        {"bytes", m.bytes},
-                        {"sparse_accessors", m.sparse_accessors},
-                        {"quantized", m.quantized}};
-      clips.push_back(std::move(c));
+          record["morph"] = {{"frames", m.frames},
+                             {"keyframes", m.keyframes},
+                             {"max_error", m.max_error},
+                             {"max_normal_degrees", m.max_normal_degrees},
+                             {"bytes", m.bytes},
+                             {"sparse_accessors", m.sparse_accessors},
+                             {"quantized", m.quantized}};
     }
-    in["animations"] = std::move(clips);
-    if (plan.scene >= 0) in["scene"] = plan.scene;
     inputs.push_back(std::move(in));
   }
   json outputs = json::array();
@@ -99,13 +82,8 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     }
     manifest["morph"] = std::move(morph);
   }
-  const std::string name = options.shard.count > 1 ? "manifest.shard-" + std::to_string(options.shard.index) + "-of-" +
-                                                         std::to_string(options.shard.count) + ".json"
-                                                   : "manifest.json";
-  const std::string path = options.out_dir + "/" + name;
-  AtomicFile file(path);
-  file.write(manifest.dump(2, ' ', false, json::error_handler_t::replace) + "\n");  // input paths may be any bytes
-  file.commit(Overwrite::kReplace);  // the record of the latest bake, whatever an earlier one wrote
+  const std::string path = options.out_dir + "/" + job_manifest::file_name("manifest", options.shard);
+  job_manifest::write(path, manifest);
   return path;
 }
 

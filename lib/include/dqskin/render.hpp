@@ -67,6 +67,7 @@ struct RenderReport {
   std::vector<InputResult> inputs;  // error empty when the input rendered
   std::vector<ModeDiffScale> mode_diff;  // one per rendered clip with Shade::kModeDiff
   std::vector<std::string> outputs;     // files written or found equal, relative to out_dir, sorted
+  std::string manifest;  // render-manifest.json (render-manifest.shard-I-of-N.json); empty when nothing rendered
   GpuContextInfo gpu;       // the context that drew
   std::string deformer;     // what deformed: describe(DeformPath), empty when nothing was rendered
   size_t frames_total = 0;  // frames this shard renders over all inputs

@@ -1,0 +1,75 @@
+// `dqskin merge OUTDIR`: the shard manifests of a sharded bake or render, after all shards have run into
+// OUTDIR, into the manifest the unsharded job writes (dqskin/verify.hpp merge_shards): what a Make rule
+// or a pipeline step whose target is manifest.json waits for.
+#include "commands.hpp"
+#include "console.hpp"
+#include "exit_codes.hpp"
+
+#include "dqskin/byte_size.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/verify.hpp"
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+namespace dqskin::cli {
+namespace {
+
+struct MergeSettings {
+  std::string folder;
+  bool quiet = false;
+  unsigned threads = 0;
+};
+
+int run_merge(const MergeSettings& s) {
+  const MergeReport report = merge_shards(s.folder, s.threads);
+  // A folder far from its manifests (an unmerged folder copied half, a stale shard) can have thousands of
+  // problems: the first ones say what is wrong, dqskin verify lists them all.
+  constexpr size_t kShown = 20;
+  const std::vector<FolderProblem>& problems = report.verify.problems;
+  for (size_t i = 0; i < std::min(problems.size(), kShown); ++i)
+    print_error(problem_location(s.folder, problems[i]), problems[i].message);
+  if (problems.size() > kShown)
+    print_error(s.folder, "and " + std::to_string(problems.size() - kShown) + " more problems (dqskin verify lists them all)");
+  for (const std::string& r : report.refusals) print_error(r);
+  if (!report.ok()) {
+    print_error(s.folder, "merge refused, nothing written (" +
+                              std::to_string(report.verify.problems.size() + report.refusals.size()) + " problems)");
+    return kUsageOrInputError;
+  }
+  if (!s.quiet) {
+    const std::string files = std::to_string(report.verify.files) + " files (" + byte_size(report.verify.bytes) + ")";
+    if (report.merged.empty())
+      std::cerr << "nothing to merge in " << printable(s.folder) << ": no shard manifests; " << files << " as listed\n";
+    for (const MergedJob& m : report.merged)
+      std::cerr << "merged " << m.shards << " shards into " << printable(s.folder + "/" + m.manifest) << ": " << files
+                << " verified\n";
+  }
+  return kSuccess;
+}
+
+}  // namespace
+
+Command add_merge_command(CLI::App& app) {
+  auto settings = std::make_shared<MergeSettings>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge", "After every shard of a bake or render (--shard I/N) has run into OUTDIR: verify their files and "
+               "write the manifest the unsharded run writes, byte for byte");
+  cmd->add_option("OUTDIR", settings->folder, "The folder the shards wrote (-o)")->required();
+  cmd->add_option("--threads", settings->threads, "Files hashed at once (default: one per core)")->type_name("N");
+  cmd->add_flag("-q,--quiet", settings->quiet, "Print nothing unless the merge is refused");
+  cmd->footer(
+      "Reads manifest.shard-I-of-N.json (bake) and render-manifest.shard-I-of-N.json (render), checks the\n"
+      "folder as dqskin verify does, checks that all N shards finished with the same flags, inputs (by\n"
+      "SHA-256) and deformer, then writes manifest.json (render-manifest.json) and deletes the shard manifests.\n"
+      "Refuses, writing nothing, with one line per problem: a shard that did not finish (run it again: it\n"
+      "keeps the files already there and removes what a killed run left), a file missing or changed, shards\n"
+      "run differently. With no shard manifests and a folder as its manifests say, there is nothing to do.\n"
+      "Exit status: 0 merged (or nothing to merge), 2 refused or a usage error.\n"
+      "Examples:\n"
+      "  parallel dqskin bake models/*.glb -o out --shard {}/8 --quiet ::: $(seq 0 7) && dqskin merge out");
+  return {cmd, [settings] { return run_merge(*settings); }};
+}
+
+}  // namespace dqskin::cli

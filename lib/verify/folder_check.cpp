@@ -1,0 +1,128 @@
+#include "folder_check.hpp"
+
+#include "../concurrency/parallel_for.hpp"
+#include "../io/leftover_files.hpp"
+#include "../job/job_manifest.hpp"
+#include "dqskin/sha256.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <set>
+#include <thread>
+#include <tuple>
+
+namespace dqskin::verify_detail {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Listed {
+  uint64_t size = 0;
+  std::string sha256;
+  std::string manifest;  // the first manifest that lists it
+};
+
+std::string leftover_message(const leftover_files::Leftover& l) {
+  return l.old ? "an old file kept aside by a run with --force that was killed (of " + l.target + ")"
+               : "a temporary file of a write that was killed (of " + l.target + ")";
+}
+
+// What a listed file is on disk compared with its record; empty when it matches.
+std::optional<FolderProblem> check_file(const fs::path& folder, const std::string& path, const Listed& listed) {
+  std::error_code ec;
+  const fs::path file = folder / path;
+  const fs::file_status status = fs::symlink_status(file, ec);
+  if (ec || !fs::exists(status)) return FolderProblem{path, "missing", "missing (listed in " + listed.manifest + ")"};
+  if (!fs::is_regular_file(status))
+    return FolderProblem{path, "missing", "is not a regular file (listed in " + listed.manifest + " as one)"};
+  const uintmax_t size = fs::file_size(file, ec);
+  if (ec) return FolderProblem{path, "missing", "cannot be read: " + ec.message()};
+  if (size != listed.size)
+    return FolderProblem{path, "size",
+                         std::to_string(size) + " bytes where " + listed.manifest + " lists " + std::to_string(listed.size) +
+                             (size < listed.size ? " (truncated)" : " (grown)")};
+  try {
+    if (sha256_file(file.string()) != listed.sha256)
+      return FolderProblem{path, "hash", "its SHA-256 differs from the one " + listed.manifest + " lists (the bytes changed)"};
+  } catch (const std::exception&) {
+    return FolderProblem{path, "missing", "cannot be read"};
+  }
+  return std::nullopt;
+}
+
+// Shards of a job that left no manifest: every count N seen for a job needs all of 0 … N-1.
+void find_missing_shards(const std::vector<const JobManifest*>& manifests, std::vector<FolderProblem>& problems) {
+  std::map<std::pair<std::string, size_t>, std::set<size_t>> seen;  // (base, count) → indices
+  for (const JobManifest* m : manifests)
+    if (m->sharded()) seen[{m->base, m->shard.count}].insert(m->shard.index);
+  for (const auto& [job, indices] : seen)
+    for (size_t i = 0; i < job.second; ++i)
+      if (!indices.count(i)) {
+        const Shard shard{i, job.second};
+        problems.push_back({job_manifest::file_name(job.first, shard), "shard-missing",
+                            "missing: shard " + std::to_string(i) + "/" + std::to_string(job.second) +
+                                " did not finish (run it again)"});
+      }
+}
+
+}  // namespace
+
+VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const std::vector<const JobManifest*>& manifests,
+                          unsigned threads) {
+  VerifyReport report;
+  report.folder = folder.string();
+  report.problems = set.problems;
+  for (const std::string& name : set.root_leftovers)
+    report.problems.push_back({name, "temporary", leftover_message(*leftover_files::parse(name))});
+  find_missing_shards(manifests, report.problems);
+
+  // Every listed file once; two manifests that list one path differently are a problem of their own.
+  std::map<std::string, Listed> listed;
+  std::set<std::string> owned;  // the output folders of inputs that did not fail
+  for (const JobManifest* m : manifests) {
+    report.manifests.push_back(m->name);
+    for (const json& out : m->json["outputs"]) {
+      const Listed entry{out["size"].get<uint64_t>(), out["sha256"].get<std::string>(), m->name};
+      const auto [it, inserted] = listed.emplace(out["path"].get<std::string>(), entry);
+      if (!inserted && (it->second.size != entry.size || it->second.sha256 != entry.sha256))
+        report.problems.push_back({it->first, "conflict", "listed differently by " + it->second.manifest + " and " + m->name});
+    }
+    for (const json& in : m->json["inputs"])
+      if (!in.contains("error")) owned.insert(in["output_folder"].get<std::string>());
+  }
+  report.files = listed.size();
+  for (const auto& [path, entry] : listed) report.bytes += entry.size;
+
+  const std::vector<std::pair<std::string, Listed>> files(listed.begin(), listed.end());
+  std::vector<std::optional<FolderProblem>> results(files.size());
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  concurrency::parallel_for(files.size(), threads,
+                            [&](size_t i) { results[i] = check_file(folder, files[i].first, files[i].second); });
+  for (std::optional<FolderProblem>& p : results)
+    if (p) report.problems.push_back(std::move(*p));
+
+  for (const std::string& stem : owned) {
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(folder / stem, ec), end; !ec && it != end; it.increment(ec)) {
+      std::error_code type_error;  // folders hold the files; a link to one is a file here, not followed
+      if (it->symlink_status(type_error).type() == fs::file_type::directory) continue;
+      const std::string path = stem + "/" + it->path().lexically_relative(folder / stem).generic_string();
+      if (const auto leftover = leftover_files::parse(it->path().filename().string()))
+        report.problems.push_back({path, "temporary", leftover_message(*leftover)});
+      else if (!listed.count(path))
+        report.problems.push_back({path, "unlisted", "is not listed in any manifest"});
+    }
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      report.problems.push_back({stem, "missing", "cannot be listed: " + ec.message()});
+  }
+  // The folder's own problems first (a shard that did not finish explains the files no manifest lists).
+  auto rank = [](const FolderProblem& p) { return p.kind == "shard-missing" || p.kind == "manifest" ? 0 : 1; };
+  std::sort(report.problems.begin(), report.problems.end(), [&](const FolderProblem& a, const FolderProblem& b) {
+    return std::make_tuple(rank(a), std::cref(a.path), std::cref(a.kind)) < std::make_tuple(rank(b), std::cref(b.path), std::cref(b.kind));
+  });
+  return report;
+}
+
+}  // namespace dqskin::verify_detail

@@ -1,0 +1,127 @@
+#include "manifest_set.hpp"
+
+#include "../io/leftover_files.hpp"
+#include "../job/job_manifest.hpp"
+#include "dqskin/error.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace dqskin::verify_detail {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A manifest larger than this is not one dqskin wrote (a million outputs take ~150 MB).
+constexpr uintmax_t kLargestManifest = uintmax_t(1) << 30;
+
+bool is_count(const json& j) { return j.is_number_unsigned(); }
+
+bool is_sha256(const json& j) {
+  if (!j.is_string()) return false;
+  const std::string& s = j.get_ref<const std::string&>();
+  return s.size() == 64 && s.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+// Why `m` is not a manifest verify can rely on, or empty.
+std::string shape_problem(const JobManifest& m) {
+  const json& j = m.json;
+  if (!j.is_object()) return "is not a JSON object";
+  const json* shard = j.contains("shard") ? &j["shard"] : nullptr;
+  if (!shard || !shard->is_object() || !is_count(shard->value("index", json())) || !is_count(shard->value("count", json())))
+    return "has no shard {index, count}";
+  if ((*shard)["index"].get<uint64_t>() != m.shard.index || (*shard)["count"].get<uint64_t>() != m.shard.count)
+    return "says it is shard " + (*shard)["index"].dump() + " of " + (*shard)["count"].dump() + ", not what its name says";
+  if (!j.contains("inputs") || !j["inputs"].is_array()) return "has no inputs list";
+  for (size_t i = 0; i < j["inputs"].size(); ++i) {
+    const json& in = j["inputs"][i];
+    if (!in.is_object() || !in.contains("output_folder") || !in["output_folder"].is_string() ||
+        !is_contained_path(in["output_folder"].get_ref<const std::string&>()))
+      return "inputs[" + std::to_string(i) + "] has no output_folder inside the folder";
+  }
+  if (!j.contains("outputs") || !j["outputs"].is_array()) return "has no outputs list";
+  for (size_t i = 0; i < j["outputs"].size(); ++i) {
+    const json& out = j["outputs"][i];
+    const std::string at = "outputs[" + std::to_string(i) + "]";
+    if (!out.is_object() || !out.contains("path") || !out["path"].is_string()) return at + " has no path";
+    if (!is_contained_path(out["path"].get_ref<const std::string&>())) return at + " names a path outside the folder";
+    if (!is_count(out.value("size", json()))) return at + " has no size";
+    if (!is_sha256(out.value("sha256", json()))) return at + " has no SHA-256";
+  }
+  return {};
+}
+
+}  // namespace
+
+bool is_contained_path(std::string_view path) {
+  if (path.empty() || path.front() == '/' || path.find('\0') != std::string_view::npos) return false;
+  for (size_t start = 0;;) {
+    const size_t slash = path.find('/', start);
+    const std::string_view part = path.substr(start, slash == std::string_view::npos ? slash : slash - start);
+    if (part.empty() || part == "." || part == "..") return false;
+    if (slash == std::string_view::npos) return true;
+    start = slash + 1;
+  }
+}
+
+std::optional<JobManifest> parse_manifest_name(std::string_view name) {
+  constexpr std::string_view json_suffix = ".json", shard_infix = ".shard-", of = "-of-";
+  if (name.size() <= json_suffix.size() || name.substr(name.size() - json_suffix.size()) != json_suffix) return std::nullopt;
+  const std::string_view stem = name.substr(0, name.size() - json_suffix.size());
+  for (const std::string_view base : kJobBases) {
+    if (stem.substr(0, base.size()) != base) continue;
+    const std::string_view rest = stem.substr(base.size());
+    if (rest.empty()) return JobManifest{std::string(name), std::string(base), {}, {}};
+    if (rest.substr(0, shard_infix.size()) != shard_infix) continue;
+    const std::string_view numbers = rest.substr(shard_infix.size());
+    const size_t split = numbers.find(of);
+    if (split == std::string_view::npos) continue;
+    try {
+      const Shard shard = parse_shard(std::string(numbers.substr(0, split)) + "/" + std::string(numbers.substr(split + of.size())));
+      // Only the spelling a shard writes: "0" and no leading zeros, so that one shard has one name.
+      if (job_manifest::file_name(base, shard) != name) continue;
+      if (shard.whole()) continue;
+      return JobManifest{std::string(name), std::string(base), shard, {}};
+    } catch (const InputError&) {
+    }
+  }
+  return std::nullopt;
+}
+
+ManifestSet read_manifests(const fs::path& folder) {
+  ManifestSet set;
+  std::error_code ec;
+  fs::directory_iterator it(folder, ec);
+  if (ec) throw InputError(folder.string() + ": " + (fs::exists(folder) ? "cannot be listed: " + ec.message() : "no such folder"));
+  for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (leftover_files::parse(name)) {
+      set.root_leftovers.push_back(name);
+      continue;
+    }
+    std::optional<JobManifest> m = parse_manifest_name(name);
+    if (!m) continue;
+    std::error_code size_error;
+    const uintmax_t size = fs::file_size(it->path(), size_error);
+    std::ifstream file(it->path(), std::ios::binary);
+    std::string problem;
+    if (size_error || !file) problem = "cannot be read";
+    else if (size > kLargestManifest) problem = "is larger than any manifest (" + std::to_string(size) + " bytes)";
+    else {
+      std::stringstream text;
+      text << file.rdbuf();
+      m->json = json::parse(text.str(), nullptr, false);
+      problem = m->json.is_discarded() ? "is not valid JSON" : shape_problem(*m);
+    }
+    if (problem.empty()) set.manifests.push_back(std::move(*m));
+    else set.problems.push_back({name, "manifest", "the manifest " + problem});
+  }
+  if (ec) throw InputError(folder.string() + ": cannot be listed: " + ec.message());
+  std::sort(set.manifests.begin(), set.manifests.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  std::sort(set.root_leftovers.begin(), set.root_leftovers.end());
+  return set;
+}
+
+}  // namespace dqskin::verify_detail

@@ -1,0 +1,24 @@
+#include "dqskin/verify.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace dqskin {
+
+std::string problem_location(const std::string& folder, const FolderProblem& problem) {
+  std::string location = folder;
+  while (location.size() > 1 && location.back() == '/') location.pop_back();
+  if (!problem.path.empty()) location += (location == "/" ? "" : "/") + problem.path;
+  return location;
+}
+
+std::string verify_json(const VerifyReport& report) {
+  using nlohmann::json;
+  json problems = json::array();
+  for (const FolderProblem& p : report.problems)
+    problems.push_back({{"path", p.path}, {"kind", p.kind}, {"message", p.message}});
+  const json doc = {{"folder", report.folder},   {"ok", report.ok()},       {"manifests", report.manifests},
+                    {"files", report.files},     {"bytes", report.bytes},   {"problems", std::move(problems)}};
+  return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace dqskin
