@@ -63,10 +63,11 @@ install_when_missing() {
   [ ${#missing_packages[@]} -gt 0 ] || cannot_run "${missing_commands[*]} not found although slurm-wlm and munge are installed"
   local sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  # Where systemd runs, Debian's packages also enable and start the system's own daemons (on the usual
+  # ports 6817 and 6818); this cluster runs its own beside them.
   say "installing ${missing_packages[*]}"
   { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
       "${missing_packages[@]}"; } >&2 || cannot_run "could not install ${missing_packages[*]} with apt-get"
-  # Debian's packages enable and start their own daemons where systemd runs; this cluster uses its own.
 }
 
 write_config() {
@@ -75,13 +76,14 @@ write_config() {
   user=$(id -un)
   cpus=$(nproc)
   mem_mib=$(awk '/^MemTotal:/ { print int($2 / 1024) }' /proc/meminfo)
-  mkdir -p "$state/munge" "$state/ctld" "$state/spool" "$state/log"
-  # munged refuses a key or socket folder that others may read or write.
-  chmod 700 "$state/munge"
-  if [ ! -s "$state/munge/munge.key" ]; then
-    (umask 077 && head -c 1024 /dev/urandom >"$state/munge/munge.key")
+  mkdir -p "$state/munge" "$state/munge-key" "$state/ctld" "$state/spool" "$state/log"
+  # As munged wants them: the socket's folder open to every client, the key's to its owner only.
+  chmod 755 "$state/munge"
+  chmod 700 "$state/munge-key"
+  if [ ! -s "$state/munge-key/munge.key" ]; then
+    (umask 077 && head -c 1024 /dev/urandom >"$state/munge-key/munge.key")
   fi
-  chmod 600 "$state/munge/munge.key"
+  chmod 600 "$state/munge-key/munge.key"
   cat >"$conf" <<EOF
 # Written by scripts/slurm-cluster.sh: one node, this machine, reachable on 127.0.0.1 only.
 ClusterName=dqskin-local
@@ -173,9 +175,11 @@ start() {
   [ ${#longest_socket} -le 107 ] ||
     cannot_run "STATE_DIR's path is too long for the Unix sockets in it (${#longest_socket} > 107 bytes): $state"
   write_config
+  # --force: munged also refuses to run when a folder above STATE_DIR may be written by a group (a build
+  # tree under a shared folder); the key and socket folders themselves are as it wants them.
   start_daemon munged "$state/log/munged.log" test -S "$munge_socket" -- munged --force --socket="$munge_socket" \
-    --key-file="$state/munge/munge.key" --pid-file="$state/munged.pid" --log-file="$state/log/munged.log" \
-    --seed-file="$state/munge/munged.seed"
+    --key-file="$state/munge-key/munge.key" --pid-file="$state/munged.pid" --log-file="$state/log/munged.log" \
+    --seed-file="$state/munge-key/munged.seed"
   start_daemon slurmctld "$state/log/slurmctld.log" controller_answers -- slurmctld -f "$conf"
   # slurmd is ready when the controller calls the node idle, below.
   start_daemon slurmd "$state/log/slurmd.log" true -- slurmd -f "$conf"
