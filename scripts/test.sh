@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs what dqskin needs, builds it with warnings as errors and runs every test: the Release build,
-# 60 s of fuzzing the loader and the command line (clang, libFuzzer), and the ASan+UBSan build. Exit
-# status 0 when all passed.
+# Installs what dqskin needs, builds it with warnings as errors and runs every test: the Release build
+# (then its Slurm scale-out recipe on a one-node cluster of this machine), 60 s of fuzzing the loader and
+# the command line (clang, libFuzzer), and the ASan+UBSan build. Exit status 0 when all passed.
 #
 #   scripts/test.sh            everything, as CI runs it
 #   FUZZ_SECONDS=0 scripts/test.sh   without the fuzzing step
@@ -18,6 +18,10 @@ build_and_test() {
   bash scripts/install-node-tools.sh "build/$1/tools"  # validator and optimizers, for the glb and geometry diff tests
   echo "== $1: test"
   ctest --preset "$1" -j "$jobs"
+  if [ "$1" = release ]; then
+    echo "== release: the Slurm scale-out recipe"
+    ctest --preset slurm
+  fi
 }
 
 build_and_test release
