@@ -12,4 +12,6 @@ if [[ -z "${DQSKIN:-}" ]]; then
   DQSKIN=build/release/app/dqskin
 fi
 cmake -DDQSKIN="$DQSKIN" -DTESTDATA=testdata -DOUT=testdata/golden -P app/tests/golden_render.cmake
+# The goldens are the images; the renders' manifests name this machine's renderer and paths, so they stay out.
+find testdata/golden -name render-manifest.json -delete
 echo "wrote $(find testdata/golden -name '*.png' | wc -l) images, $(du -sh testdata/golden | cut -f1), into testdata/golden/"
