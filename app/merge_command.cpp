@@ -25,17 +25,25 @@ struct MergeSettings {
 int run_merge(const MergeSettings& s) {
   const MergeReport report = merge_shards(s.folder, s.threads);
   // A folder far from its manifests (an unmerged folder copied half, a stale shard) can have thousands of
-  // problems: the first ones say what is wrong, dqskin verify lists them all.
-  constexpr size_t kShown = 20;
+  // problems: the first ones say what is wrong, dqskin verify lists them all. Beside a shard that did not
+  // finish, the files no manifest lists are most likely its own, which it keeps when run again: one line.
   const std::vector<FolderProblem>& problems = report.verify.problems;
-  for (size_t i = 0; i < std::min(problems.size(), kShown); ++i)
-    print_error(problem_location(s.folder, problems[i]), problems[i].message);
-  if (problems.size() > kShown)
-    print_error(s.folder, "and " + std::to_string(problems.size() - kShown) + " more problems (dqskin verify lists them all)");
+  const bool unfinished = std::any_of(problems.begin(), problems.end(), [](const FolderProblem& p) { return p.kind == "shard-missing"; });
+  constexpr size_t kShown = 20;
+  size_t shown = 0, unlisted = 0;
+  for (const FolderProblem& p : problems) {
+    if (unfinished && p.kind == "unlisted") ++unlisted;
+    else if (shown++ < kShown) print_error(problem_location(s.folder, p), p.message);
+  }
+  if (shown > kShown)
+    print_error(s.folder, "and " + std::to_string(shown - kShown) + " more problems (dqskin verify lists them all)");
+  if (unlisted > 0)
+    print_error(s.folder, std::to_string(unlisted) + " files that no manifest lists, most likely the unfinished shards' " +
+                              "(a shard run again keeps those that are right)");
   for (const std::string& r : report.refusals) print_error(r);
   if (!report.ok()) {
-    print_error(s.folder, "merge refused, nothing written (" +
-                              std::to_string(report.verify.problems.size() + report.refusals.size()) + " problems)");
+    const size_t count = report.verify.problems.size() + report.refusals.size();
+    print_error(s.folder, "merge refused, nothing written (" + std::to_string(count) + (count == 1 ? " problem)" : " problems)"));
     return kUsageOrInputError;
   }
   if (!s.quiet) {

@@ -83,7 +83,7 @@ std::string shortened(std::string s) {
 }
 
 // The shards of one job (sorted by index, all N present) merged, or a refusal naming the shard that differs.
-json merge_job(const std::vector<const JobManifest*>& shards, std::vector<std::string>& refusals) {
+json merge_job(const std::string& folder, const std::vector<const JobManifest*>& shards, std::vector<std::string>& refusals) {
   const JobManifest& first = *shards.front();
   json merged = shared_part(first.json);
   for (size_t s = 1; s < shards.size(); ++s) {
@@ -91,7 +91,7 @@ json merge_job(const std::vector<const JobManifest*>& shards, std::vector<std::s
     const std::string at = first_difference(merged, shared_part(shards[s]->json), "", here, there);
     if (at.empty()) continue;
     const bool failed_input = at.size() > 6 && at.substr(at.size() - 6) == ".error";
-    refusals.push_back(shards[s]->name + ": " +
+    refusals.push_back(problem_location(folder, {shards[s]->name, {}, {}}) + ": " +
                        (failed_input ? "an input failed in one of the shards and not in the other"
                                      : "run with other flags, inputs or deformer") +
                        " than " + first.name + " (" + at + ": " + shortened(there) + " here, " + shortened(here) +
@@ -153,7 +153,7 @@ MergeReport merge_shards(const std::string& folder, unsigned threads) {
 
   std::vector<std::pair<std::string, json>> written;
   for (const auto& [base, shards] : jobs)
-    written.emplace_back(base + ".json", merge_job(shards, report.refusals));
+    written.emplace_back(base + ".json", merge_job(folder, shards, report.refusals));
   if (!report.refusals.empty()) return report;
 
   for (const auto& [name, manifest] : written) job_manifest::write(folder + "/" + name, manifest);

@@ -44,7 +44,7 @@ struct MergedJob {
 
 struct MergeReport {
   VerifyReport verify;            // the shards' files, checked before anything is written
-  std::vector<std::string> refusals;  // why nothing was merged (shards whose flags differ); empty when merged
+  std::vector<std::string> refusals;  // why nothing was merged (shards whose flags differ), each naming its file
   std::vector<MergedJob> merged;  // empty when there was nothing to merge or it was refused
   bool ok() const { return verify.ok() && refusals.empty(); }
 };
