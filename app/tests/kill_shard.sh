@@ -103,6 +103,8 @@ grep -q "manifest\.shard-0-of-4\.json: missing" "$scratch/merge.stderr" ||
 status=0
 "$dqskin" verify "$out" --quiet >"$scratch/verify.stdout" || status=$?
 [[ $status == 2 ]] || fail "dqskin verify of the folder with shard 0 killed exited $status, not 2"
+grep -q "manifest\.shard-0-of-4\.json: missing" "$scratch/verify.stdout" ||
+  fail "dqskin verify did not name manifest.shard-0-of-4.json as missing"
 for temporary in "${temporaries[@]}"; do
   grep -qF "$temporary" "$scratch/verify.stdout" || fail "dqskin verify did not name $temporary"
 done

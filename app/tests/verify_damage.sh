@@ -3,9 +3,10 @@
 # copied and damaged five ways (a flipped byte, a truncated file, a missing file, an extra file, a leftover
 # temporary): verify must exit 2 with exactly one line, naming that file, and --json must say ok false and
 # the problem's kind; the undamaged folder must pass. Also: a manifest naming a path outside its folder
-# (a FIFO there, which would block a reader), a folder without a manifest, a merge of shards run with
-# different --mode, and `dqskin render` in 2 shards merged: its render-manifest.json byte-identical to the
-# unsharded render's, and with --sheet listing both shards' sheets.
+# (a FIFO there, which would block a reader), a folder without a manifest, a shard missing beside another
+# of its job, a merge of shards run with different --mode, and `dqskin render` in 2 shards merged: its
+# render-manifest.json byte-identical to the unsharded render's, and with --sheet listing both shards'
+# sheets.
 #
 #   verify_damage.sh DQSKIN RIG SCRATCH
 #     DQSKIN   the dqskin binary
@@ -98,6 +99,17 @@ echo "escape: $(cat "$scratch/escape.stdout")"
 mkdir -p "$scratch/empty"
 expect_status 2 no_manifest "$dqskin" verify "$scratch/empty" --quiet
 grep -q "no manifest" "$scratch/no_manifest.stdout" || { cat "$scratch/no_manifest.stdout"; fail "no_manifest: no 'no manifest'"; }
+
+# A shard that has not finished while another of its job has.
+half=$scratch/half
+expect_status 0 half_shard0 "$dqskin" bake "$rig" -o "$half" --frames 0:5 --quiet --shard 0/2
+expect_status 2 half_verify "$dqskin" verify "$half" --quiet
+[[ $(wc -l <"$scratch/half_verify.stdout") == 1 ]] || { cat "$scratch/half_verify.stdout"; fail "half_verify: not one line"; }
+grep -qF "$half/manifest.shard-1-of-2.json: missing" "$scratch/half_verify.stdout" ||
+  { cat "$scratch/half_verify.stdout"; fail "half_verify: shard 1 of 2 not named as missing"; }
+expect_status 2 half_verify_json "$dqskin" verify "$half" --json --quiet
+grep -q '"kind": "shard-missing"' "$scratch/half_verify_json.stdout" || fail "half_verify: --json kind is not shard-missing"
+echo "half_verify: $(cat "$scratch/half_verify.stdout")"
 
 # Shards run with different flags are not merged.
 mixed=$scratch/mixed
