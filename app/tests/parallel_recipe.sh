@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The README's GNU parallel recipe, run as written: 8 shards of a bake of a models/ folder on one machine,
+# then `dqskin merge out`; the folder must equal an unsharded bake of the same models byte for byte
+# (manifest.json included) and `dqskin verify out` must find nothing wrong. The recipe line is read from
+# README.md, so the test runs what the README says. Exits 77 (CTest's skip) with the reason when GNU
+# parallel or the shared sample models are absent.
+#
+#   parallel_recipe.sh DQSKIN README SHARED_TESTDATA SCRATCH
+#     DQSKIN           the dqskin binary
+#     README           the README.md holding the recipe (one line starting "parallel dqskin bake ")
+#     SHARED_TESTDATA  the shared sample models (Fox/Fox.glb, ...)
+#     SCRATCH          a folder of this test's own (emptied first)
+set -euo pipefail
+
+dqskin=$1
+readme=$2
+shared=$3
+scratch=$4
+models=(Fox/Fox.glb CesiumMan/CesiumMan.glb RiggedSimple/RiggedSimple.glb RiggedFigure/RiggedFigure.glb)
+
+fail() {
+  echo "FAIL: $*"
+  exit 1
+}
+
+if ! parallel --version 2>/dev/null | grep -q '^GNU parallel'; then
+  echo "skipped: GNU parallel is not installed (Debian: apt-get install parallel)"
+  exit 77
+fi
+for model in "${models[@]}"; do
+  if [[ ! -f "$shared/$model" ]]; then
+    echo "skipped: the shared sample model $shared/$model is absent"
+    exit 77
+  fi
+done
+
+mapfile -t recipes < <(grep -E '^parallel dqskin bake ' "$readme" || true)
+[[ ${#recipes[@]} == 1 ]] || fail "expected one line starting 'parallel dqskin bake ' in $readme, found ${#recipes[@]}"
+recipe=${recipes[0]}
+echo "recipe: $recipe"
+
+rm -rf "$scratch"
+mkdir -p "$scratch/models" "$scratch/bin" "$scratch/home/.parallel"
+for model in "${models[@]}"; do
+  ln -s "$shared/$model" "$scratch/models/"
+done
+# The recipe calls `dqskin` by name.
+ln -s "$dqskin" "$scratch/bin/dqskin"
+export PATH="$scratch/bin:$PATH"
+# GNU parallel writes under ~/.parallel and, on a terminal, asks once per user to cite it. A HOME of the
+# test's own keeps the real one untouched, and will-cite there answers the question without changing the
+# recipe's command line (which --will-cite would).
+export HOME="$scratch/home"
+touch "$HOME/.parallel/will-cite"
+
+cd "$scratch"
+bash -c "$recipe" || fail "the recipe exited $?"
+for i in $(seq 0 7); do
+  [[ -f out/manifest.shard-$i-of-8.json ]] || fail "shard $i wrote no out/manifest.shard-$i-of-8.json"
+done
+[[ ! -e out/manifest.json ]] || fail "a shard wrote out/manifest.json"
+
+dqskin merge out || fail "dqskin merge out exited $?"
+[[ -f out/manifest.json ]] || fail "dqskin merge wrote no out/manifest.json"
+shards_left=$(find out -maxdepth 1 -name 'manifest.shard-*' | wc -l)
+[[ $shards_left == 0 ]] || fail "dqskin merge left $shards_left shard manifests"
+
+dqskin bake models/*.glb -o whole --quiet || fail "the unsharded bake exited $?"
+diff -r out whole || fail "the merged shards differ from the unsharded bake (above)"
+dqskin verify out || fail "dqskin verify out exited $?"
+echo "8 shards merged equal the unsharded bake: $(find out -type f | wc -l) files"
