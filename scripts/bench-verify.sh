@@ -33,7 +33,7 @@ source "$ROOT/scripts/bench_median.sh"
 "$DQSKIN" verify "$TMP/out" --quiet  # a folder as listed, and its files in the page cache
 files=$(find "$TMP/out" -type f | wc -l)
 bytes=$(du -sb "$TMP/out" | cut -f1)
-echo "dqskin $($DQSKIN --version | head -1); $(nproc) cores; runs: $RUNS (median); $MODEL: $files files, $((bytes / 1048576)) MiB"
+echo "$($DQSKIN --version | head -1); $(nproc) cores; runs: $RUNS (median); $MODEL: $files files, $((bytes / 1048576)) MiB"
 printf '%-12s %9s %9s\n' threads seconds MiB/s
 one=$(median_seconds "$DQSKIN" verify "$TMP/out" --threads 1 --quiet)
 all=$(median_seconds "$DQSKIN" verify "$TMP/out" --quiet)
