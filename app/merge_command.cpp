@@ -22,8 +22,10 @@ struct MergeSettings {
   unsigned threads = 0;
 };
 
-int run_merge(const MergeSettings& s) {
-  const MergeReport report = merge_shards(s.folder, s.threads);
+int run_merge(const MergeSettings& settings) {
+  const MergeReport report = merge_shards(settings.folder, settings.threads);
+  MergeSettings s = settings;
+  s.folder = report.verify.folder;  // as messages name it (no trailing slash)
   // A folder far from its manifests (an unmerged folder copied half, a stale shard) can have thousands of
   // problems: the first ones say what is wrong, dqskin verify lists them all. Beside a shard that did not
   // finish, the files no manifest lists are most likely its own, which it keeps when run again: one line.
@@ -54,7 +56,9 @@ int run_merge(const MergeSettings& s) {
       std::cerr << "merged " << m.shards << " shards into " << printable(s.folder + "/" + m.manifest) << ": " << files
                 << " verified\n";
   }
-  return kSuccess;
+  // As the unsharded bake: an input that failed (in every shard alike) is named, and the status says so.
+  for (const auto& [input, error] : report.failed_inputs) print_error(input, error + " (in every shard)");
+  return report.failed_inputs.empty() ? kSuccess : kSomeInputsFailed;
 }
 
 }  // namespace
@@ -74,7 +78,8 @@ Command add_merge_command(CLI::App& app) {
       "Refuses, writing nothing, with one line per problem: a shard that did not finish (run it again: it\n"
       "keeps the files already there and removes what a killed run left), a file missing or changed, shards\n"
       "run differently. With no shard manifests and a folder as its manifests say, there is nothing to do.\n"
-      "Exit status: 0 merged (or nothing to merge), 2 refused or a usage error.\n"
+      "Exit status: 0 merged (or nothing to merge), 1 merged but some inputs failed in every shard (each named),\n"
+      "2 refused or a usage error.\n"
       "Examples:\n"
       "  parallel dqskin bake models/*.glb -o out --shard {}/8 --quiet ::: $(seq 0 7) && dqskin merge out");
   return {cmd, [settings] { return run_merge(*settings); }};

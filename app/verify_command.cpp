@@ -32,7 +32,7 @@ int run_verify(const VerifySettings& s) {
   if (!s.quiet && !s.json) {
     std::string manifests;
     for (const std::string& m : report.manifests) manifests += (manifests.empty() ? "" : ", ") + m;
-    std::cerr << printable(s.folder) << ": " << report.files << " files (" << byte_size(report.bytes) << ") listed by "
+    std::cerr << printable(report.folder) << ": " << report.files << " files (" << byte_size(report.bytes) << ") listed by "
               << (manifests.empty() ? std::string("no manifest") : printable(manifests)) << ": "
               << (report.ok() ? std::string("all as listed") : std::to_string(report.problems.size()) + (report.problems.size() == 1 ? " problem" : " problems"))
               << '\n';

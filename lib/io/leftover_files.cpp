@@ -1,7 +1,5 @@
 #include "leftover_files.hpp"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <map>
 #include <set>
@@ -45,13 +43,12 @@ size_t remove_for(const std::string& root, const std::vector<std::string>& outpu
       by_folder[slash == std::string::npos ? "" : output.substr(0, slash)].insert(
           slash == std::string::npos ? output : output.substr(slash + 1));
     }
-    const long self = long(::getpid());
     for (const auto& [folder, names] : by_folder) {
       std::error_code ec;
       for (fs::directory_iterator it(fs::path(root) / folder, ec), end; !ec && it != end; it.increment(ec)) {
         const std::optional<Leftover> l = parse(it->path().filename().string());
         std::error_code remove_error;
-        if (l && l->pid != self && names.count(l->target) && fs::remove(it->path(), remove_error)) ++removed;
+        if (l && names.count(l->target) && fs::remove(it->path(), remove_error)) ++removed;
       }
     }
   } catch (...) {  // a leftover that stays is reported by dqskin verify; the bake itself succeeded

@@ -19,10 +19,11 @@ struct Leftover {
 // The leftover that `file_name` (no folder) names, if it is one.
 std::optional<Leftover> parse(std::string_view file_name);
 
-// Deletes the leftovers of `outputs` (paths relative to `root`) made by other processes: called once
-// the outputs are committed, so that rerunning a killed job leaves its folder clean. Only this job writes
-// these outputs (a shard owns its files), so the leftovers can only be from an earlier run of it that
-// was killed. Returns how many were deleted; never throws.
+// Deletes the leftovers of `outputs` (paths relative to `root`): called once the outputs are committed,
+// when this process has none of their temporaries open, so that rerunning a killed job leaves its folder
+// clean. Only this job writes these outputs (a shard owns its files), so the leftovers can only be from an
+// earlier run of it that was killed, whatever its process id was (in a container, often the same as
+// ours). Returns how many were deleted; never throws.
 size_t remove_for(const std::string& root, const std::vector<std::string>& outputs) noexcept;
 
 }  // namespace dqskin::leftover_files

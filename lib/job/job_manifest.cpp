@@ -1,5 +1,6 @@
 #include "job_manifest.hpp"
 
+#include "../io/leftover_files.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/sha256.hpp"
 
@@ -50,6 +51,10 @@ void write(const std::string& path, const nlohmann::json& manifest) {
   AtomicFile file(path);
   file.write(text(manifest));
   file.commit(Overwrite::kReplace);
+  // A run of this job killed while writing its manifest left a temporary of it; this run's is in place.
+  const size_t slash = path.find_last_of('/');
+  leftover_files::remove_for(slash == std::string::npos ? "." : path.substr(0, slash),
+                             {slash == std::string::npos ? path : path.substr(slash + 1)});
 }
 
 }  // namespace dqskin::job_manifest

@@ -52,19 +52,22 @@ std::optional<FolderProblem> check_file(const fs::path& folder, const std::strin
   return std::nullopt;
 }
 
-// Shards of a job that left no manifest: every count N seen for a job needs all of 0 … N-1.
-void find_missing_shards(const std::vector<const JobManifest*>& manifests, std::vector<FolderProblem>& problems) {
+// Shards of a job that left no manifest: every count N seen for a job needs all of 0 … N-1. A shard manifest
+// that is there but unreadable is a problem of its own (in `present`), not a missing one.
+void find_missing_shards(const std::vector<const JobManifest*>& manifests, const std::vector<FolderProblem>& present,
+                         std::vector<FolderProblem>& problems) {
   std::map<std::pair<std::string, size_t>, std::set<size_t>> seen;  // (base, count) → indices
   for (const JobManifest* m : manifests)
     if (m->sharded()) seen[{m->base, m->shard.count}].insert(m->shard.index);
   for (const auto& [job, indices] : seen)
-    for (size_t i = 0; i < job.second; ++i)
-      if (!indices.count(i)) {
-        const Shard shard{i, job.second};
-        problems.push_back({job_manifest::file_name(job.first, shard), "shard-missing",
-                            "missing: shard " + std::to_string(i) + "/" + std::to_string(job.second) +
-                                " did not finish (run it again)"});
-      }
+    for (size_t i = 0; i < job.second; ++i) {
+      const std::string name = job_manifest::file_name(job.first, Shard{i, job.second});
+      if (indices.count(i) || std::any_of(present.begin(), present.end(), [&](const FolderProblem& p) { return p.path == name; }))
+        continue;
+      problems.push_back({name, "shard-missing",
+                          "missing: shard " + std::to_string(i) + "/" + std::to_string(job.second) +
+                              " did not finish (run it again; a shard all of whose inputs fail writes none)"});
+    }
 }
 
 // Whether a folder under `root` (relative, "" for root itself) is reached through a symbolic link: verify
@@ -103,7 +106,7 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   report.problems = set.problems;
   for (const std::string& name : set.root_leftovers)
     report.problems.push_back({name, "temporary", leftover_message(*leftover_files::parse(name))});
-  find_missing_shards(manifests, report.problems);
+  find_missing_shards(manifests, set.problems, report.problems);
 
   // Every listed file once; two manifests that list one path differently are a problem of their own.
   std::map<std::string, Listed> listed;

@@ -53,7 +53,35 @@ std::string shape_problem(const JobManifest& m) {
   return {};
 }
 
+// Reads and parses `path` into `json`; why it is not a manifest, or empty. Nesting is bounded: every
+// manifest dqskin writes is 5 levels deep, and the merge walks the document recursively.
+std::string parse_manifest_file(const fs::path& path, json& out) {
+  constexpr int kDeepest = 32;
+  std::error_code size_error;
+  const uintmax_t size = fs::file_size(path, size_error);
+  std::ifstream file(path, std::ios::binary);
+  if (size_error || !file) return "cannot be read";
+  if (size > kLargestManifest) return "is larger than any manifest (" + std::to_string(size) + " bytes)";
+  std::stringstream text;
+  text << file.rdbuf();
+  bool too_deep = false;
+  // The parser keeps its own stack; what is deeper than kDeepest is dropped as it is read, then refused.
+  const json::parser_callback_t depth_limit = [&](int depth, json::parse_event_t, json&) {
+    if (depth > kDeepest) too_deep = true;
+    return depth <= kDeepest;
+  };
+  out = json::parse(text.str(), depth_limit, false);
+  if (out.is_discarded()) return "is not valid JSON";
+  if (too_deep) return "is nested deeper than " + std::to_string(kDeepest) + " levels";
+  return {};
+}
+
 }  // namespace
+
+std::string folder_name(std::string folder) {
+  while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+  return folder;
+}
 
 bool is_contained_path(std::string_view path) {
   if (path.empty() || path.front() == '/' || path.find('\0') != std::string_view::npos) return false;
@@ -103,18 +131,13 @@ ManifestSet read_manifests(const fs::path& folder) {
     }
     std::optional<JobManifest> m = parse_manifest_name(name);
     if (!m) continue;
-    std::error_code size_error;
-    const uintmax_t size = fs::file_size(it->path(), size_error);
-    std::ifstream file(it->path(), std::ios::binary);
     std::string problem;
-    if (size_error || !file) problem = "cannot be read";
-    else if (size > kLargestManifest) problem = "is larger than any manifest (" + std::to_string(size) + " bytes)";
-    else {
-      std::stringstream text;
-      text << file.rdbuf();
-      m->json = json::parse(text.str(), nullptr, false);
-      problem = m->json.is_discarded() ? "is not valid JSON" : shape_problem(*m);
-    }
+    std::error_code status_error;
+    const fs::file_status status = fs::symlink_status(it->path(), status_error);
+    if (fs::is_symlink(status)) problem = "is a symbolic link, which verify does not follow";
+    else if (status_error || !fs::is_regular_file(status)) problem = "is not a regular file";  // a FIFO would block
+    else problem = parse_manifest_file(it->path(), m->json);
+    if (problem.empty()) problem = shape_problem(*m);
     if (problem.empty()) set.manifests.push_back(std::move(*m));
     else set.problems.push_back({name, "manifest", "the manifest " + problem});
   }

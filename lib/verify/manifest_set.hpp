@@ -40,6 +40,9 @@ struct ManifestSet {
 // Reads every manifest in `folder`. Throws InputError when the folder cannot be listed.
 ManifestSet read_manifests(const std::filesystem::path& folder);
 
+// `folder` as messages name it: without trailing slashes ("out/" is "out"; "/" stays).
+std::string folder_name(std::string folder);
+
 // A path a manifest may name: relative, '/'-separated, no empty, "." or ".." part.
 bool is_contained_path(std::string_view path);
 

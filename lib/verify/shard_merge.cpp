@@ -87,15 +87,15 @@ json merge_job(const std::string& folder, const std::vector<const JobManifest*>&
   const JobManifest& first = *shards.front();
   json merged = shared_part(first.json);
   for (size_t s = 1; s < shards.size(); ++s) {
-    std::string here, there;
-    const std::string at = first_difference(merged, shared_part(shards[s]->json), "", here, there);
+    std::string first_value, this_value;
+    const std::string at = first_difference(merged, shared_part(shards[s]->json), "", first_value, this_value);
     if (at.empty()) continue;
     const bool failed_input = at.size() > 6 && at.substr(at.size() - 6) == ".error";
     refusals.push_back(problem_location(folder, {shards[s]->name, {}, {}}) + ": " +
-                       (failed_input ? "an input failed in one of the shards and not in the other"
+                       (failed_input ? "an input failed otherwise in this shard (run again the shard where it failed)"
                                      : "run with other flags, inputs or deformer") +
-                       " than " + first.name + " (" + at + ": " + shortened(there) + " here, " + shortened(here) +
-                       " there)");
+                       " than in " + first.name + " (" + at + ": " + shortened(this_value) + " here, " +
+                       shortened(first_value) + " there)");
   }
   merged["shard"] = {{"index", 0}, {"count", 1}};
 
@@ -119,9 +119,10 @@ json merge_job(const std::string& folder, const std::vector<const JobManifest*>&
 
 }  // namespace
 
-MergeReport merge_shards(const std::string& folder, unsigned threads) {
+MergeReport merge_shards(const std::string& given_folder, unsigned threads) {
   MergeReport report;
-  const ManifestSet set = read_manifests(folder);
+  const std::string folder = folder_name(given_folder);
+  ManifestSet set = read_manifests(folder);
   std::map<std::string, std::vector<const JobManifest*>> jobs;  // base → its shard manifests, by index
   for (const JobManifest& m : set.manifests)
     if (m.sharded()) jobs[m.base].push_back(&m);
@@ -132,10 +133,14 @@ MergeReport merge_shards(const std::string& folder, unsigned threads) {
     return report;
   }
 
-  // The folder against the shards; the whole manifest each merge replaces is not consulted.
+  // The folder against the shards; the whole manifest each merge replaces is not consulted, nor is it a
+  // problem when that one cannot be read.
   std::vector<const JobManifest*> checked;
   for (const JobManifest& m : set.manifests)
     if (m.sharded() || !jobs.count(m.base)) checked.push_back(&m);
+  std::erase_if(set.problems, [&](const FolderProblem& p) {
+    return std::any_of(jobs.begin(), jobs.end(), [&](const auto& job) { return p.path == job.first + ".json"; });
+  });
   report.verify = check_folder(folder, set, checked, threads);
 
   for (auto& [base, shards] : jobs) {
@@ -156,7 +161,12 @@ MergeReport merge_shards(const std::string& folder, unsigned threads) {
     written.emplace_back(base + ".json", merge_job(folder, shards, report.refusals));
   if (!report.refusals.empty()) return report;
 
-  for (const auto& [name, manifest] : written) job_manifest::write(folder + "/" + name, manifest);
+  for (const auto& [name, manifest] : written) {
+    job_manifest::write(folder + "/" + name, manifest);
+    for (const json& in : manifest["inputs"])
+      if (in.contains("error") && in["path"].is_string() && in["error"].is_string())
+        report.failed_inputs.emplace_back(in["path"].get<std::string>(), in["error"].get<std::string>());
+  }
   for (const auto& [base, shards] : jobs) {
     for (const JobManifest* s : shards) {
       std::error_code ec;

@@ -10,7 +10,7 @@ VerifyReport verify_folder(const std::string& folder, unsigned threads) {
   const ManifestSet set = read_manifests(folder);
   std::vector<const JobManifest*> all;
   for (const JobManifest& m : set.manifests) all.push_back(&m);
-  VerifyReport report = check_folder(folder, set, all, threads);
+  VerifyReport report = check_folder(folder_name(folder), set, all, threads);
   if (set.manifests.empty() && set.problems.empty())
     report.problems.insert(report.problems.begin(),
                            {"", "manifest", "no manifest.json, render-manifest.json or shard manifest: not a bake or render folder"});

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -153,6 +154,60 @@ TEST_F(VerifyTest, AManifestCannotPointOutOfItsFolder) {
   EXPECT_THROW(verify_folder(at("absent")), InputError);
 }
 
+// Manifests are read defensively: one nested without end, one that is a FIFO (opening it would block), one
+// that is a link to elsewhere, each a problem line of its own; a broken shard manifest is not also "missing".
+TEST_F(VerifyTest, HostileManifestFilesAreProblemsNotCrashesOrHangs) {
+  bake_into("sharded", {0, 3});
+  bake_into("sharded", {1, 3});
+  bake_into("sharded", {2, 3});
+  const fs::path folder = root_ / "sharded";
+  auto json = nlohmann::json::parse(read_file(folder / "manifest.shard-1-of-3.json"));
+  std::string text = json.dump();
+  text.pop_back();
+  text += ",\"x\":" + std::string(200000, '[') + std::string(200000, ']') + "}";
+  std::ofstream(folder / "manifest.shard-1-of-3.json") << text;
+  fs::rename(folder / "manifest.shard-2-of-3.json", root_ / "elsewhere.json");
+  fs::create_symlink(root_ / "elsewhere.json", folder / "manifest.shard-2-of-3.json");
+  ASSERT_EQ(::mkfifo((folder / "render-manifest.json").c_str(), 0644), 0);
+  const MergeReport m = merge_shards(at("sharded"));
+  EXPECT_FALSE(m.ok());
+  std::vector<std::string> manifest_problems;
+  for (const FolderProblem& p : m.verify.problems)
+    if (p.kind == "manifest" || p.kind == "shard-missing") manifest_problems.push_back(p.kind + " " + p.path + ": " + p.message);
+  const std::vector<std::string> expected = {
+      "manifest manifest.shard-1-of-3.json: the manifest is nested deeper than 32 levels",
+      "manifest manifest.shard-2-of-3.json: the manifest is a symbolic link, which verify does not follow",
+      "manifest render-manifest.json: the manifest is not a regular file",
+  };
+  EXPECT_EQ(manifest_problems, expected);
+  EXPECT_TRUE(fs::exists(folder / "manifest.shard-0-of-3.json")) << "a refused merge deletes nothing";
+}
+
+// The manifest merge replaces is not consulted, even when it cannot be read (a run killed mid-write of an
+// older tool, a copy gone wrong); an input that failed in every shard fails in the merged bake too.
+TEST_F(VerifyTest, MergeReplacesAnUnreadableManifestAndKeepsFailedInputs) {
+  const std::string missing = (root_ / "missing.gltf").string();
+  auto bake_both = [&](const std::string& folder, Shard shard) {
+    BakeOptions o;
+    o.out_dir = at(folder);
+    o.formats = kFormats;
+    o.backend = Backend::kFastCpu;
+    o.shard = shard;
+    o.frames.fps = 10;
+    EXPECT_TRUE(bake({rig_, missing}, o).any_failed());
+  };
+  bake_both("whole", {});
+  bake_both("sharded", {0, 2});
+  bake_both("sharded", {1, 2});
+  std::ofstream(root_ / "sharded" / "manifest.json") << "{\"tool\":";
+  const MergeReport m = merge_shards(at("sharded") + "/");
+  ASSERT_TRUE(m.ok()) << testing::PrintToString(kinds(m.verify)) << testing::PrintToString(m.refusals);
+  EXPECT_EQ(m.verify.folder, at("sharded")) << "named without the trailing slash";
+  ASSERT_EQ(m.failed_inputs.size(), 1u);
+  EXPECT_EQ(m.failed_inputs[0].first, missing);
+  EXPECT_TRUE(tree(root_ / "sharded") == tree(root_ / "whole"));
+}
+
 // Links are not followed: an output folder that is a link to elsewhere is named, not walked or read.
 TEST_F(VerifyTest, SymbolicLinksAreNotFollowed) {
   bake_into("out");
@@ -171,9 +226,11 @@ TEST_F(VerifyTest, ARerunShardRemovesWhatItsKilledRunLeft) {
   const fs::path clip = root_ / "sharded" / "bending_arm" / "bend";
   std::ofstream(clip / ".frame_0000.glb.tmp-1-0") << "partial";  // frame 0 is shard 0's
   fs::remove(root_ / "sharded" / "manifest.shard-0-of-2.json");
+  std::ofstream(root_ / "sharded" / ".manifest.shard-0-of-2.json.tmp-1-0") << "{\"partial";  // killed writing it
   EXPECT_FALSE(merge_shards(at("sharded")).ok());
   bake_into("sharded", {0, 2});
   EXPECT_FALSE(fs::exists(clip / ".frame_0000.glb.tmp-1-0"));
+  EXPECT_FALSE(fs::exists(root_ / "sharded" / ".manifest.shard-0-of-2.json.tmp-1-0"));
   EXPECT_TRUE(merge_shards(at("sharded")).ok());
 }
 

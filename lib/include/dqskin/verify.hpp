@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dqskin {
@@ -46,6 +47,7 @@ struct MergeReport {
   VerifyReport verify;            // the shards' files, checked before anything is written
   std::vector<std::string> refusals;  // why nothing was merged (shards whose flags differ), each naming its file
   std::vector<MergedJob> merged;  // empty when there was nothing to merge or it was refused
+  std::vector<std::pair<std::string, std::string>> failed_inputs;  // merged: inputs that failed in every shard, and why
   bool ok() const { return verify.ok() && refusals.empty(); }
 };
 
