@@ -18,7 +18,6 @@
 #include "bones_bake.hpp"
 #include "morph_bake.hpp"
 #include "../io/glb_appearance.hpp"
-#include "../io/leftover_files.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "vat_bake.hpp"
 #include "vat_planner.hpp"
@@ -433,10 +432,6 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     report.wall_seconds = since(start);
     return report;  // nothing baked, nothing to record
   }
-  // Temporaries that an earlier run of this shard left when it was killed, now that their files are here.
-  std::vector<std::string> written;
-  for (const BakeOutput& out : report.outputs) written.push_back(out.path);
-  leftover_files::remove_for(options.out_dir, written);
   // One sync of the file system instead of one per file (milliseconds each): after a power loss, a manifest
   // that exists only lists outputs that are on disk.
   const Clock::time_point sync = Clock::now();

@@ -82,9 +82,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     }
     manifest["morph"] = std::move(morph);
   }
-  const std::string path = options.out_dir + "/" + job_manifest::file_name("manifest", options.shard);
-  job_manifest::write(path, manifest);
-  return path;
+  return job_manifest::write(options.out_dir, job_manifest::file_name("manifest", options.shard), manifest);
 }
 
 }  // namespace dqskin::bake_detail

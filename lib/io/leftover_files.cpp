@@ -24,10 +24,7 @@ std::optional<Leftover> parse(std::string_view name) {
   const std::string_view head = name.substr(0, pid_dash);  // "." NAME "." KIND
   for (const std::string_view kind : {std::string_view(".tmp"), std::string_view(".old")}) {
     if (head.size() > kind.size() + 1 && head.substr(head.size() - kind.size()) == kind) {
-      const std::string_view pid = name.substr(pid_dash + 1, counter_dash - pid_dash - 1);
-      Leftover l{std::string(head.substr(1, head.size() - kind.size() - 1)), kind == ".old", 0};
-      l.pid = pid.size() > 9 ? -1 : std::stol(std::string(pid));
-      return l;
+      return Leftover{std::string(head.substr(1, head.size() - kind.size() - 1)), kind == ".old"};
     }
   }
   return std::nullopt;

@@ -13,7 +13,6 @@ namespace dqskin::leftover_files {
 struct Leftover {
   std::string target;  // NAME, the output it was written for
   bool old = false;    // an old file kept aside, not a temporary
-  long pid = 0;        // the process that made it
 };
 
 // The leftover that `file_name` (no folder) names, if it is one.

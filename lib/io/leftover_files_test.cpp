@@ -21,7 +21,6 @@ TEST(LeftoverFiles, ParsesTheNamesWritersGive) {
   ASSERT_TRUE(tmp);
   EXPECT_EQ(tmp->target, "frame_0001.glb");
   EXPECT_FALSE(tmp->old);
-  EXPECT_EQ(tmp->pid, 4242);
   const auto old = leftover_files::parse(".vat.json.old-1-0");
   ASSERT_TRUE(old);
   EXPECT_EQ(old->target, "vat.json");

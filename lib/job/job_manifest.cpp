@@ -5,6 +5,7 @@
 #include "dqskin/sha256.hpp"
 
 #include <filesystem>
+#include <vector>
 
 namespace dqskin::job_manifest {
 
@@ -47,14 +48,15 @@ std::string text(const nlohmann::json& manifest) {
   return manifest.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-void write(const std::string& path, const nlohmann::json& manifest) {
+std::string write(const std::string& folder, const std::string& name, const nlohmann::json& manifest) {
+  const std::string path = folder + "/" + name;
   AtomicFile file(path);
   file.write(text(manifest));
   file.commit(Overwrite::kReplace);
-  // A run of this job killed while writing its manifest left a temporary of it; this run's is in place.
-  const size_t slash = path.find_last_of('/');
-  leftover_files::remove_for(slash == std::string::npos ? "." : path.substr(0, slash),
-                             {slash == std::string::npos ? path : path.substr(slash + 1)});
+  std::vector<std::string> recorded{name};
+  for (const nlohmann::json& out : manifest.at("outputs")) recorded.push_back(out.at("path").get<std::string>());
+  leftover_files::remove_for(folder, recorded);
+  return path;
 }
 
 }  // namespace dqskin::job_manifest

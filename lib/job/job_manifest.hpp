@@ -25,8 +25,9 @@ nlohmann::json input_record(const InputPlan& plan, const std::string& error);
 // The manifest's bytes: indented, keys sorted, invalid UTF-8 (input paths may be any bytes) replaced.
 std::string text(const nlohmann::json& manifest);
 
-// Writes `manifest` to `path` whole or not at all, replacing an earlier one (the record of the latest job),
-// and deletes the temporaries of it that a killed run of the same job left.
-void write(const std::string& path, const nlohmann::json& manifest);
+// Writes `manifest` as `folder`/`name`, whole or not at all, replacing an earlier one (the record of the
+// latest job), and returns its path. Then deletes what a killed run of the same job left beside the files
+// it lists and beside the manifest itself (leftover_files.hpp): they are all in place now.
+std::string write(const std::string& folder, const std::string& name, const nlohmann::json& manifest);
 
 }  // namespace dqskin::job_manifest

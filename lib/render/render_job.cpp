@@ -8,7 +8,6 @@
 #include "dqskin/job_run.hpp"
 #include "dqskin/output_journal.hpp"
 #include "../concurrency/ordered_worker.hpp"
-#include "../io/leftover_files.hpp"
 #include "render_manifest.hpp"
 
 #include <algorithm>
@@ -259,10 +258,9 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
     report.deformer = describe(deform_path(options.backend, options.mode, &context.get()));
   }
   std::sort(report.outputs.begin(), report.outputs.end());
-  // As bake: the leftovers of an earlier, killed run of this shard go, and a render that drew something
-  // records it (render-manifest.json), after one sync, so that the record only lists files on disk.
+  // As bake: a render that drew something records it (render-manifest.json, which also clears what a
+  // killed run of this shard left), after one sync, so that the record only lists files on disk.
   if (std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
-    leftover_files::remove_for(options.out_dir, report.outputs);
     std::filesystem::create_directories(options.out_dir);
     sync_folder(options.out_dir);
     report.manifest = render_detail::write_render_manifest(plans, options, report);

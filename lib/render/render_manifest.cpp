@@ -76,9 +76,7 @@ std::string write_render_manifest(const std::vector<InputPlan>& plans, const Ren
       {"inputs", std::move(inputs)},
       {"outputs", std::move(outputs)},
   };
-  const std::string path = options.out_dir + "/" + job_manifest::file_name("render-manifest", options.shard);
-  job_manifest::write(path, manifest);
-  return path;
+  return job_manifest::write(options.out_dir, job_manifest::file_name("render-manifest", options.shard), manifest);
 }
 
 }  // namespace dqskin::render_detail

@@ -162,7 +162,7 @@ MergeReport merge_shards(const std::string& given_folder, unsigned threads) {
   if (!report.refusals.empty()) return report;
 
   for (const auto& [name, manifest] : written) {
-    job_manifest::write(folder + "/" + name, manifest);
+    job_manifest::write(folder, name, manifest);
     for (const json& in : manifest["inputs"])
       if (in.contains("error") && in["path"].is_string() && in["error"].is_string())
         report.failed_inputs.emplace_back(in["path"].get<std::string>(), in["error"].get<std::string>());
