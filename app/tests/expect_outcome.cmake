@@ -7,7 +7,13 @@
 #   cmake -DCOMMAND=dqskin "-DARGS=bake;x.gltf;-o;out" -DEXPECTED=2 [-DSTDOUT_REGEX=...] [-DSTDERR_REGEX=...] [-DONE_LINE=ON]
 #         [-DFOLDER=out [-DUNCHANGED=ON] [-DPREPARE=args of a run that must succeed first]
 #          [-DALTER=file in FOLDER to overwrite after it] [-DPRESENT=paths] [-DABSENT=paths]]
-#         [-DWORKING_DIRECTORY=dir] [-DTIMEOUT=s] -P expect_outcome.cmake
+#         [-DWORKING_DIRECTORY=dir] [-DTIMEOUT=s]
+#         [-DMEMORY_LIMIT_MB=n [-DPRLIMIT=path/to/prlimit]] [-DMAX_RSS_MB=n -DPYTHON=python3] -P expect_outcome.cmake
+# MEMORY_LIMIT_MB caps the command's address space through prlimit (not in sanitizer builds, whose shadow
+# memory needs terabytes of it; there it caps the largest single allocation through ASAN_OPTIONS), so that
+# a command that would take far too much fails fast instead of swapping. MAX_RSS_MB fails a run whose
+# resident set grew past it (measured by peak_rss.py; callers leave it out in sanitizer builds, where
+# ASan's shadow and quarantine are resident too).
 # Included by another script with these variables set (geometry_diff_case.cmake), it leaves the run's
 # status, out (stdout) and err (stderr) set for further checks.
 if(NOT DEFINED TIMEOUT)
@@ -52,7 +58,24 @@ if(DEFINED FOLDER)
   snapshot(before)
 endif()
 
-execute_process(COMMAND ${COMMAND} ${ARGS} WORKING_DIRECTORY ${WORKING_DIRECTORY}
+set(launcher "")
+if(DEFINED MAX_RSS_MB)
+  string(RANDOM LENGTH 12 token)
+  set(rss_file "$ENV{TMPDIR}")
+  if(NOT rss_file)
+    set(rss_file /tmp)
+  endif()
+  set(rss_file "${rss_file}/dqskin-peak-rss-${token}.kib")
+  set(launcher ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/peak_rss.py ${rss_file})
+endif()
+if(DEFINED MEMORY_LIMIT_MB)
+  set(ENV{ASAN_OPTIONS} "$ENV{ASAN_OPTIONS}:max_allocation_size_mb=${MEMORY_LIMIT_MB}")
+  if(DEFINED PRLIMIT)
+    math(EXPR bytes "${MEMORY_LIMIT_MB} * 1048576")
+    list(APPEND launcher ${PRLIMIT} --as=${bytes} --)
+  endif()
+endif()
+execute_process(COMMAND ${launcher} ${COMMAND} ${ARGS} WORKING_DIRECTORY ${WORKING_DIRECTORY}
   RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT ${TIMEOUT})
 
 set(problems "")
@@ -77,6 +100,15 @@ if(DEFINED FOLDER AND UNCHANGED)
   snapshot(after)
   if(NOT after STREQUAL before)
     string(APPEND problems "${FOLDER} changed:\nbefore:\n${before}after:\n${after}")
+  endif()
+endif()
+if(DEFINED MAX_RSS_MB)
+  file(READ "${rss_file}" peak_kib)
+  file(REMOVE "${rss_file}")
+  string(STRIP "${peak_kib}" peak_kib)
+  math(EXPR peak_mb "${peak_kib} / 1024")
+  if(peak_mb GREATER MAX_RSS_MB)
+    string(APPEND problems "its resident set grew to ${peak_mb} MiB, more than ${MAX_RSS_MB} MiB\n")
   endif()
 endif()
 foreach(p IN LISTS PRESENT)
