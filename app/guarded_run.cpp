@@ -6,15 +6,21 @@
 
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/job.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <filesystem>
 #include <new>
+#include <optional>
 
 namespace dqskin::cli {
 
 int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy,
                 OutputJournal* out_folder) {
+  // What runs after a failure runs without the memory ceiling: the failed work's memory is freed by then,
+  // and a message that cannot be made would end in std::terminate.
+  std::optional<MemoryCeilingLifted> lifted;
   auto tidy_up = [&] {
+    lifted.emplace();
     if (tidy) tidy();
   };
   try {
@@ -33,7 +39,7 @@ int guarded_run(const char* command, const std::function<int()>& body, const std
     return kUsageOrInputError;
   } catch (const std::bad_alloc&) {
     tidy_up();
-    print_error("ran out of memory");
+    print_error(out_of_memory_message());
     return kUsageOrInputError;
   } catch (const std::exception& e) {
     tidy_up();

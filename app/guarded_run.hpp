@@ -13,7 +13,8 @@ namespace dqskin::cli {
 //                       `out_folder` (the output folder this run made) is removed if it is still empty
 //   NoGpuContext        3 (kNoGlContext) and its message
 //   filesystem_error    2 and the path with the system's message
-//   std::bad_alloc      2 and "ran out of memory"
+//   std::bad_alloc      2 and out_of_memory_message() (a command that knows its file names it: a
+//                       std::bad_alloc caught where the file is known becomes that file's error)
 //   other exceptions    2 and their message
 // `command` names the command in the interrupt's message ("bake: interrupted").
 int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy = {},

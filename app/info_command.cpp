@@ -7,6 +7,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/info.hpp"
 #include "dqskin/load.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -117,7 +118,7 @@ int run_info(const InfoSettings& settings) {
     } catch (const InputError& e) {
       error = e.what();
     } catch (const std::bad_alloc&) {
-      error = kOutOfMemory;
+      error = out_of_memory_message();
     }
     if (error.empty()) continue;
     ++failed;

@@ -14,12 +14,22 @@ void add_load_settings(CLI::App& command, LoadSettings& settings) {
                   "A folder that the inputs' external buffers and images may also come from (repeatable); by "
                   "default only the input's own folder")
       ->type_name("DIR");
+  add_max_memory(command, settings.max_memory);
+}
+
+void add_max_memory(CLI::App& command, std::string& max_memory) {
   command
-      .add_option("--max-memory", settings.max_memory,
-                  "Refuse an input whose loading would take more memory than this (estimated before anything is "
-                  "decoded): bytes, or K, M, G, T")
+      .add_option("--max-memory", max_memory,
+                  "Refuse an input that needs more memory than this, estimated from what the file declares before "
+                  "anything is decoded; when given, also a ceiling on all the command allocates: bytes, or K, M, G, T")
       ->type_name("SIZE")
       ->capture_default_str();
+}
+
+std::optional<uint64_t> max_memory_of(const CLI::App& command) {
+  const CLI::Option* option = command.get_option_no_throw("--max-memory");
+  if (!option || option->count() == 0) return std::nullopt;
+  return parse_byte_size(option->results().back(), "--max-memory");
 }
 
 LoadOptions to_load_options(const LoadSettings& settings) {

@@ -6,11 +6,13 @@
 #include "exit_codes.hpp"
 #include "guarded_run.hpp"
 
+#include "dqskin/memory_ceiling.hpp"
 #include "dqskin/version.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <optional>
 #include <string>
 
 int dqskin::cli::run_cli(int argc, const char* const* argv) {
@@ -46,7 +48,14 @@ int dqskin::cli::run_cli(int argc, const char* const* argv) {
     return kUsageOrInputError;
   }
   for (const Command& command : commands)
-    if (command.cli->parsed()) return guarded_run(command.cli->get_name().c_str(), command.run);
+    if (command.cli->parsed())
+      return guarded_run(command.cli->get_name().c_str(), [&command] {
+        // --max-memory holds for all the command does (dqskin/memory_ceiling.hpp); the ceiling is gone
+        // again when guarded_run's handlers print what escaped.
+        std::optional<MemoryCeiling> ceiling;
+        if (const std::optional<uint64_t> bytes = max_memory_of(*command.cli)) ceiling.emplace(*bytes);
+        return command.run();
+      });
   // No command given: show what there is to run.
   std::cout << app.help();
   return kSuccess;

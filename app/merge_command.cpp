@@ -20,6 +20,7 @@ struct MergeSettings {
   std::string folder;
   bool quiet = false;
   unsigned threads = 0;
+  std::string max_memory = "2G";  // run_cli's MemoryCeiling: a manifest of millions of entries is refused
 };
 
 int run_merge(const MergeSettings& settings) {
@@ -71,6 +72,7 @@ Command add_merge_command(CLI::App& app) {
   cmd->add_option("OUTDIR", settings->folder, "The folder the shards wrote (-o)")->required();
   cmd->add_option("--threads", settings->threads, "Files hashed at once (default: one per core)")->type_name("N");
   cmd->add_flag("-q,--quiet", settings->quiet, "Print nothing unless the merge is refused");
+  add_max_memory(*cmd, settings->max_memory);
   cmd->footer(
       "Reads manifest.shard-I-of-N.json (bake) and render-manifest.shard-I-of-N.json (render), checks the\n"
       "folder as dqskin verify does, checks that all N shards finished with the same flags, inputs (by\n"

@@ -19,6 +19,7 @@ struct VerifySettings {
   bool json = false;
   bool quiet = false;
   unsigned threads = 0;
+  std::string max_memory = "2G";  // run_cli's MemoryCeiling: a manifest of millions of entries is refused
 };
 
 int run_verify(const VerifySettings& s) {
@@ -51,6 +52,7 @@ Command add_verify_command(CLI::App& app) {
   cmd->add_flag("--json", settings->json, "Print one JSON document instead of lines");
   cmd->add_option("--threads", settings->threads, "Files hashed at once (default: one per core)")->type_name("N");
   cmd->add_flag("-q,--quiet", settings->quiet, "No summary line on stderr");
+  add_max_memory(*cmd, settings->max_memory);
   cmd->footer(
       "A problem per line, OUTDIR/PATH: what is wrong: a listed file missing, of another size (truncated or\n"
       "grown) or with other bytes (SHA-256); a file in an input's output folder that no manifest lists; a\n"

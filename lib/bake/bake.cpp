@@ -6,6 +6,7 @@
 #include "bake_work.hpp"
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 #include "dqskin/frame_view.hpp"
 #include "dqskin/glb_output.hpp"
 #include "dqskin/deformer.hpp"
@@ -369,7 +370,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       plan.asset->source.reset();  // the writers have copied what they need: the JSON is not kept through the bake
       work += estimate_work(plan, options, glb_writers[i].get());
     } catch (const std::bad_alloc&) {
-      plan.error = kOutOfMemory;
+      plan.error = out_of_memory_message();
     } catch (const std::exception& e) {
       plan.error = e.what();
     }

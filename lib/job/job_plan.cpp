@@ -2,6 +2,7 @@
 
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 #include "dqskin/load.hpp"
 #include "../io/file_kind.hpp"
 
@@ -159,7 +160,8 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
         plan.clips.push_back(std::move(cp));
       }
     } catch (const std::bad_alloc&) {
-      plan = InputPlan{path, plan.stem, nullptr, -1, {}, {}, {}, kOutOfMemory};
+      const MemoryCeilingLifted lifted;  // the message and the empty plan allocate
+      plan = InputPlan{path, plan.stem, nullptr, -1, {}, {}, {}, out_of_memory_message()};
     } catch (const std::exception& e) {
       plan = InputPlan{path, plan.stem, nullptr, -1, {}, {}, {}, e.what()};
     }

@@ -1,6 +1,7 @@
 #include "dqskin/job_run.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 namespace dqskin {
 
@@ -33,11 +34,12 @@ std::vector<InputResult> for_each_input(const std::vector<InputPlan>& plans, con
       } catch (const NoGpuContext&) {
         throw;
       } catch (const std::bad_alloc&) {
-        result.error = kOutOfMemory;
+        result.error = out_of_memory_message();
       } catch (const std::exception& e) {
         result.error = e.what();
       }
       if (!result.error.empty()) {
+        const MemoryCeilingLifted lifted;  // taking back allocates a little; the failed work's memory is freed
         journal.roll_back();
         forget(plan);
         result.frames = 0;  // its outputs are gone: it deformed nothing that stays

@@ -3,6 +3,7 @@
 #include "dqskin/lint.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 #include "lint_checks.hpp"
 
 #include <new>
@@ -82,7 +83,7 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
   } catch (const InputError& e) {
     result.error = e.what();
   } catch (const std::bad_alloc&) {
-    result.error = kOutOfMemory;
+    result.error = out_of_memory_message();
   }
   return result;
 }

@@ -3,6 +3,7 @@
 #include "../io/stderr_capture.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -71,7 +72,8 @@ Image8 decode_texture_image(const EncodedImage& image, size_t index, int max_sid
   try {
     out.rgba.resize(pixels * 4);
   } catch (const std::bad_alloc&) {
-    throw InputError(what + ": not enough memory for " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels");
+    throw InputError(what + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels: " +
+                     out_of_memory_message());
   }
   // Read straight into RGBA (4-byte pixel stride), then fill what the stored channels lack.
   const size_t channels = size_t(spec.nchannels);

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Crafted inputs for the commands that came after the loader's hardening (app/tests/command_limits.cmake,
+docs/SECURITY.md "Every command"): each made a command crash, hang, take memory past --max-memory, leak a
+file's content or leave a half-written output; each class of problem is one small generated case here,
+never a downloaded file.
+
+    make_hostile_commands.py OUTDIR
+
+writes one folder per command under OUTDIR (report/), deterministic, byte for byte. Python 3 standard
+library only.
+"""
+
+import copy
+import os
+import shutil
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_malformed as malformed  # noqa: E402  (the quad skinned to two joints, and its accessors)
+
+
+def write(folder, name, data):
+    path = os.path.join(folder, name)
+    with open(path, "wb") as f:
+        f.write(data)
+
+
+def report_cases(folder):
+    """dqskin report.
+
+    clips_1000.gltf   the quad with its clip repeated 1,000 times (a 120 KB file): each clip's contact sheet
+                      and the page that embeds them all took 5.7 GB whatever --max-memory said
+    """
+    a = malformed.base_asset()
+    a.gltf["animations"] = [copy.deepcopy(a.gltf["animations"][0]) for _ in range(1000)]
+    for i, animation in enumerate(a.gltf["animations"]):
+        animation["name"] = "clip%d" % i
+    write(folder, "clips_1000.gltf", a.gltf_bytes())
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: make_hostile_commands.py OUTDIR")
+    out = sys.argv[1]
+    if os.path.exists(out):
+        shutil.rmtree(out)
+    for name, make in [("report", report_cases)]:
+        os.makedirs(os.path.join(out, name))
+        make(os.path.join(out, name))
+
+
+if __name__ == "__main__":
+    main()
