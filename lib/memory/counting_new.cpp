@@ -2,7 +2,7 @@
 // each block counted at the size malloc gave it (malloc_usable_size, glibc's; AddressSanitizer's in the
 // sanitizer builds), so that a block is counted out exactly as it was counted in. Under a MemoryCeiling
 // (dqskin/memory_ceiling.hpp) an allocation that would pass it throws std::bad_alloc, or returns null for
-// the nothrow forms, before malloc is called.
+// the nothrow forms, before malloc is called; except while an exception unwinds the stack (below).
 //
 // Linked into the dqskin command line and its tests, not into the library: replacing operator new is the
 // program's choice (C++20 [replacement.functions]), and an application linking dqskin keeps its own.
@@ -11,6 +11,7 @@
 #include <malloc.h>
 
 #include <cstdlib>
+#include <exception>
 #include <new>
 
 namespace {
@@ -18,11 +19,12 @@ namespace {
 using dqskin::memory_detail::release;
 using dqskin::memory_detail::reserve;
 
-// Counts and allocates `size` bytes aligned to `alignment` (0: malloc's own); null when the ceiling or
-// malloc refuses. The reservation is made first, so that two threads cannot both pass the ceiling.
-void* counted_alloc(std::size_t size, std::size_t alignment) noexcept {
+// Counts and allocates `size` bytes aligned to `alignment` (0: malloc's own); null when the ceiling
+// (unless `past_ceiling`) or malloc refuses. The reservation is made first, so that two threads cannot
+// both pass the ceiling.
+void* counted_alloc(std::size_t size, std::size_t alignment, bool past_ceiling = false) noexcept {
   if (size == 0) size = 1;  // operator new(0) returns a distinct pointer
-  if (!reserve(size)) return nullptr;
+  if (!reserve(size, past_ceiling)) return nullptr;
   void* p = nullptr;
   if (alignment == 0) {
     p = std::malloc(size);
@@ -44,9 +46,17 @@ void counted_free(void* p) noexcept {
 }
 
 // operator new's contract: retry through the new-handler while there is one, else throw.
+//
+// While an exception unwinds the stack, the ceiling is not applied: what runs then is destructors and
+// cleanup, which free the failed work's memory, and a throw from a destructor ends the process
+// (std::terminate). Some allocate as they free: nlohmann::json's destructor reserves a stack as large as
+// the array it destroys, to free deep documents without recursion; a report's document destroyed after
+// a refusal at the ceiling aborted the process where it should have printed one line.
 void* counted_new(std::size_t size, std::size_t alignment) {
   for (;;) {
     if (void* p = counted_alloc(size, alignment)) return p;
+    if (std::uncaught_exceptions() > 0)
+      if (void* p = counted_alloc(size, alignment, /*past_ceiling=*/true)) return p;
     std::new_handler handler = std::get_new_handler();
     if (!handler) throw std::bad_alloc();
     handler();

@@ -33,10 +33,10 @@ void raise_peak(uint64_t now) noexcept {
 
 namespace memory_detail {
 
-bool reserve(uint64_t bytes) noexcept {
+bool reserve(uint64_t bytes, bool always) noexcept {
   const uint64_t limit = g_limit.load(std::memory_order_relaxed);
   const uint64_t before = g_in_use.fetch_add(bytes, std::memory_order_relaxed);
-  if (limit != kNoLimit && (bytes > limit || before > limit - bytes)) {
+  if (!always && limit != kNoLimit && (bytes > limit || before > limit - bytes)) {
     g_in_use.fetch_sub(bytes, std::memory_order_relaxed);
     const uint64_t base = g_base.load(std::memory_order_relaxed);
     g_refused_in_use.store(before > base ? before - base : 0, std::memory_order_relaxed);

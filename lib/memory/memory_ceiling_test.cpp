@@ -56,6 +56,27 @@ TEST(MemoryCeiling, TheNothrowFormsReturnNull) {
   static_cast<void>(out_of_memory_message());
 }
 
+// Frees its memory through an allocation, as nlohmann::json's destructor does (a stack as large as the
+// array it destroys): without the exception below, a destructor run while a refusal unwinds would throw
+// again and end the process.
+struct AllocatesWhenDestroyed {
+  ~AllocatesWhenDestroyed() { block(2 * kMiB); }
+};
+
+TEST(MemoryCeiling, DestructorsThatAllocateWhileARefusalUnwindsAreNotRefused) {
+  const MemoryCeiling ceiling(4 * kMiB);
+  const auto fits = block(3 * kMiB);
+  bool caught = false;
+  try {
+    const AllocatesWhenDestroyed cleanup;
+    block(2 * kMiB);  // refused: unwinding destroys `cleanup`, which allocates past the ceiling
+  } catch (const std::bad_alloc&) {
+    caught = true;
+  }
+  EXPECT_TRUE(caught);
+  EXPECT_THROW(block(2 * kMiB), std::bad_alloc);  // outside unwinding the ceiling holds again
+}
+
 TEST(MemoryCeiling, WithoutARefusalTheMachineRanOut) {
   EXPECT_EQ(out_of_memory_message(), kOutOfMemory);
   {

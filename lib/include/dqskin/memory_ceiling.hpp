@@ -66,8 +66,9 @@ std::string out_of_memory_message();
 
 // What lib/memory/counting_new.cpp calls; nothing else should.
 namespace memory_detail {
-// Counts `bytes` about to be allocated; false (nothing counted) when they would pass the ceiling.
-bool reserve(uint64_t bytes) noexcept;
+// Counts `bytes` about to be allocated; false (nothing counted) when they would pass the ceiling, unless
+// `always` (then they are counted whatever the ceiling).
+bool reserve(uint64_t bytes, bool always = false) noexcept;
 // Counts `bytes` freed, or reserved and not allocated after all (negative: more were allocated).
 void release(int64_t bytes) noexcept;
 // Marks the binary as counting (counting_new.cpp does, as it is initialized).
