@@ -25,6 +25,11 @@ const char* extension(ImageFormat format) { return format == ImageFormat::kPng ?
 
 Committed write_image(const std::string& path, const Image& image, ImageFormat format, const CommitOptions& options) {
   AtomicFile file(path, false);
+  write_image(file, image, format);
+  return file.commit(options);
+}
+
+void write_image(AtomicFile& file, const Image& image, ImageFormat format) {
   const bool png = format == ImageFormat::kPng;
   OIIO::ImageSpec spec(image.width, image.height, 4, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
   if (png) {
@@ -44,7 +49,6 @@ Committed write_image(const std::string& path, const Image& image, ImageFormat f
   } else {
     io::write_image_file(file, "openexr", spec, OIIO::TypeDesc::FLOAT, image.rgba.data());
   }
-  return file.commit(options);
 }
 
 }  // namespace dqskin

@@ -1,12 +1,13 @@
 // `dqskin report` as a library call: inputs planned by the job layer, each measured (measure_input.cpp),
-// then its contact sheets drawn and report.json written, all through the input's journal, so that a
-// failed input leaves nothing.
+// then its contact sheets drawn and report.json and report.html written, all committed together through
+// the input's journal, so that a failed or interrupted input leaves nothing.
 #include "dqskin/report.hpp"
 
 #include "measure_input.hpp"
 #include "report_html.hpp"
 #include "report_json.hpp"
 #include "worst_frames_sheet.hpp"
+#include "../io/leftover_files.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
@@ -17,7 +18,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 #include <iterator>
 
 namespace dqskin {
@@ -58,23 +61,28 @@ std::vector<uint8_t> read_back(const std::string& path) {
   return bytes;
 }
 
-// The contact sheets of an input: per clip its worst frames, drawn on `context`; records each in its clip.
-std::vector<std::pair<std::string, Image>> contact_sheets(GpuContext& context, const InputPlan& input,
-                                                          const ReportOptions& options, InputData& data) {
-  std::vector<std::pair<std::string, Image>> out;
+// The contact sheets of an input: per clip its worst frames, drawn on `context` and written at once to a
+// temporary in `folder`, appended to `files` (so that one sheet's pixels are held at a time, not every
+// clip's); records each in its clip. Returns the PNGs' bytes, for the page to embed.
+std::vector<EmbeddedImage> contact_sheets(GpuContext& context, const InputPlan& input, const ReportOptions& options,
+                                          InputData& data, const std::string& folder,
+                                          std::vector<std::unique_ptr<AtomicFile>>& files) {
+  std::vector<EmbeddedImage> out;
   for (size_t c = 0; c < data.clips.size(); ++c) {
     check_cancelled(options.cancel);
     ClipData& clip = data.clips[c];
     ClipImage image;
     // Named as the clip's folder in a bake (job_plan.hpp), which the planner keeps unique among the input's
     // clips: "<stem>/<anim>" gives worst_<anim>.png.
-    const std::string& folder = input.clips[c].folder;
-    image.file = "worst_" + folder.substr(std::min(folder.size(), input.stem.size() + 1)) + ".png";
+    const std::string& clip_folder = input.clips[c].folder;
+    image.file = "worst_" + clip_folder.substr(std::min(clip_folder.size(), input.stem.size() + 1)) + ".png";
     image.frames = worst_frames(clip.worst_lbs_dib, size_t(options.worst_frames));
     image.scale = clip.lbs_dqs_max;
     WorstFrames frames{*input.asset, input.instances, input.clips[c].clip, {}, image.scale, options.image_size};
     for (size_t f : image.frames) frames.times.push_back(clip.times[f]);
-    out.emplace_back(image.file, worst_frames_sheet(context, frames));
+    AtomicFile& file = *files.emplace_back(std::make_unique<AtomicFile>(folder + "/" + image.file, false));
+    write_image(file, worst_frames_sheet(context, frames), ImageFormat::kPng);
+    out.push_back({image.file, read_back(file.temporary())});
     clip.image = image;
   }
   return out;
@@ -113,24 +121,26 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& input_result) {
         outputs_before = result.outputs.size(), verdicts_before = result.verdicts.size();
         InputData data = measure_input(plan, options, counter);
-        const auto images = contact_sheets(context.get(), plan, options, data);
+        // A report is one output: its sheets, report.json and report.html are written to temporaries and
+        // committed together once all are complete, so that a failure or a signal leaves none of them.
         const std::string folder = options.out_dir + "/" + plan.stem;
         journal.make_folders(folder);
-        std::vector<EmbeddedImage> embedded;
-        for (const auto& [file, image] : images) {
-          write_image(folder + "/" + file, image, ImageFormat::kPng, {Overwrite::kReplace, &journal});
-          result.outputs.push_back(plan.stem + "/" + file);
-          embedded.push_back({file, read_back(folder + "/" + file)});
+        std::vector<std::unique_ptr<AtomicFile>> files;
+        {
+          const std::vector<EmbeddedImage> embedded = contact_sheets(context.get(), plan, options, data, folder, files);
+          const nlohmann::json doc = report_json(data, options);
+          write_report_json(doc, *files.emplace_back(std::make_unique<AtomicFile>(folder + "/report.json")));
+          AtomicFile& html = *files.emplace_back(std::make_unique<AtomicFile>(folder + "/report.html"));
+          write_report_html(doc, embedded, [&html](std::string_view piece) { html.write(std::span<const char>(piece.data(), piece.size())); });
         }
-        const nlohmann::json doc = report_json(data, options);
-        AtomicFile json(folder + "/report.json");
-        json.write(report_json_text(doc));
-        json.commit({Overwrite::kReplace, &journal});
-        result.outputs.push_back(plan.stem + "/report.json");
-        AtomicFile html(folder + "/report.html");
-        html.write(report_html(doc, embedded));
-        html.commit({Overwrite::kReplace, &journal});
-        result.outputs.push_back(plan.stem + "/report.html");
+        check_cancelled(options.cancel);
+        std::vector<std::string> names;
+        for (const std::unique_ptr<AtomicFile>& file : files) {
+          file->commit({Overwrite::kReplace, &journal});
+          names.push_back(std::filesystem::path(file->path()).filename().string());
+          result.outputs.push_back(plan.stem + "/" + names.back());
+        }
+        leftover_files::remove_for(folder, names);  // what a killed run of this report left beside them
         result.verdicts.push_back(data.verdict.text);
         for (const ClipData& clip : data.clips) input_result.frames += clip.times.size();
       },

@@ -300,11 +300,12 @@ std::string image_figure(const json& report, const std::vector<double>& times, c
   return s;
 }
 
-std::string clip_sections(const json& report, const std::vector<EmbeddedImage>& images) {
+void clip_sections(const json& report, const std::vector<EmbeddedImage>& images, const HtmlSink& out) {
   const json& clips = array_member(report, "clips");
-  if (clips.empty()) return "";
-  std::string s = "<section id=\"clips\">\n<h2>Clips</h2>\n";
+  if (clips.empty()) return;
+  out("<section id=\"clips\">\n<h2>Clips</h2>\n");
   for (size_t c = 0; c < clips.size(); ++c) {
+    std::string s;
     const json& clip = clips[c];
     const std::string name = string_of(member(clip, "name"));
     const size_t frames = size_t(std::max(0.0, number_of(member(clip, "frames")).value_or(0.0)));
@@ -345,9 +346,9 @@ std::string clip_sections(const json& report, const std::vector<EmbeddedImage>& 
       }
     for (const std::string& file : files) s += image_figure(report, times, file, images);
     s += "</div>\n</div>\n";
+    out(s);
   }
-  s += "</section>\n";
-  return s;
+  out("</section>\n");
 }
 
 // ----- joints over time -------------------------------------------------------------------------------------
@@ -400,33 +401,33 @@ std::string joint_article(const json& report, const json& joint, size_t index) {
   return s;
 }
 
-std::string joint_sections(const json& report) {
+void joint_sections(const json& report, const HtmlSink& out) {
   const json& joints = array_member(report, "joints");
-  if (joints.empty()) return "";
+  if (joints.empty()) return;
   std::string s = "<section id=\"joints\">\n<h2>Joints over time</h2>\n";
   s += "<p class=\"note\">Per clip and frame: the largest distance of the joint's region to the dib reference, its "
        "cross-section area and its twist and bend. Null figures leave gaps; a dashed red line marks the joint's "
        "worst frame.</p>\n";
   // Joints with something to say first, in the document's order; the rest folded away.
+  out(s);
   size_t fine = 0;
   for (size_t j = 0; j < joints.size(); ++j) {
     if (is_fine(joints[j])) ++fine;
-    else s += joint_article(report, joints[j], j);
+    else out(joint_article(report, joints[j], j));
   }
   if (fine > 0) {
-    s += "<details class=\"fine\"><summary>" + std::to_string(fine) + (fine == 1 ? " joint" : " joints") +
-         " where lbs is fine</summary>\n";
+    out("<details class=\"fine\"><summary>" + std::to_string(fine) + (fine == 1 ? " joint" : " joints") +
+        " where lbs is fine</summary>\n");
     for (size_t j = 0; j < joints.size(); ++j)
-      if (is_fine(joints[j])) s += joint_article(report, joints[j], j);
-    s += "</details>\n";
+      if (is_fine(joints[j])) out(joint_article(report, joints[j], j));
+    out("</details>\n");
   }
-  s += "</section>\n";
-  return s;
+  out("</section>\n");
 }
 
 }  // namespace
 
-std::string report_html(const json& report, const std::vector<EmbeddedImage>& images) {
+void write_report_html(const json& report, const std::vector<EmbeddedImage>& images, const HtmlSink& out) {
   const std::string file = string_of(member(member(report, "input"), "file"));
   std::string s = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                   "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
@@ -436,12 +437,18 @@ std::string report_html(const json& report, const std::vector<EmbeddedImage>& im
   s += text("dqskin report: " + file) + "</title>\n<style>" + kReportStyle + "</style>\n</head>\n<body>\n<main>\n";
   s += header(report);
   s += joint_table(report);
-  s += clip_sections(report, images);
-  s += joint_sections(report);
-  s += "<footer>Made by " + text(string_of(member(report, "tool"))) +
-       ". Lengths in scene units (glTF: metres), angles in degrees, areas and volumes as ratios to the rest pose; "
-       "\xE2\x80\x93 marks a figure that does not exist.</footer>\n</main>\n</body>\n</html>\n";
-  return s;
+  out(s);
+  clip_sections(report, images, out);
+  joint_sections(report, out);
+  out("<footer>Made by " + text(string_of(member(report, "tool"))) +
+      ". Lengths in scene units (glTF: metres), angles in degrees, areas and volumes as ratios to the rest pose; "
+      "\xE2\x80\x93 marks a figure that does not exist.</footer>\n</main>\n</body>\n</html>\n");
+}
+
+std::string report_html(const json& report, const std::vector<EmbeddedImage>& images) {
+  std::string page;
+  write_report_html(report, images, [&page](std::string_view piece) { page += piece; });
+  return page;
 }
 
 }  // namespace dqskin::report_detail

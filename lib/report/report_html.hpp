@@ -6,7 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dqskin::report_detail {
@@ -24,5 +26,12 @@ struct EmbeddedImage {
 // unexpected type are shown as absent ("–"), never a crash. An image named by the document but not in
 // `images` is named on the page as missing. Deterministic: the same arguments give the same bytes.
 std::string report_html(const nlohmann::json& report, const std::vector<EmbeddedImage>& images);
+
+// Receives the page piece by piece: a section, a clip or a joint at a time.
+using HtmlSink = std::function<void(std::string_view)>;
+
+// The same page handed to `out` as it is made, so that it is never whole in memory (a thousand clips'
+// sheets and charts made a page of hundreds of MB).
+void write_report_html(const nlohmann::json& report, const std::vector<EmbeddedImage>& images, const HtmlSink& out);
 
 }  // namespace dqskin::report_detail

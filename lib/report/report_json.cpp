@@ -5,6 +5,7 @@
 #include "dqskin/version.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace dqskin::report_detail {
 namespace {
@@ -136,6 +137,43 @@ nlohmann::json report_json(const InputData& input, const ReportOptions& options)
   doc["joints"] = joints;
   doc["images"] = images;
   return doc;
+}
+
+namespace {
+
+// nlohmann's serializer writes to an output adapter: this one fills a buffer and hands it to the file.
+class FileAdapter final : public nlohmann::detail::output_adapter_protocol<char> {
+public:
+  explicit FileAdapter(AtomicFile& file) : file_(file) { buffer_.reserve(kBuffer); }
+  ~FileAdapter() override = default;
+  void write_character(char c) override {
+    buffer_.push_back(c);
+    if (buffer_.size() >= kBuffer) flush();
+  }
+  void write_characters(const char* s, std::size_t length) override {
+    buffer_.append(s, length);
+    if (buffer_.size() >= kBuffer) flush();
+  }
+  void flush() {
+    file_.write(buffer_);
+    buffer_.clear();
+  }
+
+private:
+  static constexpr size_t kBuffer = size_t(1) << 16;
+  AtomicFile& file_;
+  std::string buffer_;
+};
+
+}  // namespace
+
+void write_report_json(const nlohmann::json& report, AtomicFile& file) {
+  // As json::dump(2, ' ', false, replace) does it, to a file instead of a string.
+  const auto adapter = std::make_shared<FileAdapter>(file);
+  nlohmann::detail::serializer<nlohmann::json> serializer(adapter, ' ', nlohmann::json::error_handler_t::replace);
+  serializer.dump(report, true, false, 2);
+  adapter->write_character('\n');
+  adapter->flush();
 }
 
 std::string report_json_text(const nlohmann::json& report) {

@@ -55,6 +55,9 @@ public:
   bool conflicts() const;
 
   const std::string& path() const { return path_; }
+  // Where the bytes are until commit(): for a writer that reads back what it wrote (a page embedding an
+  // image) before committing them together.
+  const std::string& temporary() const { return temporary_; }
 
 private:
   std::string path_;

@@ -23,6 +23,8 @@ const char* extension(ImageFormat format);
 // EXR as 32-bit linear float, no time stamp in either. Throws OutputError naming `path`.
 Committed write_image(const std::string& path, const Image& image, ImageFormat format,
                       const CommitOptions& options = {});
+// The same bytes into `file`'s temporary, not committed: for a writer whose files appear together.
+void write_image(AtomicFile& file, const Image& image, ImageFormat format);
 
 // 8-bit sRGB RGBA pixels, top row first: what PNG and GIF store, and what a contact sheet keeps per frame.
 struct Image8 {
