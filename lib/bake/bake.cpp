@@ -82,6 +82,18 @@ struct Ledger {
     record({relative, bytes.size(), digest, unchanged});
   }
 
+  // The same for a .glb in two parts (a morph animation's), written one after the other, never joined.
+  void write(const std::string& relative, const glb::GlbParts& glb, OutputJournal& journal) {
+    const Clock::time_point start = Clock::now();
+    AtomicFile file(absolute(relative), false);
+    file.write(glb.head);
+    file.write(glb.bin);
+    const bool unchanged = file.commit({options.overwrite, &journal}) == Committed::kUnchanged;
+    const std::string digest = sha256_hex({std::span<const char>(glb.head), std::span<const char>(glb.bin)});
+    add_time(&BakeStageTimes::write, since(start));
+    record({relative, glb.size(), digest, unchanged});
+  }
+
   // Records files another library wrote (OpenImageIO): hashed from disk.
   void record_files(const std::vector<std::string>& relative, const std::vector<Committed>& committed) {
     for (size_t i = 0; i < relative.size(); ++i) {
@@ -204,7 +216,7 @@ public:
       const Clock::time_point start = Clock::now();
       MorphClipResult result = morph->finish(*appearance_, jobs_);
       ledger_.add_time(&BakeStageTimes::encode, since(start));
-      ledger_.write(morph_file(clip), result.bytes, journal_);
+      ledger_.write(morph_file(clip), result.glb, journal_);
       ledger_.record_morph(std::move(result.check));
       for (std::string& w : result.warnings) warnings_.push_back(std::move(w));
     }

@@ -135,7 +135,7 @@ void MorphClipBake::append(const FrameView& frame) {
   normals_.push_back(std::move(normals));
 }
 
-MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigned threads) const {
+MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigned threads) {
   const size_t frames = positions_.size();
   if (frames != clip_.times.size())
     throw std::logic_error("MorphClipBake: " + std::to_string(frames) + " frames appended, the clip has " +
@@ -211,6 +211,16 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
     throw InputError(what_ + ": the morph targets decode with errors up to " + length_text(position_error.value) +
                      ", over --max-error " + length_text(limit));
 
+  // The frames between keys are freed: the measurement above was their last reader, and the encoding holds
+  // its file's bytes beside the keys.
+  for (size_t f = 0, next = 0; f < frames; ++f) {
+    if (next < keys.size() && keys[next] == f) {
+      ++next;
+    } else {
+      positions_[f] = {};
+      normals_[f] = {};
+    }
+  }
   for (size_t k : keys) {
     a.times.push_back(clip_.times[k]);
     a.positions.push_back(positions_[k]);
@@ -224,12 +234,12 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
   glb::MorphGlbStats stats;
   MorphClipResult out;
   try {
-    out.bytes = glb::encode_morph_glb(*input_.asset, input_.instances, appearance, a, &stats);
+    out.glb = glb::encode_morph_glb(*input_.asset, input_.instances, appearance, a, &stats);
   } catch (const OutputError& e) {  // past 4 GiB: fewer frames (--fps, --max-error) would fit
     throw OutputError(what_ + ": " + e.what());
   }
   out.check = {input_.path, clip_.name, frames, keys.size(), position_error.value, normal_error.value,
-               out.bytes.size(), stats.sparse_accessors, a.grid.on()};
+               out.glb.size(), stats.sparse_accessors, a.grid.on()};
   std::vector<std::pair<size_t, bool>> primitives;
   for (size_t p = 0; p < first_.size(); ++p)
     primitives.emplace_back((p + 1 < first_.size() ? first_[p + 1] : vertices_) - first_[p], bool(with_normals_[p]));

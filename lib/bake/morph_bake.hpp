@@ -29,7 +29,7 @@ std::vector<std::string> morph_viewer_warnings(const std::string& what, size_t t
                                                const std::vector<std::pair<size_t, bool>>& primitives);
 
 struct MorphClipResult {
-  std::string bytes;                  // the .glb
+  glb::GlbParts glb;                  // the .glb, in two parts
   MorphCheck check;
   std::vector<std::string> warnings;  // viewer limits the file exceeds
 };
@@ -45,8 +45,8 @@ public:
 
   // Chooses the keys, encodes and measures, on `threads` threads. Throws InputError naming the clip when
   // the measured error exceeds --max-error, or when the quantization grid alone cannot meet it (then
-  // before encoding).
-  MorphClipResult finish(const glb::Appearance& appearance, unsigned threads) const;
+  // before encoding). Once: the frames that are not keys are freed before encoding.
+  MorphClipResult finish(const glb::Appearance& appearance, unsigned threads);
 
 private:
   const InputPlan& input_;

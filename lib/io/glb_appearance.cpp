@@ -4,6 +4,7 @@
 #include "glb_appearance.hpp"
 
 #include "../gltf/source_document.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/version.hpp"
 
@@ -276,26 +277,33 @@ void put_u32(std::string& out, size_t value) {
 }  // namespace
 
 // §4.4: 12-byte header, a JSON chunk padded with spaces, a BIN chunk padded with zeros, all little-endian.
-std::string glb_container(const json& doc, std::string bin) {
+GlbParts glb_container_parts(const json& doc, std::string bin) {
   std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);
   text.resize((text.size() + 3) & ~size_t(3), ' ');
   bin.resize((bin.size() + 3) & ~size_t(3), '\0');
   const size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size());
-  if (total > 0xFFFFFFFFu) throw OutputError("the .glb would be larger than the 4 GiB the format can hold");
-  std::string out;
-  out.reserve(total);
-  out += "glTF";
-  put_u32(out, 2);
-  put_u32(out, total);
-  put_u32(out, text.size());
-  out += "JSON";
-  out += text;
+  if (total > 0xFFFFFFFFu)
+    throw OutputError("the .glb would be " + byte_size(total) + ", more than the 4 GiB the format can hold");
+  GlbParts out;
+  out.head.reserve(12 + 8 + text.size() + 8);
+  out.head += "glTF";
+  put_u32(out.head, 2);
+  put_u32(out.head, total);
+  put_u32(out.head, text.size());
+  out.head += "JSON";
+  out.head += text;
   if (!bin.empty()) {
-    put_u32(out, bin.size());
-    out.append("BIN\0", 4);
-    out += bin;
+    put_u32(out.head, bin.size());
+    out.head.append("BIN\0", 4);
   }
+  out.bin = std::move(bin);
   return out;
+}
+
+std::string glb_container(const json& doc, std::string bin) {
+  GlbParts parts = glb_container_parts(doc, std::move(bin));
+  parts.head += parts.bin;
+  return std::move(parts.head);
 }
 
 namespace {
@@ -317,8 +325,8 @@ void collect_extensions(const json& j, std::set<std::string>& names) {
 
 }  // namespace
 
-std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& source_required,
-                       const std::vector<std::string>& own) {
+GlbParts finish_glb_parts(json doc, BinWriter bin, const std::vector<std::string>& source_required,
+                          const std::vector<std::string>& own) {
   bin.bytes.resize((bin.bytes.size() + 3) & ~size_t(3), '\0');
   doc["accessors"] = std::move(bin.accessors);
   doc["bufferViews"] = std::move(bin.views);
@@ -336,7 +344,14 @@ std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& 
     if (used.count(e)) required.push_back(e);
   for (const std::string& e : own) required.push_back(e);
   if (!required.empty()) doc["extensionsRequired"] = std::move(required);
-  return glb_container(doc, std::move(bin.bytes));
+  return glb_container_parts(doc, std::move(bin.bytes));
+}
+
+std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& source_required,
+                       const std::vector<std::string>& own) {
+  GlbParts parts = finish_glb_parts(std::move(doc), std::move(bin), source_required, own);
+  parts.head += parts.bin;
+  return std::move(parts.head);
 }
 
 glm::vec3 unit_or(const glm::dvec3& n, const glm::vec3& fallback) {

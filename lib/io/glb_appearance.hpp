@@ -52,11 +52,23 @@ struct BinWriter {
 // chunk (when not empty) padded with zeros, all little-endian. Throws OutputError past 4 GiB.
 std::string glb_container(const json& doc, std::string bin);
 
+// The same file in two parts that are written one after the other: the header, the JSON chunk and the BIN
+// chunk's header, then the BIN chunk's bytes, never copied (a morph animation's run to gigabytes).
+struct GlbParts {
+  std::string head;
+  std::string bin;
+  size_t size() const { return head.size() + bin.size(); }
+};
+GlbParts glb_container_parts(const json& doc, std::string bin);
+
 // The .glb of a document whose objects are complete but for the buffer: `bin`'s accessors, views and
 // buffer go in, top-level arrays left empty are removed (§5.1 forbids empty ones), extensionsUsed lists
 // every extension named in an `extensions` object (§3.12) and `own` (extensions the writer's data needs
 // without naming them, such as KHR_mesh_quantization), and extensionsRequired those of `source_required`
 // still used, then `own`.
+GlbParts finish_glb_parts(json doc, BinWriter bin, const std::vector<std::string>& source_required,
+                          const std::vector<std::string>& own = {});
+// finish_glb_parts() as one string.
 std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& source_required,
                        const std::vector<std::string>& own = {});
 

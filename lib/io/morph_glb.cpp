@@ -217,12 +217,18 @@ glm::dvec3 stored_normal(const MorphGrid& grid, bool short_target, const float* 
   return out;
 }
 
-std::string encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
+GlbParts encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
                              const Appearance& appearance, const MorphAnimation& a, MorphGlbStats* stats) {
   const size_t keys = a.positions.size();
   if (keys == 0 || a.times.size() != keys || a.normals.size() != keys || a.target_names.size() + 1 != keys)
     throw std::invalid_argument("encode_morph_glb: keys, times, normals and target names do not match");
-  BinWriter bin = appearance.bin;
+  // The buffer at its largest from the start (every target dense float positions and normals, and the
+  // weights): grown by doubling, it held the old and the new copy of a gigabyte at once.
+  BinWriter bin;
+  const size_t values = a.positions[0].size() + a.normals[0].size();
+  bin.bytes.reserve(appearance.bin.bytes.size() + keys * (values * sizeof(float) + 64 * (a.with_normals.size() + 1)) +
+                    keys * keys * sizeof(float) + 64);
+  bin = appearance.bin;
   json primitives = json::array();
   size_t first = 0, p = 0;
   for (const MeshInstance& inst : instances) {
@@ -280,7 +286,7 @@ std::string encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>
   doc["scene"] = 0;
   std::vector<std::string> own;
   if (a.grid.on()) own.push_back("KHR_mesh_quantization");
-  return finish_glb(std::move(doc), std::move(bin), appearance.source_extensions_required, own);
+  return finish_glb_parts(std::move(doc), std::move(bin), appearance.source_extensions_required, own);
 }
 
 }  // namespace dqskin::glb

@@ -68,8 +68,9 @@ struct MorphGlbStats {
 // The .glb bytes of `animation` over the primitives that `instances` draw (in their order), each with its
 // source's fixed attributes, indices and material from `appearance` (read_appearance over the same
 // instances). A single key writes the mesh without targets or animation. A target accessor is written
-// sparse where that takes fewer bytes. Deterministic.
-std::string encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
+// sparse where that takes fewer bytes. Deterministic. In two parts (glb_appearance.hpp), so that the file's
+// bytes are never copied whole.
+GlbParts encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
                              const Appearance& appearance, const MorphAnimation& animation,
                              MorphGlbStats* stats = nullptr);
 

@@ -40,6 +40,12 @@ std::string sha256_hex(std::span<const char> bytes) {
   return d.hex();
 }
 
+std::string sha256_hex(std::initializer_list<std::span<const char>> pieces) {
+  Digest d;
+  for (std::span<const char> piece : pieces) d.add(piece.data(), piece.size());
+  return d.hex();
+}
+
 std::string sha256_file(const std::string& path) {
   std::unique_ptr<std::FILE, decltype(&std::fclose)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!file) throw InputError(path + ": cannot be read");
