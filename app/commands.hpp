@@ -50,12 +50,9 @@ void add_load_settings(CLI::App& command, LoadSettings& settings);
 // Adds --max-memory alone, for the commands that read no glTF file (verify, merge).
 void add_max_memory(CLI::App& command, std::string& max_memory);
 
-// The --max-memory a parsed command was given on its command line; none when it was not given, or for a
-// command without the flag (bench). run_cli sets it as the command's MemoryCeiling
-// (dqskin/memory_ceiling.hpp), so that the command holds it, whatever allocates. The default (2G) is not
-// a ceiling yet, only the estimates' limit: the morph bake of the BrainStem sample holds 2.1 GiB at once
-// (every frame, then the encoded file), and a ceiling by default would refuse a bake that works today.
-// Throws InputError for a size that is not one.
+// The --max-memory of a parsed command, given or its default (2G); none for a command without the flag
+// (bench). run_cli sets it as the command's MemoryCeiling (dqskin/memory_ceiling.hpp), so that the command
+// holds it, whatever allocates. Throws InputError for a size that is not one.
 std::optional<uint64_t> max_memory_of(const CLI::App& command);
 
 // The LoadOptions they ask for. Throws InputError for a size that is not one, or a root that is not a folder.

@@ -21,15 +21,16 @@ void add_max_memory(CLI::App& command, std::string& max_memory) {
   command
       .add_option("--max-memory", max_memory,
                   "Refuse an input that needs more memory than this, estimated from what the file declares before "
-                  "anything is decoded; when given, also a ceiling on all the command allocates: bytes, or K, M, G, T")
+                  "anything is decoded, and a ceiling on all the command allocates: bytes, or K, M, G, T")
       ->type_name("SIZE")
       ->capture_default_str();
 }
 
 std::optional<uint64_t> max_memory_of(const CLI::App& command) {
   const CLI::Option* option = command.get_option_no_throw("--max-memory");
-  if (!option || option->count() == 0) return std::nullopt;
-  return parse_byte_size(option->results().back(), "--max-memory");
+  if (!option) return std::nullopt;
+  // Given or not: the default is a ceiling too, so that a command's memory is bounded on any input.
+  return parse_byte_size(option->count() > 0 ? option->results().back() : option->get_default_str(), "--max-memory");
 }
 
 LoadOptions to_load_options(const LoadSettings& settings) {
