@@ -6,14 +6,16 @@ never a downloaded file.
 
     make_hostile_commands.py OUTDIR
 
-writes one folder per command under OUTDIR (report/), deterministic, byte for byte. Python 3 standard
-library only.
+writes one folder per command under OUTDIR (report/, diff/), deterministic, byte for byte. Python 3
+standard library only.
 """
 
 import copy
 import os
 import shutil
+import struct
 import sys
+import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_malformed as malformed  # noqa: E402  (the quad skinned to two joints, and its accessors)
@@ -38,13 +40,86 @@ def report_cases(folder):
     write(folder, "clips_1000.gltf", a.gltf_bytes())
 
 
+# OpenEXR files (the OpenEXR file layout: single-part scanline images): the magic and version 2, the
+# header's attributes (name, type, size, value) up to an empty name, one offset per block of rows, then
+# the blocks, each its first row, its byte count and its rows, every channel's row in turn (channels in
+# name order). NO_COMPRESSION stores one row a block; ZIP 16 rows, their bytes split into even and odd
+# ones, delta-coded and deflated.
+EXR_NONE, EXR_ZIP = 0, 3
+EXR_HALF, EXR_FLOAT = 1, 2
+
+
+def exr_header(width, height, channels, pixel_type, compression):
+    def attribute(name, type_, value):
+        return name.encode() + b"\0" + type_.encode() + b"\0" + struct.pack("<i", len(value)) + value
+    chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", pixel_type, 0, 1, 1) for c in sorted(channels))
+    window = struct.pack("<4i", 0, 0, width - 1, height - 1)
+    return (struct.pack("<ii", 20000630, 2) + attribute("channels", "chlist", chlist + b"\0") +
+            attribute("compression", "compression", bytes([compression])) +
+            attribute("dataWindow", "box2i", window) + attribute("displayWindow", "box2i", window) +
+            attribute("lineOrder", "lineOrder", b"\0") + attribute("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+            attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) +
+            attribute("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+
+
+def exr_zip(raw):
+    """A ZIP block's data: even bytes then odd ones, each byte the difference to the one before plus 128."""
+    split = raw[0::2] + raw[1::2]
+    coded = bytes([split[0]]) + bytes((b - a + 128) & 255 for a, b in zip(split, split[1:])) if split else b""
+    packed = zlib.compress(coded, 9)
+    return packed if len(packed) < len(raw) else raw
+
+
+def exr(width, height, channels, pixel_type, value, compression=EXR_NONE):
+    """A valid image whose channel c at (x, y) is value(x, y, c). Blocks of equal rows are coded once."""
+    code = "<%d%s" % (width, "e" if pixel_type == EXR_HALF else "f")
+    rows_per_block = 16 if compression == EXR_ZIP else 1
+    coded = {}
+    blocks = []
+    for y in range(0, height, rows_per_block):
+        raw = b"".join(struct.pack(code, *[value(x, row, c) for x in range(width)])
+                       for row in range(y, min(height, y + rows_per_block)) for c in sorted(channels))
+        if raw not in coded:
+            coded[raw] = exr_zip(raw) if compression == EXR_ZIP else raw
+        blocks.append(struct.pack("<ii", y, len(coded[raw])) + coded[raw])
+    header = exr_header(width, height, channels, pixel_type, compression)
+    offsets, at = [], len(header) + 8 * len(blocks)
+    for block in blocks:
+        offsets.append(at)
+        at += len(block)
+    return header + struct.pack("<%dQ" % len(offsets), *offsets) + b"".join(blocks)
+
+
+def exr_declaring(width, height, channels="ABGR"):
+    """Only the header of a ZIP image of HALF channels and an offset table of zeros, which OpenEXR rebuilds
+    when it opens the file: any size, declared in a few kilobytes."""
+    return exr_header(width, height, channels, EXR_HALF, EXR_ZIP) + b"\0" * (8 * ((height + 15) // 16))
+
+
+def diff_cases(folder):
+    """dqskin diff of images.
+
+    wide_a.exr, wide_b.exr        valid 12000x1 images (ZIP, HALF): diff read them through a buffer of
+                                  OpenImageIO's of 66 MB, so that --max-memory 16M refused them
+    tall.exr                      a valid 12000x2400 image of one FLOAT channel (115 MB as float, 118 KB
+                                  as a file): under --max-memory 96M OpenImageIO's ImageBuf could not
+                                  allocate it, and diff read it through its null pointer (a crash)
+    declared_a.exr, _b.exr        headers that declare 12000x12000 RGBA (2.3 GB as float) in 6 KB
+    """
+    write(folder, "wide_a.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
+    write(folder, "wide_b.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
+    write(folder, "tall.exr", exr(12000, 2400, "Y", EXR_FLOAT, lambda x, y, c: 0.5, EXR_ZIP))
+    for name in ("declared_a.exr", "declared_b.exr"):
+        write(folder, name, exr_declaring(12000, 12000))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_hostile_commands.py OUTDIR")
     out = sys.argv[1]
     if os.path.exists(out):
         shutil.rmtree(out)
-    for name, make in [("report", report_cases)]:
+    for name, make in [("report", report_cases), ("diff", diff_cases)]:
         os.makedirs(os.path.join(out, name))
         make(os.path.join(out, name))
 

@@ -40,3 +40,16 @@ dqskin_limit_test(report_1000_clips_within_max_memory 2 FOLDER ${limits_scratch}
   ARGS report report/clips_1000.gltf -o ${limits_scratch}/report_1000 --max-memory 256M --quiet
   ONE_LINE MAX_RSS_MB 700
   STDERR "^dqskin: report/clips_1000.gltf: needs more memory than --max-memory 256 MiB allows \\(")
+
+# ---- diff --------------------------------------------------------------------------------------------------
+# Images: read as float into memory the ceiling counts, after their declared size was checked against
+# --max-memory. A valid 12000x2400 EXR at --max-memory 96M crashed (OpenImageIO's ImageBuf could not
+# allocate it and the pixels were read through its null pointer); a 12000x1 one needed OpenImageIO's
+# 66 MB read buffer; a 6 KB header declaring 12000x12000 is refused from the header.
+dqskin_limit_test(diff_wide_exrs_within_16M 0 ARGS diff diff/wide_a.exr diff/wide_b.exr --max-memory 16M
+  STDOUT "^PASS  diff/wide_a.exr  max 0 " STDERR "^$")
+dqskin_limit_test(diff_exr_past_max_memory 2 ARGS diff diff/tall.exr diff/tall.exr --max-memory 96M ONE_LINE
+  STDOUT "^FAIL  diff/tall.exr  cannot read diff/tall.exr: comparing it needs about 118 MiB "
+  STDERR "^dqskin: diff/tall.exr: comparing it needs about 118 MiB \\(its 12000x2400 pixels of 1 channel as float\\), more than --max-memory 96.0 MiB\n$")
+dqskin_limit_test(diff_exr_declaring_12000_squared 2 ARGS diff diff/declared_a.exr diff/declared_b.exr ONE_LINE
+  MAX_RSS_MB 400 STDERR "^dqskin: diff/declared_a.exr: comparing it needs about 2.15 GiB \\(its 12000x12000 pixels of 4 channels as float\\), more than --max-memory 2.00 GiB\n$")

@@ -5,6 +5,8 @@
 // OpenImageIO stays out of this header.
 #pragma once
 
+#include "dqskin/load.hpp"  // kDefaultMaxMemory
+
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -79,6 +81,10 @@ struct DiffOptions {
   // `fail`) to yellow (the pair's max error); white where the difference is not finite. Written atomically
   // (a complete file or none) and the same bytes for the same inputs.
   std::string heat_map_dir;
+  // Most memory comparing one pair may take (--max-memory): both images as float, what reading takes and
+  // the heat map. Checked against what each file declares before its pixels are allocated; a file that
+  // needs more is unreadable ("comparing it needs about …").
+  uint64_t max_memory = kDefaultMaxMemory;
 };
 
 struct DiffReport {
