@@ -97,7 +97,7 @@ def exr_declaring(width, height, channels="ABGR"):
 
 
 def diff_cases(folder):
-    """dqskin diff of images.
+    """dqskin diff of images and of bake folders.
 
     wide_a.exr, wide_b.exr        valid 12000x1 images (ZIP, HALF): diff read them through a buffer of
                                   OpenImageIO's of 66 MB, so that --max-memory 16M refused them
@@ -105,12 +105,29 @@ def diff_cases(folder):
                                   as a file): under --max-memory 96M OpenImageIO's ImageBuf could not
                                   allocate it, and diff read it through its null pointer (a crash)
     declared_a.exr, _b.exr        headers that declare 12000x12000 RGBA (2.3 GB as float) in 6 KB
+    bake_exr/A, bake_exr/B        bake folders (manifest.json) whose vat.exr is declared_a.exr: the bake diff
+                                  allocated the declared size, 2.7 GB at --max-memory 256M
+    bake_link/A, bake_link/B      bake folders whose frame.ply is a symbolic link to secret.txt outside them:
+                                  the bake diff read it and quoted it in its parse error
+    bake_quote/A, bake_quote/B    bake folders whose frame.ply names a secret word as a property and whose
+                                  frame.glb holds one in malformed JSON: the errors quoted them
     """
     write(folder, "wide_a.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
     write(folder, "wide_b.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
     write(folder, "tall.exr", exr(12000, 2400, "Y", EXR_FLOAT, lambda x, y, c: 0.5, EXR_ZIP))
     for name in ("declared_a.exr", "declared_b.exr"):
         write(folder, name, exr_declaring(12000, 12000))
+
+    secret = b"ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double SECRET_WORD\nend_header\n"
+    write(folder, "secret.txt", secret)
+    for side in ("A", "B"):
+        for bake in ("bake_exr", "bake_link", "bake_quote"):
+            os.makedirs(os.path.join(folder, bake, side))
+            write(os.path.join(folder, bake, side), "manifest.json", b"{}\n")
+        write(os.path.join(folder, "bake_exr", side), "vat.exr", exr_declaring(12000, 12000))
+        os.symlink(os.path.join("..", "..", "secret.txt"), os.path.join(folder, "bake_link", side, "frame.ply"))
+        write(os.path.join(folder, "bake_quote", side), "frame.ply", secret)
+        write(os.path.join(folder, "bake_quote", side), "frame.glb", b'{"asset":{"version":"2.0"},"x":"SECRET_WORD\x01"}')
 
 
 def main():

@@ -53,3 +53,13 @@ dqskin_limit_test(diff_exr_past_max_memory 2 ARGS diff diff/tall.exr diff/tall.e
   STDERR "^dqskin: diff/tall.exr: comparing it needs about 118 MiB \\(its 12000x2400 pixels of 1 channel as float\\), more than --max-memory 96.0 MiB\n$")
 dqskin_limit_test(diff_exr_declaring_12000_squared 2 ARGS diff diff/declared_a.exr diff/declared_b.exr ONE_LINE
   MAX_RSS_MB 400 STDERR "^dqskin: diff/declared_a.exr: comparing it needs about 2.15 GiB \\(its 12000x12000 pixels of 4 channels as float\\), more than --max-memory 2.00 GiB\n$")
+# Bake folders: an EXR texture declaring 12000x12000 was allocated at its declared size (2.7 GB at
+# --max-memory 256M); a frame that is a symbolic link out of the folder was read and quoted; a parse
+# error quoted the file (a PLY property's name, the JSON parser's "last read").
+dqskin_limit_test(diff_bake_exr_declaring_12000_squared 2 ARGS diff diff/bake_exr/A diff/bake_exr/B --max-memory 256M
+  ONE_LINE MAX_RSS_MB 400 STDOUT "^$"
+  STDERR "^dqskin: diff/bake_exr/A/vat.exr: comparing it needs about 1.61 GiB \\(its 12000x12000 texels as positions\\), more than --max-memory 256 MiB\n$")
+dqskin_limit_test(diff_bake_link_refused 2 ARGS diff diff/bake_link/A diff/bake_link/B ONE_LINE STDOUT "^$"
+  STDERR "^dqskin: diff/bake_link/A/frame.ply: is a symbolic link, which diff does not follow in a bake folder\n$")
+dqskin_limit_test(diff_bake_errors_quote_nothing 2 ARGS diff diff/bake_quote/A diff/bake_quote/B --json STDERR "^$"
+  STDOUT "\"reason\": \"[^\"]*must be escaped to [^\"]*u0001\",\n.*\"reason\": \"PLY vertex property 1 is not float\",\n")

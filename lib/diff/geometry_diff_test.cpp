@@ -246,5 +246,23 @@ TEST(BakeDiff, PairsFilesByPathAndComparesVertexByVertex) {
       << geometry_text(r);
 }
 
+// A frame that is a symbolic link may name any file: the diff would read it and quote it in its report.
+TEST(BakeDiff, RefusesASymbolicLinkInABakeFolderNamingIt) {
+  const testing_support::ScratchDir dir("bake_diff");
+  std::ofstream(dir.path() / "secret.txt") << "v 1 2 3\n";
+  for (const char* side : {"a", "b"}) {
+    std::filesystem::create_directories(dir.path() / side / "m");
+    std::ofstream(dir.path() / side / "manifest.json") << "{}";
+    std::filesystem::create_symlink("../../secret.txt", dir.path() / side / "m" / "frame_0000.obj");
+  }
+  const std::string a = (dir.path() / "a").string(), b = (dir.path() / "b").string();
+  try {
+    diff_bakes(a, b, {});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), a + "/m/frame_0000.obj: is a symbolic link, which diff does not follow in a bake folder");
+  }
+}
+
 }  // namespace
 }  // namespace dqskin
