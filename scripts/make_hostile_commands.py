@@ -97,7 +97,7 @@ def exr_declaring(width, height, channels="ABGR"):
 
 
 def diff_cases(folder):
-    """dqskin diff of images and of bake folders.
+    """dqskin diff: images, bake folders and glTF files.
 
     wide_a.exr, wide_b.exr        valid 12000x1 images (ZIP, HALF): diff read them through a buffer of
                                   OpenImageIO's of 66 MB, so that --max-memory 16M refused them
@@ -111,6 +111,11 @@ def diff_cases(folder):
                                   the bake diff read it and quoted it in its parse error
     bake_quote/A, bake_quote/B    bake folders whose frame.ply names a secret word as a property and whose
                                   frame.glb holds one in malformed JSON: the errors quoted them
+    vertices_a.gltf, _b.gltf      the quad with 22,369,620 vertices of a POSITION accessor without a buffer
+                                  (2.7 KB): the geometric diff allocated gigabytes for them
+    vertices_6m_a.gltf, _b.gltf   6,000,000 such vertices: the sides fit, a frame of both does not
+    quad.gltf, still.gltf         the quad, and the quad without its clip: no clip in common
+    apart.gltf                    the quad moved 1000 units away: the meshes do not overlap
     """
     write(folder, "wide_a.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
     write(folder, "wide_b.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
@@ -128,6 +133,31 @@ def diff_cases(folder):
         os.symlink(os.path.join("..", "..", "secret.txt"), os.path.join(folder, "bake_link", side, "frame.ply"))
         write(os.path.join(folder, "bake_quote", side), "frame.ply", secret)
         write(os.path.join(folder, "bake_quote", side), "frame.glb", b'{"asset":{"version":"2.0"},"x":"SECRET_WORD\x01"}')
+
+    def declaring_vertices(count):
+        a = malformed.base_asset()
+        values = a.add_view(struct.pack("<3f", 0, 1, 0))
+        index = a.add_view(struct.pack("<I", 1))
+        a.gltf["accessors"].append({"componentType": malformed.FLOAT, "count": count, "type": "VEC3", "sparse": {
+            "count": 1, "indices": {"bufferView": index, "componentType": malformed.UINT}, "values": {"bufferView": values}}})
+        a.gltf["meshes"][0]["primitives"] = [{"attributes": {"POSITION": len(a.gltf["accessors"]) - 1}}]
+        del a.gltf["nodes"][0]["skin"]
+        return a.gltf_bytes()
+    # The most vertices an accessor without a buffer may have (LoadOptions::max_unbacked_elements, 2^26
+    # values), whole triangles.
+    for name in ("vertices_a.gltf", "vertices_b.gltf"):
+        write(folder, name, declaring_vertices((1 << 26) // 9 * 3))
+    for name in ("vertices_6m_a.gltf", "vertices_6m_b.gltf"):
+        write(folder, name, declaring_vertices(6000000))
+
+    quad = malformed.base_asset()
+    write(folder, "quad.gltf", quad.gltf_bytes())
+    still = quad.copy()
+    del still.gltf["animations"]
+    write(folder, "still.gltf", still.gltf_bytes())
+    apart = quad.copy()
+    apart.gltf["nodes"][1]["translation"] = [1000, 1000, 1000]
+    write(folder, "apart.gltf", apart.gltf_bytes())
 
 
 def main():

@@ -63,3 +63,17 @@ dqskin_limit_test(diff_bake_link_refused 2 ARGS diff diff/bake_link/A diff/bake_
   STDERR "^dqskin: diff/bake_link/A/frame.ply: is a symbolic link, which diff does not follow in a bake folder\n$")
 dqskin_limit_test(diff_bake_errors_quote_nothing 2 ARGS diff diff/bake_quote/A diff/bake_quote/B --json STDERR "^$"
   STDOUT "\"reason\": \"[^\"]*must be escaped to [^\"]*u0001\",\n.*\"reason\": \"PLY vertex property 1 is not float\",\n")
+# glTF files: 22 million vertices declared by a 2.7 KB file (an accessor without a buffer) took all the
+# memory there was, and a refusal of the memory ceiling named no file; 6 million fit as sides but not one
+# frame of both. Errors of the pair name both files.
+dqskin_limit_test(diff_vertices_declared 2 ARGS diff diff/vertices_a.gltf diff/vertices_b.gltf ONE_LINE MAX_RSS_MB 2000
+  STDERR "^dqskin: diff/vertices_a.gltf: comparing its 22369620 vertices needs about 2.94 GiB, more than the [0-9.]+ [MG]iB that --max-memory 2.00 GiB leaves\n$")
+dqskin_limit_test(diff_vertices_declared_under_ceiling 2 ARGS diff diff/vertices_a.gltf diff/vertices_b.gltf --max-memory 1500M
+  ONE_LINE MAX_RSS_MB 1800 STDERR "^dqskin: diff/vertices_a.gltf: comparing its 22369620 vertices needs about 2.94 GiB, ")
+dqskin_limit_test(diff_frame_past_max_memory 2 ARGS diff diff/vertices_6m_a.gltf diff/vertices_6m_b.gltf --backend cpu
+  ONE_LINE MAX_RSS_MB 2200
+  STDERR "^dqskin: diff/vertices_6m_a.gltf vs diff/vertices_6m_b.gltf: comparing a frame of their 12000000 vertices needs about ")
+dqskin_limit_test(diff_no_clip_in_common_names_both 2 ARGS diff diff/quad.gltf diff/still.gltf ONE_LINE STDOUT "^$"
+  STDERR "^dqskin: diff/quad.gltf vs diff/still.gltf: no clip in common: A has wave. B has no animations\n$")
+dqskin_limit_test(diff_disjoint_meshes_name_both 2 ARGS diff diff/quad.gltf diff/apart.gltf ONE_LINE STDOUT "^$"
+  STDERR "^dqskin: diff/quad.gltf vs diff/apart.gltf: the two files' meshes do not overlap at the rest pose ")

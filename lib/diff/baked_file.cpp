@@ -4,6 +4,7 @@
 #include "../io/oiio_message.hpp"
 #include "../io/saturating.hpp"
 
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 
@@ -104,7 +105,13 @@ std::string without_quote(std::string message) {
 BakedPoints read_glb(const std::string& path, const LoadOptions& load) {
   DiffSide side;
   try {
-    side = make_diff_side(load_asset(path, load), BlendMode::kLbs);
+    Asset asset = load_asset(path, load);
+    const SideSize size = diff_side_size(asset);
+    const uint64_t left = memory_left(load.max_memory);
+    if (size.bytes > left)
+      throw InputError("comparing its " + std::to_string(size.vertices) + " vertices needs about " + byte_size(size.bytes) +
+                       ", more than " + left_text(left, load.max_memory));
+    side = make_diff_side(std::move(asset), BlendMode::kLbs);
   } catch (const InputError& e) {
     throw InputError(without_quote(e.what()));
   }

@@ -170,13 +170,31 @@ TEST(GeometryDiff, ReportsAreTheSameBytesRunAfterRunAndThreadsApart) {
   EXPECT_EQ(geometry_junit(first), geometry_junit(second));
 }
 
-TEST(GeometryDiff, SurfacesThatDoNotOverlapAreAnInputError) {
+// Problems of the pair, not of either file, name both files.
+TEST(GeometryDiff, SurfacesThatDoNotOverlapAreAnInputErrorNamingBothFiles) {
   const testing_support::ScratchDir dir("geometry_diff");
+  const std::string moved = moved_copy(dir, 100.0);
   try {
-    diff_geometry(kArm, moved_copy(dir, 100.0), cpu_options());
+    diff_geometry(kArm, moved, cpu_options());
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("do not overlap"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(kArm + " vs " + moved + ": the two files' meshes do not overlap", 0), 0u)
+        << e.what();
+  }
+}
+
+TEST(GeometryDiff, NoClipInCommonIsAnInputErrorNamingBothFiles) {
+  const testing_support::ScratchDir dir("geometry_diff");
+  nlohmann::json doc;
+  std::ifstream(kArm) >> doc;
+  doc.erase("animations");
+  const std::string still = (dir.path() / "still.gltf").string();
+  std::ofstream(still) << doc.dump();
+  try {
+    diff_geometry(kArm, still, cpu_options());
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), kArm + " vs " + still + ": no clip in common: A has bend; B has no animations");
   }
 }
 
