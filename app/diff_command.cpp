@@ -107,6 +107,7 @@ int run_diff(const DiffSettings& settings) {
     if (is_bake_folder(settings.a) && is_bake_folder(settings.b)) return run_geometry_diff(settings);
     DiffOptions options{settings.thresholds, settings.out_dir};
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
+    options.cancel = catch_interrupts("diff");
     const DiffReport report = diff_images(settings.a, settings.b, options);
     for (const ImageDiff& d : report.pairs)
       if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);

@@ -77,3 +77,8 @@ dqskin_limit_test(diff_no_clip_in_common_names_both 2 ARGS diff diff/quad.gltf d
   STDERR "^dqskin: diff/quad.gltf vs diff/still.gltf: no clip in common: A has wave. B has no animations\n$")
 dqskin_limit_test(diff_disjoint_meshes_name_both 2 ARGS diff diff/quad.gltf diff/apart.gltf ONE_LINE STDOUT "^$"
   STDERR "^dqskin: diff/quad.gltf vs diff/apart.gltf: the two files' meshes do not overlap at the rest pose ")
+# SIGTERM while a folder diff writes heat maps: the image diff did not catch it, so it died without a word
+# and a heat map being written could stay behind as a temporary. Now it stops as bake does.
+add_test(NAME limits.diff_interrupted_writes_nothing_half
+  COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/diff_interrupted.sh $<TARGET_FILE:dqskin_cli> ${limits_scratch}/diff/interrupted)
+set_tests_properties(limits.diff_interrupted_writes_nothing_half PROPERTIES LABELS limits TIMEOUT 120)

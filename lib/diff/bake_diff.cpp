@@ -7,6 +7,7 @@
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/geometry_diff.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 
 #include <glm/geometric.hpp>
@@ -129,6 +130,7 @@ GeometryDiffReport diff_bakes(const std::string& a, const std::string& b, const 
   for (const auto& [name, path] : in_a) names[name] = true;
   for (const auto& [name, path] : in_b) names[name] = true;
   for (const auto& [name, unused] : names) {
+    check_cancelled(options.cancel);
     ClipGeometryDiff c;
     c.name = c.name_b = name;
     const auto pa = in_a.find(name), pb = in_b.find(name);

@@ -14,6 +14,7 @@
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 
 #include <OpenImageIO/imagebuf.h>
@@ -399,7 +400,10 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   report.a = a;
   report.b = b;
   report.thresholds = options.thresholds;
-  for (const DiffPair& pair : pair_inputs(a, b)) report.pairs.push_back(diff_pair(pair, options));
+  for (const DiffPair& pair : pair_inputs(a, b)) {
+    check_cancelled(options.cancel);
+    report.pairs.push_back(diff_pair(pair, options));
+  }
   return report;
 }
 
