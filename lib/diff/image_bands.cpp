@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdint>
 #include <vector>
 
 namespace dqskin::diff_detail {
@@ -37,6 +38,58 @@ Band band_of(const OIIO::ImageSpec& s) {
   return band;
 }
 
+// The reading of read_float_bands and read_float_image: each band converted into `whole` at its place
+// when it is given, else into a band of floats handed to `take`.
+std::string read_bands(OIIO::ImageInput& in, float* whole, const BandSink* take) {
+  const OIIO::ImageSpec spec = in.spec();
+  const int subimage = in.current_subimage(), miplevel = in.current_miplevel();
+  const size_t width = size_t(spec.width), channels = size_t(spec.nchannels);
+  if (mul(width, channels) > uint64_t(INT_MAX)) return "its rows are too wide to read";
+  const Band band = band_of(spec);
+  const size_t native_pixel = spec.pixel_bytes(true);
+  std::vector<unsigned char> native(size_t(band.rows * band.slices) * width * native_pixel);
+  std::vector<float> values(whole ? 0 : size_t(band.rows * band.slices) * width * channels);
+  const OIIO::TypeDesc kNative = OIIO::TypeDesc::UNKNOWN;  // read_* in the file's own formats: no copy of theirs
+  size_t first = 0;
+  for (int z = 0, zend = 0; z < spec.depth; z = zend) {
+    zend = int(std::min<int64_t>(spec.depth, int64_t(z) + int64_t(band.slices)));
+    for (int y = 0, yend = 0; y < spec.height; y = yend) {
+      yend = int(std::min<int64_t>(spec.height, int64_t(y) + int64_t(band.rows)));
+      const bool ok =
+          spec.tile_width > 0
+              ? in.read_tiles(subimage, miplevel, spec.x, spec.x + spec.width, spec.y + y, spec.y + yend, spec.z + z,
+                              spec.z + zend, 0, spec.nchannels, kNative, native.data())
+              : in.read_scanlines(subimage, miplevel, spec.y + y, spec.y + yend, spec.z + z, 0, spec.nchannels, kNative,
+                                  native.data());
+      if (!ok) return in.geterror();
+      // As read_image converts: all channels at once, or one at a time when their formats differ.
+      const int rows = (yend - y) * (zend - z);
+      float* const out = whole ? whole + first * channels : values.data();
+      bool converted = true;
+      if (spec.channelformats.empty()) {
+        converted = OIIO::convert_image(spec.nchannels, spec.width, rows, 1, native.data(), spec.format, OIIO::AutoStride,
+                                        OIIO::AutoStride, OIIO::AutoStride, out, OIIO::TypeDesc::FLOAT,
+                                        OIIO::AutoStride, OIIO::AutoStride, OIIO::AutoStride);
+      } else {
+        size_t offset = 0;
+        for (size_t c = 0; c < channels && converted; ++c) {
+          const OIIO::TypeDesc format = spec.channelformats[c];
+          converted = OIIO::convert_image(1, spec.width, rows, 1, native.data() + offset, format,
+                                          OIIO::stride_t(native_pixel), OIIO::AutoStride, OIIO::AutoStride,
+                                          out + c, OIIO::TypeDesc::FLOAT, OIIO::stride_t(4 * channels),
+                                          OIIO::AutoStride, OIIO::AutoStride);
+          offset += format.size();
+        }
+      }
+      if (!converted) return "OpenImageIO cannot convert its pixels to float";
+      const size_t pixels = size_t(rows) * width;
+      if (take) (*take)(values.data(), first, pixels);
+      first += pixels;
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 uint64_t pixel_count(const OIIO::ImageSpec& s) {
@@ -52,53 +105,8 @@ uint64_t band_bytes(const OIIO::ImageSpec& s) {
   return s.tile_width > 0 ? saturating::add(bytes, s.tile_bytes(true)) : bytes;
 }
 
-std::string read_float_bands(OIIO::ImageInput& in, const BandSink& take) {
-  const OIIO::ImageSpec spec = in.spec();
-  const int subimage = in.current_subimage(), miplevel = in.current_miplevel();
-  const size_t width = size_t(spec.width), channels = size_t(spec.nchannels);
-  if (mul(width, channels) > uint64_t(INT_MAX)) return "its rows are too wide to read";
-  const Band band = band_of(spec);
-  const size_t native_pixel = spec.pixel_bytes(true);
-  std::vector<unsigned char> native(size_t(band.rows * band.slices) * width * native_pixel);
-  std::vector<float> values(size_t(band.rows * band.slices) * width * channels);
-  const OIIO::TypeDesc kNative = OIIO::TypeDesc::UNKNOWN;  // read_* in the file's own formats: no copy of theirs
-  size_t first = 0;
-  for (int z = 0; z < spec.depth; z += int(band.slices)) {
-    const int zend = std::min(spec.depth, z + int(band.slices));
-    for (int y = 0; y < spec.height; y += int(band.rows)) {
-      const int yend = std::min(spec.height, y + int(band.rows));
-      const bool ok =
-          spec.tile_width > 0
-              ? in.read_tiles(subimage, miplevel, spec.x, spec.x + spec.width, spec.y + y, spec.y + yend, spec.z + z,
-                              spec.z + zend, 0, spec.nchannels, kNative, native.data())
-              : in.read_scanlines(subimage, miplevel, spec.y + y, spec.y + yend, spec.z + z, 0, spec.nchannels, kNative,
-                                  native.data());
-      if (!ok) return in.geterror();
-      // As read_image converts: all channels at once, or one at a time when their formats differ.
-      const int rows = (yend - y) * (zend - z);
-      bool converted = true;
-      if (spec.channelformats.empty()) {
-        converted = OIIO::convert_image(spec.nchannels, spec.width, rows, 1, native.data(), spec.format, OIIO::AutoStride,
-                                        OIIO::AutoStride, OIIO::AutoStride, values.data(), OIIO::TypeDesc::FLOAT,
-                                        OIIO::AutoStride, OIIO::AutoStride, OIIO::AutoStride);
-      } else {
-        size_t offset = 0;
-        for (size_t c = 0; c < channels && converted; ++c) {
-          const OIIO::TypeDesc format = spec.channelformats[c];
-          converted = OIIO::convert_image(1, spec.width, rows, 1, native.data() + offset, format,
-                                          OIIO::stride_t(native_pixel), OIIO::AutoStride, OIIO::AutoStride,
-                                          values.data() + c, OIIO::TypeDesc::FLOAT, OIIO::stride_t(4 * channels),
-                                          OIIO::AutoStride, OIIO::AutoStride);
-          offset += format.size();
-        }
-      }
-      if (!converted) return "OpenImageIO cannot convert its pixels to float";
-      const size_t pixels = size_t(rows) * width;
-      take(values.data(), first, pixels);
-      first += pixels;
-    }
-  }
-  return "";
-}
+std::string read_float_bands(OIIO::ImageInput& in, const BandSink& take) { return read_bands(in, nullptr, &take); }
+
+std::string read_float_image(OIIO::ImageInput& in, float* pixels) { return read_bands(in, pixels, nullptr); }
 
 }  // namespace dqskin::diff_detail

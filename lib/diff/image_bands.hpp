@@ -21,7 +21,7 @@ uint64_t pixel_count(const OIIO::ImageSpec& spec);
 uint64_t float_bytes(const OIIO::ImageSpec& spec);
 
 // Bytes read_float_bands takes besides what `take` keeps: one band in the file's formats and as float,
-// and one tile for a tiled file. Saturating.
+// and one tile for a tiled file (read_float_image takes less: no band of floats). Saturating.
 uint64_t band_bytes(const OIIO::ImageSpec& spec);
 
 // Receives `pixels` pixels of `channels` interleaved floats each, starting at pixel number `first` (x
@@ -32,5 +32,9 @@ using BandSink = std::function<void(const float* values, size_t first, size_t pi
 // (8-bit 255 is 1.0), and hands each band to `take`. Returns "" or why it cannot, in OpenImageIO's words
 // (not yet made printable). Exceptions of `take` and std::bad_alloc pass through.
 std::string read_float_bands(OIIO::ImageInput& in, const BandSink& take);
+
+// The same converted straight into `pixels`, which holds pixel_count × channels floats (no band of floats
+// is taken then).
+std::string read_float_image(OIIO::ImageInput& in, float* pixels);
 
 }  // namespace dqskin::diff_detail

@@ -33,7 +33,7 @@ protected:
   }
 
   // read_float_bands of `path` equals OpenImageIO's read_image as float, value for value, and came in
-  // at least `bands` bands, in order.
+  // at least `bands` bands, in order; so does read_float_image.
   void expect_as_read_image(const std::string& path, size_t bands) {
     auto in = OIIO::ImageInput::open(path);
     ASSERT_TRUE(in) << OIIO::geterror();
@@ -52,6 +52,9 @@ protected:
     EXPECT_EQ(next, size_t(pixel_count(spec)));
     EXPECT_GE(seen, bands);
     EXPECT_TRUE(got == expected) << path;
+    std::vector<float> whole(expected.size(), NAN);
+    EXPECT_EQ(read_float_image(*in, whole.data()), "");
+    EXPECT_TRUE(whole == expected) << path;
   }
 
   const testing_support::ScratchDir scratch_{"image_bands"};

@@ -89,7 +89,7 @@ std::string open_image(const std::string& path, std::unique_ptr<OIIO::ImageInput
 // (an ImageBuf's own allocation fails quietly, leaving no pixels), wrapped by an ImageBuf for
 // ImageBufAlgo::compare.
 struct FloatImage {
-  std::vector<float> pixels;
+  std::unique_ptr<float[]> pixels;  // not zeroed first: every value is read
   OIIO::ImageBuf buffer;
 };
 
@@ -98,14 +98,11 @@ std::string read_pixels(OIIO::ImageInput& in, FloatImage& image) {
   OIIO::ImageSpec spec = in.spec();
   spec.set_format(OIIO::TypeDesc::FLOAT);
   spec.channelformats.clear();
-  image.pixels.assign(size_t(diff_detail::float_bytes(spec) / 4), 0.0f);
-  const size_t n = size_t(spec.nchannels);
+  image.pixels.reset(new float[size_t(diff_detail::float_bytes(spec) / 4)]);
   CapturedStderr capture;
-  const std::string why = diff_detail::read_float_bands(in, [&image, n](const float* values, size_t first, size_t pixels) {
-    std::copy_n(values, pixels * n, image.pixels.begin() + std::ptrdiff_t(first * n));
-  });
+  const std::string why = diff_detail::read_float_image(in, image.pixels.get());
   if (!why.empty()) return with_library_text(oiio_message(why), capture.finish());
-  image.buffer.reset(spec, image.pixels.data());
+  image.buffer.reset(spec, image.pixels.get());
   return "";
 }
 
@@ -167,8 +164,8 @@ void write_heat_map(const std::string& path, const FloatImage& a, const FloatIma
   const OIIO::ImageSpec& spec = a.buffer.spec();
   const size_t width = size_t(spec.width), rows = size_t(spec.height) * size_t(spec.depth);
   const size_t channels = size_t(spec.nchannels), count = width * rows;
-  const float* pa = a.pixels.data();
-  const float* pb = b.pixels.data();
+  const float* pa = a.pixels.get();
+  const float* pb = b.pixels.get();
 
   // Each pixel's largest channel difference, and the largest finite one over the threshold: the top of the
   // colormap. The threshold is compared as compare does: a double against the float it was given.
