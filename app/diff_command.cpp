@@ -8,6 +8,7 @@
 #include "guarded_run.hpp"
 
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/diff_report.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/geometry_diff.hpp"
@@ -104,7 +105,10 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("compare two glTF files (.gltf, .glb) or two images or folders of images, not one of each");
     if (is_gltf_name(settings.a)) return run_geometry_diff(settings);
     if (is_bake_folder(settings.a) && is_bake_folder(settings.b)) return run_geometry_diff(settings);
-    const DiffReport report = diff_images(settings.a, settings.b, {settings.thresholds, settings.out_dir});
+    DiffOptions options{settings.thresholds, settings.out_dir};
+    options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
+    options.cancel = catch_interrupts("diff");
+    const DiffReport report = diff_images(settings.a, settings.b, options);
     for (const ImageDiff& d : report.pairs)
       if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);
     std::cout << (settings.json ? diff_json(report) : diff_text(report)) << std::flush;

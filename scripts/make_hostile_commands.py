@@ -6,8 +6,8 @@ never a downloaded file.
 
     make_hostile_commands.py OUTDIR
 
-writes one folder per command under OUTDIR (report/), deterministic, byte for byte. Python 3 standard
-library only.
+writes one folder per command under OUTDIR (report/, diff/), deterministic, byte for byte. Python 3
+standard library only.
 """
 
 import copy
@@ -16,6 +16,7 @@ import shutil
 import struct
 import subprocess
 import sys
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -56,13 +57,133 @@ def report_cases(folder):
                    stderr=subprocess.DEVNULL)
 
 
+# OpenEXR files (the OpenEXR file layout: single-part scanline images): the magic and version 2, the
+# header's attributes (name, type, size, value) up to an empty name, one offset per block of rows, then
+# the blocks, each its first row, its byte count and its rows, every channel's row in turn (channels in
+# name order). NO_COMPRESSION stores one row a block; ZIP 16 rows, their bytes split into even and odd
+# ones, delta-coded and deflated.
+EXR_NONE, EXR_ZIP = 0, 3
+EXR_HALF, EXR_FLOAT = 1, 2
+
+
+def exr_header(width, height, channels, pixel_type, compression):
+    def attribute(name, type_, value):
+        return name.encode() + b"\0" + type_.encode() + b"\0" + struct.pack("<i", len(value)) + value
+    chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", pixel_type, 0, 1, 1) for c in sorted(channels))
+    window = struct.pack("<4i", 0, 0, width - 1, height - 1)
+    return (struct.pack("<ii", 20000630, 2) + attribute("channels", "chlist", chlist + b"\0") +
+            attribute("compression", "compression", bytes([compression])) +
+            attribute("dataWindow", "box2i", window) + attribute("displayWindow", "box2i", window) +
+            attribute("lineOrder", "lineOrder", b"\0") + attribute("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+            attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0)) +
+            attribute("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+
+
+def exr_zip(raw):
+    """A ZIP block's data: even bytes then odd ones, each byte the difference to the one before plus 128."""
+    split = raw[0::2] + raw[1::2]
+    coded = bytes([split[0]]) + bytes((b - a + 128) & 255 for a, b in zip(split, split[1:])) if split else b""
+    packed = zlib.compress(coded, 9)
+    return packed if len(packed) < len(raw) else raw
+
+
+def exr(width, height, channels, pixel_type, value, compression=EXR_NONE):
+    """A valid image whose channel c at (x, y) is value(x, y, c). Blocks of equal rows are coded once."""
+    code = "<%d%s" % (width, "e" if pixel_type == EXR_HALF else "f")
+    rows_per_block = 16 if compression == EXR_ZIP else 1
+    coded = {}
+    blocks = []
+    for y in range(0, height, rows_per_block):
+        raw = b"".join(struct.pack(code, *[value(x, row, c) for x in range(width)])
+                       for row in range(y, min(height, y + rows_per_block)) for c in sorted(channels))
+        if raw not in coded:
+            coded[raw] = exr_zip(raw) if compression == EXR_ZIP else raw
+        blocks.append(struct.pack("<ii", y, len(coded[raw])) + coded[raw])
+    header = exr_header(width, height, channels, pixel_type, compression)
+    offsets, at = [], len(header) + 8 * len(blocks)
+    for block in blocks:
+        offsets.append(at)
+        at += len(block)
+    return header + struct.pack("<%dQ" % len(offsets), *offsets) + b"".join(blocks)
+
+
+def exr_declaring(width, height, channels="ABGR"):
+    """Only the header of a ZIP image of HALF channels and an offset table of zeros, which OpenEXR rebuilds
+    when it opens the file: any size, declared in a few kilobytes."""
+    return exr_header(width, height, channels, EXR_HALF, EXR_ZIP) + b"\0" * (8 * ((height + 15) // 16))
+
+
+def diff_cases(folder):
+    """dqskin diff: images, bake folders and glTF files.
+
+    wide_a.exr, wide_b.exr        valid 12000x1 images (ZIP, HALF): diff read them through a buffer of
+                                  OpenImageIO's of 66 MB, so that --max-memory 16M refused them
+    tall.exr                      a valid 12000x2400 image of one FLOAT channel (115 MB as float, 118 KB
+                                  as a file): under --max-memory 96M OpenImageIO's ImageBuf could not
+                                  allocate it, and diff read it through its null pointer (a crash)
+    declared_a.exr, _b.exr        headers that declare 12000x12000 RGBA (2.3 GB as float) in 6 KB
+    bake_exr/A, bake_exr/B        bake folders (manifest.json) whose vat.exr is declared_a.exr: the bake diff
+                                  allocated the declared size, 2.7 GB at --max-memory 256M
+    bake_link/A, bake_link/B      bake folders whose frame.ply is a symbolic link to secret.txt outside them:
+                                  the bake diff read it and quoted it in its parse error
+    bake_quote/A, bake_quote/B    bake folders whose frame.ply names a secret word as a property and whose
+                                  frame.glb holds one in malformed JSON: the errors quoted them
+    vertices_a.gltf, _b.gltf      the quad with 22,369,620 vertices of a POSITION accessor without a buffer
+                                  (2.7 KB): the geometric diff allocated gigabytes for them
+    vertices_6m_a.gltf, _b.gltf   6,000,000 such vertices: the sides fit, a frame of both does not
+    quad.gltf, still.gltf         the quad, and the quad without its clip: no clip in common
+    apart.gltf                    the quad moved 1000 units away: the meshes do not overlap
+    """
+    write(folder, "wide_a.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
+    write(folder, "wide_b.exr", exr(12000, 1, "BGR", EXR_HALF, lambda x, y, c: (x % 256) / 255.0, EXR_ZIP))
+    write(folder, "tall.exr", exr(12000, 2400, "Y", EXR_FLOAT, lambda x, y, c: 0.5, EXR_ZIP))
+    for name in ("declared_a.exr", "declared_b.exr"):
+        write(folder, name, exr_declaring(12000, 12000))
+
+    secret = b"ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double SECRET_WORD\nend_header\n"
+    write(folder, "secret.txt", secret)
+    for side in ("A", "B"):
+        for bake in ("bake_exr", "bake_link", "bake_quote"):
+            os.makedirs(os.path.join(folder, bake, side))
+            write(os.path.join(folder, bake, side), "manifest.json", b"{}\n")
+        write(os.path.join(folder, "bake_exr", side), "vat.exr", exr_declaring(12000, 12000))
+        os.symlink(os.path.join("..", "..", "secret.txt"), os.path.join(folder, "bake_link", side, "frame.ply"))
+        write(os.path.join(folder, "bake_quote", side), "frame.ply", secret)
+        write(os.path.join(folder, "bake_quote", side), "frame.glb", b'{"asset":{"version":"2.0"},"x":"SECRET_WORD\x01"}')
+
+    def declaring_vertices(count):
+        a = malformed.base_asset()
+        values = a.add_view(struct.pack("<3f", 0, 1, 0))
+        index = a.add_view(struct.pack("<I", 1))
+        a.gltf["accessors"].append({"componentType": malformed.FLOAT, "count": count, "type": "VEC3", "sparse": {
+            "count": 1, "indices": {"bufferView": index, "componentType": malformed.UINT}, "values": {"bufferView": values}}})
+        a.gltf["meshes"][0]["primitives"] = [{"attributes": {"POSITION": len(a.gltf["accessors"]) - 1}}]
+        del a.gltf["nodes"][0]["skin"]
+        return a.gltf_bytes()
+    # The most vertices an accessor without a buffer may have (LoadOptions::max_unbacked_elements, 2^26
+    # values), whole triangles.
+    for name in ("vertices_a.gltf", "vertices_b.gltf"):
+        write(folder, name, declaring_vertices((1 << 26) // 9 * 3))
+    for name in ("vertices_6m_a.gltf", "vertices_6m_b.gltf"):
+        write(folder, name, declaring_vertices(6000000))
+
+    quad = malformed.base_asset()
+    write(folder, "quad.gltf", quad.gltf_bytes())
+    still = quad.copy()
+    del still.gltf["animations"]
+    write(folder, "still.gltf", still.gltf_bytes())
+    apart = quad.copy()
+    apart.gltf["nodes"][1]["translation"] = [1000, 1000, 1000]
+    write(folder, "apart.gltf", apart.gltf_bytes())
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_hostile_commands.py OUTDIR")
     out = sys.argv[1]
     if os.path.exists(out):
         shutil.rmtree(out)
-    for name, make in [("report", report_cases)]:
+    for name, make in [("report", report_cases), ("diff", diff_cases)]:
         os.makedirs(os.path.join(out, name))
         make(os.path.join(out, name))
 

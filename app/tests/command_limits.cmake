@@ -56,3 +56,45 @@ add_test(NAME limits.report_signal_all_or_nothing COMMAND bash ${PROJECT_SOURCE_
   $<TARGET_FILE:dqskin_cli> ${DQSKIN_HOSTILE_DIR}/report/rig_300_joints.glb ${limits_scratch}/report_signal)
 set_tests_properties(limits.report_signal_all_or_nothing PROPERTIES LABELS limits TIMEOUT 600
   PASS_REGULAR_EXPRESSION "PASS" FAIL_REGULAR_EXPRESSION "FAIL:")
+
+# ---- diff --------------------------------------------------------------------------------------------------
+# Images: read as float into memory the ceiling counts, after their declared size was checked against
+# --max-memory. A valid 12000x2400 EXR at --max-memory 96M crashed (OpenImageIO's ImageBuf could not
+# allocate it and the pixels were read through its null pointer); a 12000x1 one needed OpenImageIO's
+# 66 MB read buffer; a 6 KB header declaring 12000x12000 is refused from the header.
+dqskin_limit_test(diff_wide_exrs_within_16M 0 ARGS diff diff/wide_a.exr diff/wide_b.exr --max-memory 16M
+  STDOUT "^PASS  diff/wide_a.exr  max 0 " STDERR "^$")
+dqskin_limit_test(diff_exr_past_max_memory 2 ARGS diff diff/tall.exr diff/tall.exr --max-memory 96M ONE_LINE
+  STDOUT "^FAIL  diff/tall.exr  cannot read diff/tall.exr: comparing it needs about 118 MiB "
+  STDERR "^dqskin: diff/tall.exr: comparing it needs about 118 MiB \\(its 12000x2400 pixels of 1 channel as float\\), more than --max-memory 96.0 MiB\n$")
+dqskin_limit_test(diff_exr_declaring_12000_squared 2 ARGS diff diff/declared_a.exr diff/declared_b.exr ONE_LINE
+  MAX_RSS_MB 400 STDERR "^dqskin: diff/declared_a.exr: comparing it needs about 2.15 GiB \\(its 12000x12000 pixels of 4 channels as float\\), more than --max-memory 2.00 GiB\n$")
+# Bake folders: an EXR texture declaring 12000x12000 was allocated at its declared size (2.7 GB at
+# --max-memory 256M); a frame that is a symbolic link out of the folder was read and quoted; a parse
+# error quoted the file (a PLY property's name, the JSON parser's "last read").
+dqskin_limit_test(diff_bake_exr_declaring_12000_squared 2 ARGS diff diff/bake_exr/A diff/bake_exr/B --max-memory 256M
+  ONE_LINE MAX_RSS_MB 400 STDOUT "^$"
+  STDERR "^dqskin: diff/bake_exr/A/vat.exr: comparing it needs about 1.61 GiB \\(its 12000x12000 texels as positions\\), more than --max-memory 256 MiB\n$")
+dqskin_limit_test(diff_bake_link_refused 2 ARGS diff diff/bake_link/A diff/bake_link/B ONE_LINE STDOUT "^$"
+  STDERR "^dqskin: diff/bake_link/A/frame.ply: is a symbolic link, which diff does not follow in a bake folder\n$")
+dqskin_limit_test(diff_bake_errors_quote_nothing 2 ARGS diff diff/bake_quote/A diff/bake_quote/B --json STDERR "^$"
+  STDOUT "\"reason\": \"[^\"]*must be escaped to [^\"]*u0001\",\n.*\"reason\": \"PLY vertex property 1 is not float\",\n")
+# glTF files: 22 million vertices declared by a 2.7 KB file (an accessor without a buffer) took all the
+# memory there was, and a refusal of the memory ceiling named no file; 6 million fit as sides but not one
+# frame of both. Errors of the pair name both files.
+dqskin_limit_test(diff_vertices_declared 2 ARGS diff diff/vertices_a.gltf diff/vertices_b.gltf ONE_LINE MAX_RSS_MB 2000
+  STDERR "^dqskin: diff/vertices_a.gltf: comparing its 22369620 vertices needs about 2.94 GiB, more than the [0-9.]+ [MG]iB that --max-memory 2.00 GiB leaves\n$")
+dqskin_limit_test(diff_vertices_declared_under_ceiling 2 ARGS diff diff/vertices_a.gltf diff/vertices_b.gltf --max-memory 1500M
+  ONE_LINE MAX_RSS_MB 1800 STDERR "^dqskin: diff/vertices_a.gltf: comparing its 22369620 vertices needs about 2.94 GiB, ")
+dqskin_limit_test(diff_frame_past_max_memory 2 ARGS diff diff/vertices_6m_a.gltf diff/vertices_6m_b.gltf --backend cpu
+  ONE_LINE MAX_RSS_MB 2200
+  STDERR "^dqskin: diff/vertices_6m_a.gltf vs diff/vertices_6m_b.gltf: comparing a frame of their 12000000 vertices needs about ")
+dqskin_limit_test(diff_no_clip_in_common_names_both 2 ARGS diff diff/quad.gltf diff/still.gltf ONE_LINE STDOUT "^$"
+  STDERR "^dqskin: diff/quad.gltf vs diff/still.gltf: no clip in common: A has wave. B has no animations\n$")
+dqskin_limit_test(diff_disjoint_meshes_name_both 2 ARGS diff diff/quad.gltf diff/apart.gltf ONE_LINE STDOUT "^$"
+  STDERR "^dqskin: diff/quad.gltf vs diff/apart.gltf: the two files' meshes do not overlap at the rest pose ")
+# SIGTERM while a folder diff writes heat maps: the image diff did not catch it, so it died without a word
+# and a heat map being written could stay behind as a temporary. Now it stops as bake does.
+add_test(NAME limits.diff_interrupted_writes_nothing_half
+  COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/diff_interrupted.sh $<TARGET_FILE:dqskin_cli> ${limits_scratch}/diff/interrupted)
+set_tests_properties(limits.diff_interrupted_writes_nothing_half PROPERTIES LABELS limits TIMEOUT 120)

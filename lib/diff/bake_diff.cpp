@@ -2,9 +2,13 @@
 // compared vertex by vertex (bake keeps each input's vertex order), textures texel by texel.
 #include "baked_file.hpp"
 #include "diff_numbers.hpp"
+#include "../io/saturating.hpp"
 
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/geometry_diff.hpp"
+#include "dqskin/job.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -14,24 +18,45 @@
 #include <limits>
 #include <filesystem>
 #include <map>
+#include <new>
 
 namespace dqskin {
 namespace {
 
 constexpr float kInfF = std::numeric_limits<float>::infinity();
 
-
 namespace fs = std::filesystem;
 
+// The files diff compares under `root`, by relative path ('/'-separated). A symbolic link that would be
+// read or walked (a link named as a baked file, or to a folder) is refused: it may name anything outside
+// the folder, and its content would end up in the report.
 std::map<std::string, std::string> baked_files(const std::string& root) {
-  std::map<std::string, std::string> files;  // relative path ('/'-separated) → path
+  std::map<std::string, std::string> files;  // relative path → path
   std::error_code error;
   for (auto it = fs::recursive_directory_iterator(root, error); !error && it != fs::recursive_directory_iterator();
-       it.increment(error))
-    if (it->is_regular_file() && diff_detail::is_baked_file(it->path().string()))
+       it.increment(error)) {
+    std::error_code status_error;
+    const bool named = diff_detail::is_baked_file(it->path().string());
+    if (it->is_symlink(status_error) && (named || it->is_directory(status_error)))
+      throw InputError(it->path().string() + ": is a symbolic link, which diff does not follow in a bake folder");
+    if (named && it->is_regular_file(status_error))
       files.emplace(it->path().lexically_relative(root).generic_string(), it->path().string());
+  }
   if (error) throw InputError(root + ": " + error.message());
   return files;
+}
+
+// Refuses, before either is read, a pair of files whose headers declare more than --max-memory
+// (`budget`) allows: A's points, then B's beside them and the errors measured.
+void check_declared(const std::string& a, const std::string& b, uint64_t budget) {
+  const diff_detail::DeclaredSize da = diff_detail::declared_size(a), db = diff_detail::declared_size(b);
+  if (da.bytes > budget)
+    throw InputError(a + ": comparing it needs about " + byte_size(da.bytes) + " (its " + da.what +
+                     " as positions), more than --max-memory " + byte_size(budget));
+  const uint64_t need = saturating::add(saturating::add(da.bytes, db.bytes), saturating::mul(da.points, sizeof(float)));
+  if (need > budget)
+    throw InputError(b + ": comparing it needs about " + byte_size(need) + " (its " + db.what + " as positions, beside " +
+                     byte_size(da.bytes) + " for " + a + "), more than --max-memory " + byte_size(budget));
 }
 
 // The figures of one pair of files of the same length.
@@ -100,18 +125,24 @@ GeometryDiffReport diff_bakes(const std::string& a, const std::string& b, const 
   report.thresholds = options.thresholds;
   report.relative = options.relative;
   const auto in_a = baked_files(a), in_b = baked_files(b);
-  if (in_a.empty() && in_b.empty()) throw InputError("neither folder holds a PLY, OBJ, glb or EXR file");
+  if (in_a.empty() && in_b.empty()) throw InputError(a + " vs " + b + ": neither folder holds a PLY, OBJ, glb or EXR file");
   std::map<std::string, bool> names;
   for (const auto& [name, path] : in_a) names[name] = true;
   for (const auto& [name, path] : in_b) names[name] = true;
   for (const auto& [name, unused] : names) {
+    check_cancelled(options.cancel);
     ClipGeometryDiff c;
     c.name = c.name_b = name;
     const auto pa = in_a.find(name), pb = in_b.find(name);
+    if (pa != in_a.end() && pb != in_b.end()) check_declared(pa->second, pb->second, options.load.max_memory);
+    const std::string* reading = nullptr;  // for a refusal of the memory ceiling: the file being read
     try {
       if (pa == in_a.end() || pb == in_b.end()) throw InputError(pa == in_a.end() ? "missing in A" : "missing in B");
-      const diff_detail::BakedPoints points_a = diff_detail::read_baked_file(pa->second);
-      const diff_detail::BakedPoints points_b = diff_detail::read_baked_file(pb->second);
+      reading = &pa->second;
+      const diff_detail::BakedPoints points_a = diff_detail::read_baked_file(pa->second, options.load);
+      reading = &pb->second;
+      const diff_detail::BakedPoints points_b = diff_detail::read_baked_file(pb->second, options.load);
+      reading = nullptr;
       if (points_a.positions.size() != points_b.positions.size())
         throw InputError(std::to_string(points_a.positions.size()) + " vertices or texels in A, " +
                          std::to_string(points_b.positions.size()) + " in B");
@@ -121,6 +152,10 @@ GeometryDiffReport diff_bakes(const std::string& a, const std::string& b, const 
     } catch (const InputError& e) {
       c.status = DiffStatus::kFail;
       c.reason = e.what();
+    } catch (const std::bad_alloc&) {  // the pair's memory is freed by now
+      const MemoryCeilingLifted lifted;
+      const bool both = pa != in_a.end() && pb != in_b.end();
+      throw InputError((reading ? *reading : both ? pa->second + " vs " + pb->second : name) + ": " + out_of_memory_message());
     }
     report.clips.push_back(std::move(c));
   }

@@ -1,12 +1,16 @@
 #include "baked_file.hpp"
 #include "diff_side.hpp"
+#include "image_bands.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/saturating.hpp"
 
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -38,7 +42,8 @@ BakedPoints read_ply(const std::string& path) {
       if (element == "vertex" && !(words >> vertices)) throw InputError("PLY vertex count missing");
     } else if (word == "property" && element == "vertex") {
       words >> type >> name;
-      if (type != "float") throw InputError("PLY vertex property " + name + " is not float");
+      // The property is counted, not named: a report quotes no word of the file.
+      if (type != "float") throw InputError("PLY vertex property " + std::to_string(properties.size() + 1) + " is not float");
       properties.push_back(name);
     }
   }
@@ -88,9 +93,28 @@ BakedPoints read_obj(const std::string& path) {
   return points;
 }
 
+// The loader's message without the JSON parser's quote of the file ("; last read: '…'"): a report shows
+// what is wrong with a frame, not its bytes.
+std::string without_quote(std::string message) {
+  const size_t at = message.find("; last read: ");
+  if (at != std::string::npos) message.erase(at);
+  return message;
+}
+
 // A glb frame: its vertices in the order of its mesh instances, at rest (a frame has no animation).
-BakedPoints read_glb(const std::string& path) {
-  const DiffSide side = make_diff_side(load_asset(path), BlendMode::kLbs);
+BakedPoints read_glb(const std::string& path, const LoadOptions& load) {
+  DiffSide side;
+  try {
+    Asset asset = load_asset(path, load);
+    const SideSize size = diff_side_size(asset);
+    const uint64_t left = memory_left(load.max_memory);
+    if (size.bytes > left)
+      throw InputError("comparing its " + std::to_string(size.vertices) + " vertices needs about " + byte_size(size.bytes) +
+                       ", more than " + left_text(left, load.max_memory));
+    side = make_diff_side(std::move(asset), BlendMode::kLbs);
+  } catch (const InputError& e) {
+    throw InputError(without_quote(e.what()));
+  }
   BakedPoints points;
   for (size_t v = 0; v < side.vertices; ++v) {
     points.positions.emplace_back(side.rest[v]);
@@ -99,22 +123,22 @@ BakedPoints read_glb(const std::string& path) {
   return points;
 }
 
-// An EXR texture: each texel's first three channels (a VAT's position, a bone texture's first values).
+// An EXR texture: each texel's first three channels (a VAT's position, a bone texture's first values),
+// read a band of rows at a time.
 BakedPoints read_exr(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw InputError(oiio_message(OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
-  const int channels = spec.nchannels;
+  const size_t channels = size_t(std::max(0, spec.nchannels));
   if (channels < 1) throw InputError("texture has no channels");
-  std::vector<float> pixels(size_t(spec.width) * size_t(spec.height) * size_t(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw InputError(oiio_message(in->geterror()));
+  if (spec.deep) throw InputError("deep (multi-sample) textures are not compared");
   BakedPoints points;
-  for (size_t t = 0; t < pixels.size(); t += size_t(channels)) {
-    glm::vec3 p(0.0f);
-    for (int c = 0; c < std::min(channels, 3); ++c) p[c] = pixels[t + size_t(c)];
-    points.positions.push_back(p);
-  }
+  points.positions.assign(size_t(pixel_count(spec)), glm::vec3(0.0f));
+  const std::string why = read_float_bands(*in, [&points, channels](const float* values, size_t first, size_t count) {
+    for (size_t t = 0; t < count; ++t)
+      for (size_t c = 0; c < std::min<size_t>(channels, 3); ++c) points.positions[first + t][int(c)] = values[t * channels + c];
+  });
+  if (!why.empty()) throw InputError(oiio_message(why));
   return points;
 }
 
@@ -125,11 +149,24 @@ bool is_baked_file(const std::string& path) {
   return e == ".ply" || e == ".obj" || e == ".glb" || e == ".exr";
 }
 
-BakedPoints read_baked_file(const std::string& path) {
+DeclaredSize declared_size(const std::string& path) {
+  if (extension_of(path) != ".exr") return {};
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    OIIO::geterror();  // forgotten: read_baked_file says why
+    return {};
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  const uint64_t texels = pixel_count(spec);
+  return {saturating::add(saturating::mul(texels, sizeof(glm::vec3)), band_bytes(spec)), texels,
+          std::to_string(spec.width) + "x" + std::to_string(spec.height) + " texels"};
+}
+
+BakedPoints read_baked_file(const std::string& path, const LoadOptions& load) {
   const std::string e = extension_of(path);
   if (e == ".ply") return read_ply(path);
   if (e == ".obj") return read_obj(path);
-  if (e == ".glb") return read_glb(path);
+  if (e == ".glb") return read_glb(path, load);
   return read_exr(path);
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <map>
 #include <tuple>
 
@@ -71,23 +72,25 @@ ClipMatch match_clips(const Asset& a, const Asset& b, const std::vector<size_t>&
   }
   std::vector<int> partner(selected.size(), -1);
   std::vector<bool> taken(b.clips.size(), false);
-  // By name: the first unpaired clip of B with the same (non-empty) name.
+  // B's named clips by name, in index order (a map, so that thousands of clips pair in n log n).
+  std::map<std::string, std::deque<size_t>> b_named;
+  for (size_t c = 0; c < b.clips.size(); ++c)
+    if (!b.clips[c].name.empty()) b_named[b.clips[c].name].push_back(c);
+  // By name: the first unpaired clip of B with the same (non-empty) name. Only this pass takes clips
+  // of B by name, so the first unpaired one is the first left in its list.
   for (size_t s = 0; s < selected.size(); ++s) {
     const std::string& name = a.clips[selected[s]].name;
-    if (name.empty()) continue;
-    for (size_t c = 0; c < b.clips.size(); ++c)
-      if (!taken[c] && b.clips[c].name == name) {
-        partner[s] = int(c), taken[c] = true;
-        break;
-      }
+    const auto same = name.empty() ? b_named.end() : b_named.find(name);
+    if (same == b_named.end() || same->second.empty()) continue;
+    partner[s] = int(same->second.front()), taken[same->second.front()] = true;
+    same->second.pop_front();
   }
   // Then by index, for exporters that rename clips (or leave them unnamed).
   for (size_t s = 0; s < selected.size(); ++s) {
     const size_t index = selected[s];
     if (partner[s] >= 0 || index >= b.clips.size() || taken[index]) continue;
     const std::string& name = a.clips[index].name;
-    const bool other_name_in_b =
-        !name.empty() && std::any_of(b.clips.begin(), b.clips.end(), [&](const Clip& c) { return c.name == name; });
+    const bool other_name_in_b = !name.empty() && b_named.count(name);
     if (other_name_in_b) continue;
     partner[s] = int(index), taken[index] = true;
     if (a.clips[index].name != b.clips[index].name)

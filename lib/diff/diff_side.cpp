@@ -1,12 +1,16 @@
 #include "diff_side.hpp"
 #include "clip_matching.hpp"
+#include "../io/saturating.hpp"
 
 #include "dqskin/animation.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 #include "dqskin/triangles.hpp"
 
 #include <algorithm>
 #include <map>
+#include <new>
 
 namespace dqskin::diff_detail {
 namespace {
@@ -31,7 +35,67 @@ uint32_t joint_of_vertex(const DiffSide& side, const MeshInstance& instance, con
   return it->second;
 }
 
+// Corners of the triangles triangle_list makes of a primitive (without making them).
+uint64_t triangle_corners(const Primitive& p) {
+  const uint64_t n = p.indices.empty() ? p.vertex_count() : p.indices.size();
+  switch (p.mode) {
+    case PrimitiveMode::kTriangles: return n / 3 * 3;
+    case PrimitiveMode::kTriangleStrip:
+    case PrimitiveMode::kTriangleFan: return n < 3 ? 0 : (n - 2) * 3;
+    default: return 0;
+  }
+}
+
+// Bytes per vertex a DiffSide holds (rest position and normal in double, joint, on_surface), and what
+// deform_frame's rest pose takes while it is made (position and normal in double, a tangent in double
+// and its handedness); bytes per triangle corner held (the triangle list) and, for the primitive being
+// listed, copied.
+constexpr uint64_t kSideBytesPerVertex = 24 + 24 + 4 + 1;
+constexpr uint64_t kRestBytesPerVertex = 24 + 24 + 32;
+constexpr uint64_t kBytesPerCorner = 4 + 4;
+
 }  // namespace
+
+SideSize diff_side_size(const Asset& asset) {
+  using saturating::add;
+  using saturating::mul;
+  SideSize size;
+  uint64_t corners = 0;
+  for (const MeshInstance& instance : mesh_instances(asset, choose_scene(asset, -1)))
+    for (const Primitive& primitive : asset.meshes[size_t(instance.mesh)].primitives) {
+      size.vertices = add(size.vertices, primitive.vertex_count());
+      corners = add(corners, triangle_corners(primitive));
+    }
+  size.bytes = add(mul(size.vertices, kSideBytesPerVertex + kRestBytesPerVertex), mul(corners, kBytesPerCorner));
+  return size;
+}
+
+uint64_t memory_left(uint64_t max) {
+  const uint64_t used = memory_in_use();
+  return used >= max ? 0 : max - used;
+}
+
+std::string left_text(uint64_t left, uint64_t max) {
+  return left >= max ? "--max-memory " + byte_size(max)
+                     : "the " + byte_size(left) + " that --max-memory " + byte_size(max) + " leaves";
+}
+
+DiffSide load_diff_side(const std::string& path, const LoadOptions& load, BlendMode mode) {
+  try {
+    Asset asset = load_asset(path, load);
+    const SideSize size = diff_side_size(asset);
+    const uint64_t left = memory_left(load.max_memory);
+    if (size.bytes > left)
+      throw InputError("comparing its " + std::to_string(size.vertices) + " vertices needs about " + byte_size(size.bytes) +
+                       ", more than " + left_text(left, load.max_memory));
+    return make_diff_side(std::move(asset), mode);
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  } catch (const std::bad_alloc&) {  // the ceiling's refusal; what the file took is freed by now
+    const MemoryCeilingLifted lifted;
+    throw InputError(path + ": " + out_of_memory_message());
+  }
+}
 
 DiffSide make_diff_side(Asset asset, BlendMode mode) {
   DiffSide side;

@@ -5,6 +5,7 @@
 
 #include "dqskin/asset.hpp"
 #include "dqskin/deformed_batch.hpp"
+#include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <glm/vec3.hpp>
@@ -32,6 +33,28 @@ struct DiffSide {
   std::vector<glm::dvec3> rest;        // world positions at the rest pose (the CPU reference, double)
   std::vector<glm::dvec3> rest_normals;  // and normals (zero where a primitive has none)
 };
+
+// What make_diff_side takes for `asset`, from its vertex and triangle counts: what the side holds (the rest
+// pose and its normals in double, the triangles, the per-vertex tables) and, while it is made, the rest
+// pose as deform_frame returns it. An estimate, checked before the side is made: a file of a few hundred
+// bytes may declare millions of vertices (an accessor without a buffer).
+struct SideSize {
+  uint64_t vertices = 0;
+  uint64_t bytes = 0;
+};
+SideSize diff_side_size(const Asset& asset);
+
+// What --max-memory (`max`) leaves beside the memory held now (all of it when this binary does not count
+// its allocations: dqskin/memory_ceiling.hpp).
+uint64_t memory_left(uint64_t max);
+
+// "--max-memory 2.00 GiB", or when less is left, "the 1.20 GiB that --max-memory 2.00 GiB leaves".
+std::string left_text(uint64_t left, uint64_t max);
+
+// Loads `path` with `load` and makes its side (make_diff_side); refuses a file whose side needs more
+// memory than load.max_memory leaves after loading it (diff_side_size). Throws InputError naming the file,
+// also for the memory ceiling's refusal (std::bad_alloc).
+DiffSide load_diff_side(const std::string& path, const LoadOptions& load, BlendMode mode);
 
 // Prepares a loaded asset's `scene` (-1: the default) for a diff. Throws InputError when the scene has no
 // triangles.

@@ -6,14 +6,18 @@
 #include "diff_numbers.hpp"
 #include "diff_side.hpp"
 #include "error_heat_map.hpp"
+#include "largest_errors.hpp"
 #include "surface_correspondence.hpp"
 #include "../concurrency/parallel_for.hpp"
+#include "../io/saturating.hpp"
 
 #include "dqskin/animation.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/image_output.hpp"
 #include "dqskin/job.hpp"
 #include "dqskin/job_run.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -24,11 +28,14 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <new>
+#include <optional>
 #include <thread>
 
 namespace dqskin {
 
 using diff_detail::DiffSide;
+using diff_detail::LargestErrors;
 using diff_detail::SideFrame;
 using diff_detail::SurfacePoint;
 
@@ -37,6 +44,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr float kInfF = std::numeric_limits<float>::infinity();
 
+
+// Frames deformed and measured at once, at most.
+constexpr uint64_t kMaxFramesAtOnce = 32;
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -81,9 +91,10 @@ Correspondence identity(const DiffSide& side) {
   return c;
 }
 
-Correspondence closest_points(const DiffSide& from, const DiffSide& onto, unsigned threads) {
+// `onto_name`: "A" or "B", for the message when its triangles have no area.
+Correspondence closest_points(const DiffSide& from, const DiffSide& onto, const char* onto_name, unsigned threads) {
   const diff_detail::SurfaceIndex index(onto.rest, onto.triangles, onto.rest_normals);
-  if (index.empty()) throw InputError("the scene's triangles all have zero area");
+  if (index.empty()) throw InputError(std::string(onto_name) + "'s triangles all have zero area");
   Correspondence c;
   for (size_t v = 0; v < from.vertices; ++v)
     if (from.on_surface[v]) c.vertices.push_back(uint32_t(v));
@@ -110,30 +121,6 @@ struct FrameResult {
 };
 
 glm::vec3 at(const std::vector<float>& a, size_t v) { return {a[3 * v], a[3 * v + 1], a[3 * v + 2]}; }
-
-// The `keep` largest of the values added, as a min-heap: the smallest of them is the percentile that
-// leaves `keep` − 1 values above it. Most values are below the heap's least and cost one comparison, so
-// this is cheaper than keeping every value for a selection. NaNs are not kept (they fail the frame anyway).
-class LargestErrors {
-public:
-  void reset(size_t keep) { keep_ = keep, heap_.clear(); }
-  void add(float e) {
-    if (heap_.size() < keep_) {
-      if (!(e == e)) return;
-      heap_.push_back(e);
-      std::push_heap(heap_.begin(), heap_.end(), std::greater<float>());
-    } else if (e > heap_.front()) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<float>());
-      heap_.back() = e;
-      std::push_heap(heap_.begin(), heap_.end(), std::greater<float>());
-    }
-  }
-  float least() const { return heap_.empty() ? 0.0f : heap_.front(); }
-
-private:
-  size_t keep_ = 1;
-  std::vector<float> heap_;
-};
 
 // One direction of one frame: `from`'s compared vertices against the surface points of `onto`. Errors go
 // to `largest`, which keeps the frame's largest errors (for its percentile). The normal angle is found through the
@@ -266,14 +253,15 @@ public:
     if (report_.identity) {
       a_to_b_ = identity(a_), b_to_a_ = identity(b_);
     } else {
-      a_to_b_ = closest_points(a_, b_, threads_);
-      b_to_a_ = closest_points(b_, a_, threads_);
+      a_to_b_ = closest_points(a_, b_, "B", threads_);
+      b_to_a_ = closest_points(b_, a_, "A", threads_);
     }
     for (uint32_t v : a_to_b_.vertices) a_to_b_.joint.push_back(joint_a_[a_.joint[v]]);
     for (uint32_t v : b_to_a_.vertices) b_to_a_.joint.push_back(joint_b_[b_.joint[v]]);
     report_.rest_a_to_b = a_to_b_.max_rest_distance;
     report_.rest_b_to_a = b_to_a_.max_rest_distance;
     report_.correspondence_seconds = seconds_since(start);
+    frames_at_once_ = frames_at_once();
   }
 
   ClipGeometryDiff compare(const diff_detail::ClipPair& pair) {
@@ -291,12 +279,12 @@ public:
     std::vector<double> joint_max(joint_names_.size(), -1.0), joint_time(joint_names_.size(), 0.0);
     glm::vec3 low(kInfF), high(-kInfF);
     double sum = 0;
-    constexpr size_t kChunk = 32;
-    std::vector<SideFrame> frames_a(kChunk), frames_b(kChunk);
-    std::vector<FrameResult> results(kChunk);
-    for (size_t first = 0; first < times.size(); first += kChunk) {
+    const size_t at_once = frames_at_once_;
+    std::vector<SideFrame> frames_a(at_once), frames_b(at_once);
+    std::vector<FrameResult> results(at_once);
+    for (size_t first = 0; first < times.size(); first += at_once) {
       check_cancelled(options_.cancel);
-      const std::span<const double> chunk(times.data() + first, std::min(kChunk, times.size() - first));
+      const std::span<const double> chunk(times.data() + first, std::min(at_once, times.size() - first));
       deform(*deform_a_, a_, clip_a, chunk, frames_a);
       deform(*deform_b_, b_, clip_b, chunk, frames_b);
       concurrency::parallel_for(chunk.size(), threads_, [&](size_t f) {
@@ -337,6 +325,25 @@ public:
   std::string contact_sheet() { return sheet_.size() ? write_sheet() : ""; }
 
 private:
+  // Frames deformed and measured at once: up to 32, fewer when --max-memory leaves less beside what is
+  // held now (both files, their sides, the correspondence, the deformers). Each frame takes both sides'
+  // positions and normals as float, once gathered and once in the deformer's batch; each thread measuring
+  // a frame its distances and cosines; one more frame of each side for a heat map. Throws InputError
+  // when not even one frame fits.
+  size_t frames_at_once() const {
+    using saturating::add;
+    using saturating::mul;
+    constexpr uint64_t kFrameBytesPerVertex = 2 * (12 + 12);
+    const uint64_t per_frame = mul(kFrameBytesPerVertex, uint64_t(a_.vertices) + uint64_t(b_.vertices));
+    const uint64_t measuring = mul(uint64_t(threads_) * 8, std::max(a_to_b_.vertices.size(), b_to_a_.vertices.size()));
+    const uint64_t fixed = add(measuring, per_frame);  // the heat map's frame
+    const uint64_t left = diff_detail::memory_left(options_.load.max_memory);
+    if (add(fixed, per_frame) > left)
+      throw InputError("comparing a frame of their " + std::to_string(a_.vertices + b_.vertices) + " vertices needs about " +
+                       byte_size(add(fixed, per_frame)) + ", more than " + diff_detail::left_text(left, options_.load.max_memory));
+    return size_t(std::min<uint64_t>(kMaxFramesAtOnce, (left - fixed) / per_frame));
+  }
+
   uint32_t joint_index(const std::string& name) {
     const auto [it, added] = joint_ids_.emplace(name, uint32_t(joint_names_.size()));
     if (added) joint_names_.push_back(name);
@@ -437,14 +444,21 @@ private:
   std::map<std::string, uint32_t> joint_ids_;
   std::vector<std::string> joint_names_;
   std::vector<uint32_t> joint_a_, joint_b_;  // each side's joint table into joint_names_
+  size_t frames_at_once_ = 1;
   ContactSheet sheet_{256};
 };
 
-DiffSide load_side(const std::string& path, const GeometryDiffOptions& options) {
+// Runs one step of comparing the pair `pair` ("A vs B"): its InputErrors and the ceiling's refusals name
+// both files.
+template <class Step>
+auto of_pair(const std::string& pair, Step&& step) {
   try {
-    return diff_detail::make_diff_side(load_asset(path, options.load), options.mode);
+    return step();
   } catch (const InputError& e) {
-    throw InputError(path + ": " + e.what());
+    throw InputError(pair + ": " + e.what());
+  } catch (const std::bad_alloc&) {
+    const MemoryCeilingLifted lifted;
+    throw InputError(pair + ": " + out_of_memory_message());
   }
 }
 
@@ -472,12 +486,14 @@ GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, con
   report.thresholds = options.thresholds;
   report.relative = options.relative;
 
-  DiffSide side_a = load_side(a, options);
-  DiffSide side_b = load_side(b, options);
+  DiffSide side_a = diff_detail::load_diff_side(a, options.load, options.mode);
+  DiffSide side_b = diff_detail::load_diff_side(b, options.load, options.mode);
   report.vertices_a = side_a.vertices, report.vertices_b = side_b.vertices;
   const std::vector<size_t> selected =
       side_a.asset.clips.empty() ? std::vector<size_t>{} : select_clips(side_a.asset, options.clips);
-  diff_detail::ClipMatch match = diff_detail::match_clips(side_a.asset, side_b.asset, selected);
+  const std::string both = a + " vs " + b;
+  diff_detail::ClipMatch match =
+      of_pair(both, [&] { return diff_detail::match_clips(side_a.asset, side_b.asset, selected); });
   report.findings = std::move(match.findings);
   for (const diff_detail::ClipPair& pair : match.pairs)
     if (pair.a >= 0) {
@@ -487,10 +503,14 @@ GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, con
       report.findings.insert(report.findings.end(), notes.begin(), notes.end());
     }
 
-  GeometryDiffer differ(side_a, side_b, options, report);
-  differ.correspond();
-  for (const diff_detail::ClipPair& pair : match.pairs) report.clips.push_back(differ.compare(pair));
-  report.contact_sheet = differ.contact_sheet();
+  std::optional<GeometryDiffer> differ;
+  of_pair(both, [&] {
+    differ.emplace(side_a, side_b, options, report);
+    differ->correspond();
+  });
+  for (const diff_detail::ClipPair& pair : match.pairs)
+    report.clips.push_back(of_pair(both, [&] { return differ->compare(pair); }));
+  report.contact_sheet = of_pair(both, [&] { return differ->contact_sheet(); });
   report.wall_seconds = seconds_since(start);
   return report;
 }

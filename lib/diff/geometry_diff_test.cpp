@@ -170,13 +170,31 @@ TEST(GeometryDiff, ReportsAreTheSameBytesRunAfterRunAndThreadsApart) {
   EXPECT_EQ(geometry_junit(first), geometry_junit(second));
 }
 
-TEST(GeometryDiff, SurfacesThatDoNotOverlapAreAnInputError) {
+// Problems of the pair, not of either file, name both files.
+TEST(GeometryDiff, SurfacesThatDoNotOverlapAreAnInputErrorNamingBothFiles) {
   const testing_support::ScratchDir dir("geometry_diff");
+  const std::string moved = moved_copy(dir, 100.0);
   try {
-    diff_geometry(kArm, moved_copy(dir, 100.0), cpu_options());
+    diff_geometry(kArm, moved, cpu_options());
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("do not overlap"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(kArm + " vs " + moved + ": the two files' meshes do not overlap", 0), 0u)
+        << e.what();
+  }
+}
+
+TEST(GeometryDiff, NoClipInCommonIsAnInputErrorNamingBothFiles) {
+  const testing_support::ScratchDir dir("geometry_diff");
+  nlohmann::json doc;
+  std::ifstream(kArm) >> doc;
+  doc.erase("animations");
+  const std::string still = (dir.path() / "still.gltf").string();
+  std::ofstream(still) << doc.dump();
+  try {
+    diff_geometry(kArm, still, cpu_options());
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), kArm + " vs " + still + ": no clip in common: A has bend; B has no animations");
   }
 }
 
@@ -244,6 +262,24 @@ TEST(BakeDiff, PairsFilesByPathAndComparesVertexByVertex) {
   EXPECT_EQ(r.status(), DiffStatus::kFail);
   EXPECT_NE(geometry_text(r).find("FAIL  m/walk/frame_0001.obj, max 50 cm at vertex 1"), std::string::npos)
       << geometry_text(r);
+}
+
+// A frame that is a symbolic link may name any file: the diff would read it and quote it in its report.
+TEST(BakeDiff, RefusesASymbolicLinkInABakeFolderNamingIt) {
+  const testing_support::ScratchDir dir("bake_diff");
+  std::ofstream(dir.path() / "secret.txt") << "v 1 2 3\n";
+  for (const char* side : {"a", "b"}) {
+    std::filesystem::create_directories(dir.path() / side / "m");
+    std::ofstream(dir.path() / side / "manifest.json") << "{}";
+    std::filesystem::create_symlink("../../secret.txt", dir.path() / side / "m" / "frame_0000.obj");
+  }
+  const std::string a = (dir.path() / "a").string(), b = (dir.path() / "b").string();
+  try {
+    diff_bakes(a, b, {});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), a + "/m/frame_0000.obj: is a symbolic link, which diff does not follow in a bake folder");
+  }
 }
 
 }  // namespace

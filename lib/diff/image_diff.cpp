@@ -3,14 +3,19 @@
 // (include/dqskin/image_diff.hpp). The reports are diff_report.cpp's.
 #include "dqskin/image_diff.hpp"
 #include "diff_numbers.hpp"
+#include "image_bands.hpp"
 #include "../io/file_kind.hpp"
 #include "../io/oiio_message.hpp"
+#include "../io/saturating.hpp"
 #include "../io/image_file.hpp"
 #include "../io/srgb.hpp"
 #include "../io/stderr_capture.hpp"
 
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -25,6 +30,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <new>
 #include <system_error>
 #include <utility>
 
@@ -34,10 +40,6 @@ namespace {
 namespace fs = std::filesystem;
 using diff_detail::number;
 using diff_detail::percent;
-
-// Images larger than this (as float pixels) are refused rather than allocated: a corrupt header may claim
-// any size. 16 GiB holds a 32k × 32k RGBA float image.
-constexpr uint64_t kMaxImageBytes = uint64_t(16) << 30;
 
 std::string pixels_text(uint64_t count) { return std::to_string(count) + (count == 1 ? " pixel" : " pixels"); }
 
@@ -62,8 +64,8 @@ std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_err
   return {DiffStatus::kPass, ""};
 }
 
-// Reads the first subimage of `path` as float pixels into `image`. Returns why it cannot, or "".
-std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
+// Opens `path` for reading its first subimage into `in`. Returns why it cannot, or "".
+std::string open_image(const std::string& path, std::unique_ptr<OIIO::ImageInput>& in) {
   // Checked before OpenImageIO opens it: a FIFO would block the open until a writer comes, a device such
   // as /dev/zero would be read forever (symbolic links are followed to what they name).
   std::error_code error;
@@ -75,20 +77,57 @@ std::string read_image(const std::string& path, OIIO::ImageBuf& image) {
     return std::string("is ") + (::stat(path.c_str(), &st) == 0 ? file_kind(st.st_mode) : "not a file") + ", not a regular file";
   OIIO::geterror();  // forget earlier messages
   CapturedStderr capture;  // libpng prints its own "libpng error: …" line; it becomes part of ours
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  in = OIIO::ImageInput::open(path);
   if (!in) return with_library_text(oiio_message(OIIO::geterror()), capture.finish());
-  OIIO::ImageSpec spec = in->spec();
+  const OIIO::ImageSpec& spec = in->spec();
   if (spec.deep) return "deep (multi-sample) images are not compared";
-  if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0 || spec.nchannels <= 0)
-    return "the image has no pixels";
-  spec.set_format(OIIO::TypeDesc::FLOAT);
-  if (spec.image_bytes() == 0 || spec.image_bytes() > kMaxImageBytes)
-    return std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels of " +
-           std::to_string(spec.nchannels) + " channels are too large to compare";
-  image.reset(spec, OIIO::InitializePixels::No);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.localpixels()))
-    return with_library_text(oiio_message(in->geterror()), capture.finish());
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth <= 0 || spec.nchannels <= 0) return "the image has no pixels";
   return "";
+}
+
+// One image as compared: its pixels as float in memory of our own, which the --max-memory ceiling counts
+// (an ImageBuf's own allocation fails quietly, leaving no pixels), wrapped by an ImageBuf for
+// ImageBufAlgo::compare.
+struct FloatImage {
+  std::unique_ptr<float[]> pixels;  // not zeroed first: every value is read
+  OIIO::ImageBuf buffer;
+};
+
+// Reads the image `in` has open into `image`. Returns why it cannot, or "".
+std::string read_pixels(OIIO::ImageInput& in, FloatImage& image) {
+  OIIO::ImageSpec spec = in.spec();
+  spec.set_format(OIIO::TypeDesc::FLOAT);
+  spec.channelformats.clear();
+  image.pixels.reset(new float[size_t(diff_detail::float_bytes(spec) / 4)]);
+  CapturedStderr capture;
+  const std::string why = diff_detail::read_float_image(in, image.pixels.get());
+  if (!why.empty()) return with_library_text(oiio_message(why), capture.finish());
+  image.buffer.reset(spec, image.pixels.get());
+  return "";
+}
+
+// Bytes of a heat map's working images, per pixel: each pixel's largest difference and its place in the
+// colormap (floats), its color (3 floats) and the 8-bit RGB written.
+constexpr uint64_t kHeatMapBytesPerPixel = 4 + 4 + 12 + 3;
+
+// Why reading image `i` (0: A, 1: B) of a pair needs more memory than `budget`, or "": A is read first,
+// then B beside it, then the heat map (when one may be written) beside both. `a` and `b` are what the
+// files declare; b is unused for A.
+std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, bool heat_map, uint64_t budget) {
+  using saturating::add;
+  using saturating::mul;
+  const OIIO::ImageSpec& s = i == 0 ? a : b;
+  const uint64_t other = i == 0 ? 0 : diff_detail::float_bytes(a);
+  uint64_t beside = diff_detail::band_bytes(s);  // the most held beside the images: reading, or the heat map
+  if (i == 1 && heat_map) beside = std::max(beside, mul(diff_detail::pixel_count(a), kHeatMapBytesPerPixel));
+  const uint64_t need = add(add(other, diff_detail::float_bytes(s)), beside);
+  if (need <= budget) return "";
+  std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+  if (s.depth > 1) size.append("x").append(std::to_string(s.depth));
+  size += " pixels of " + std::to_string(s.nchannels) + (s.nchannels == 1 ? " channel" : " channels");
+  return "comparing it needs about " + byte_size(need) + " (its " + size + " as float" +
+         (i == 0 ? std::string() : ", beside " + byte_size(other) + " for the other image" + (heat_map ? " and a heat map" : "")) +
+         "), more than --max-memory " + byte_size(budget);
 }
 
 std::string window_text(const OIIO::ImageSpec& s) {
@@ -121,13 +160,12 @@ float channel_difference(float a, float b) {
 }
 
 // Writes the heat map of two same-sized float images (see DiffOptions::heat_map_dir) to `path`.
-void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, double fail) {
-  const OIIO::ImageSpec& spec = a.spec();
+void write_heat_map(const std::string& path, const FloatImage& a, const FloatImage& b, double fail) {
+  const OIIO::ImageSpec& spec = a.buffer.spec();
   const size_t width = size_t(spec.width), rows = size_t(spec.height) * size_t(spec.depth);
   const size_t channels = size_t(spec.nchannels), count = width * rows;
-  const auto* pa = static_cast<const float*>(a.localpixels());
-  const auto* pb = static_cast<const float*>(b.localpixels());
-  assert(pa && pb);
+  const float* pa = a.pixels.get();
+  const float* pb = b.pixels.get();
 
   // Each pixel's largest channel difference, and the largest finite one over the threshold: the top of the
   // colormap. The threshold is compared as compare does: a double against the float it was given.
@@ -141,16 +179,17 @@ void write_heat_map(const std::string& path, const OIIO::ImageBuf& a, const OIIO
     if (std::isfinite(d) && double(d) > threshold) top = std::max(top, d);
   }
 
-  // Position in the colormap: 0 just over the threshold, 1 at the top.
-  OIIO::ImageBuf level(OIIO::ImageSpec(int(width), int(rows), 1, OIIO::TypeDesc::FLOAT));
-  auto* lp = static_cast<float*>(level.localpixels());
+  // Position in the colormap: 0 just over the threshold, 1 at the top. It and the colors are images in
+  // memory of our own, as the pixels compared are: the ceiling counts them.
+  std::vector<float> level_pixels(count), color_pixels(count * 3);
+  OIIO::ImageBuf level(OIIO::ImageSpec(int(width), int(rows), 1, OIIO::TypeDesc::FLOAT), level_pixels.data());
   const double low = threshold, span = double(top) - threshold;
   for (size_t i = 0; i < count; ++i)
-    lp[i] = span > 0 && std::isfinite(largest[i]) ? float((double(largest[i]) - low) / span) : 1.0f;
-  const OIIO::ImageBuf colors = OIIO::ImageBufAlgo::color_map(level, 0, "viridis", {}, 1);
-  if (colors.has_error() || colors.nchannels() != 3)
+    level_pixels[i] = span > 0 && std::isfinite(largest[i]) ? float((double(largest[i]) - low) / span) : 1.0f;
+  OIIO::ImageBuf colors(OIIO::ImageSpec(int(width), int(rows), 3, OIIO::TypeDesc::FLOAT), color_pixels.data());
+  if (!OIIO::ImageBufAlgo::color_map(colors, level, 0, "viridis", {}, 1))
     throw OutputError(path + ": OpenImageIO color_map: " + oiio_message(colors.geterror()));
-  const auto* cp = static_cast<const float*>(colors.localpixels());
+  const float* cp = color_pixels.data();
 
   std::vector<uint8_t> rgb(count * 3);
   for (size_t i = 0; i < count; ++i) {
@@ -288,10 +327,24 @@ ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) {
     return d;
   }
 
-  OIIO::ImageBuf images[2];
+  // Each file is opened and its declared size checked against --max-memory before its pixels are
+  // allocated: a header of a few bytes may declare any size.
+  FloatImage images[2];
+  OIIO::ImageSpec declared[2];
   const std::string* paths[2] = {&pair.a, &pair.b};
   for (size_t i = 0; i < 2; ++i) {
-    const std::string why = read_image(*paths[i], images[i]);
+    std::unique_ptr<OIIO::ImageInput> in;
+    std::string why = open_image(*paths[i], in);
+    if (why.empty()) {
+      declared[i] = in->spec();
+      why = over_budget(i, declared[0], declared[i], !options.heat_map_dir.empty(), options.max_memory);
+    }
+    try {
+      if (why.empty()) why = read_pixels(*in, images[i]);
+    } catch (const std::bad_alloc&) {
+      images[0] = {}, images[1] = {};  // freed before the message is made
+      why = out_of_memory_message();
+    }
     if (!why.empty()) {
       d.unreadable = *paths[i];
       d.read_error = why;
@@ -300,8 +353,8 @@ ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) {
       return d;
     }
   }
-  const OIIO::ImageBuf& a = images[0];
-  const OIIO::ImageBuf& b = images[1];
+  const OIIO::ImageBuf& a = images[0].buffer;
+  const OIIO::ImageBuf& b = images[1].buffer;
   d.problem = mismatch(a.spec(), b.spec());
   if (!d.problem.empty()) {
     d.reason = d.problem;
@@ -334,7 +387,7 @@ ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) {
   std::tie(d.status, d.reason) = judge(t, d.max_error, d.over_warn, d.over_fail, d.pixels);
   if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {
     d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
-    write_heat_map(d.heat_map, a, b, t.fail);
+    write_heat_map(d.heat_map, images[0], images[1], t.fail);
   }
   return d;
 }
@@ -344,7 +397,10 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   report.a = a;
   report.b = b;
   report.thresholds = options.thresholds;
-  for (const DiffPair& pair : pair_inputs(a, b)) report.pairs.push_back(diff_pair(pair, options));
+  for (const DiffPair& pair : pair_inputs(a, b)) {
+    check_cancelled(options.cancel);
+    report.pairs.push_back(diff_pair(pair, options));
+  }
   return report;
 }
 

@@ -5,6 +5,9 @@
 // OpenImageIO stays out of this header.
 #pragma once
 
+#include "dqskin/load.hpp"  // kDefaultMaxMemory
+
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -79,6 +82,12 @@ struct DiffOptions {
   // `fail`) to yellow (the pair's max error); white where the difference is not finite. Written atomically
   // (a complete file or none) and the same bytes for the same inputs.
   std::string heat_map_dir;
+  // Most memory comparing one pair may take (--max-memory): both images as float, what reading takes and
+  // the heat map. Checked against what each file declares before its pixels are allocated; a file that
+  // needs more is unreadable ("comparing it needs about …").
+  uint64_t max_memory = kDefaultMaxMemory;
+  // Checked before each pair: once set, diff_images throws JobCancelled (dqskin/job.hpp). May be null.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct DiffReport {
@@ -111,7 +120,8 @@ std::vector<DiffPair> pair_inputs(const std::string& a, const std::string& b);
 // naming the file when it cannot be written.
 ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options);
 
-// pair_inputs, then diff_pair for every pair, in order. Throws as they do.
+// pair_inputs, then diff_pair for every pair, in order. Throws as they do, and JobCancelled once
+// options.cancel is set.
 DiffReport diff_images(const std::string& a, const std::string& b, const DiffOptions& options);
 
 }  // namespace dqskin
