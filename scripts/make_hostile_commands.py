@@ -6,13 +6,15 @@ never a downloaded file.
 
     make_hostile_commands.py OUTDIR
 
-writes one folder per command under OUTDIR (report/), deterministic, byte for byte. Python 3 standard
+writes one folder per command under OUTDIR (report/, lint/), deterministic, byte for byte. Python 3 standard
 library only.
 """
 
 import copy
+import math
 import os
 import shutil
+import struct
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -38,13 +40,58 @@ def report_cases(folder):
     write(folder, "clips_1000.gltf", a.gltf_bytes())
 
 
+def unbacked(a, vertices):
+    """Gives the quad `vertices` vertices, all at the origin and without weight: its POSITION, NORMAL,
+    JOINTS_0 and WEIGHTS_0 accessors lose their bufferViews (glTF 2.0 §3.6.2.3: then they hold zeros)."""
+    for accessor in (malformed.POSITION, malformed.NORMAL, malformed.JOINTS, malformed.WEIGHTS):
+        entry = a.gltf["accessors"][accessor]
+        del entry["bufferView"]
+        entry["count"] = vertices
+    a.gltf["accessors"][malformed.POSITION].update({"min": [0, 0, 0], "max": [0, 0, 0]})
+
+
+def lint_cases(folder):
+    """dqskin lint and lint --fix.
+
+    chain_200k.gltf          the quad's skin with a chain of 200,000 more joints, each the child of the one
+                             before (5.6 MB): lint walked from every joint to the root, and --fix from
+                             every joint to the skeleton, which took minutes
+    unweighted_50k.gltf      1,000,000 vertices without weight (accessors without a bufferView: all zeros)
+                             and a skin of 50,000 joints side by side under one root (500 KB): --fix
+                             compared every vertex with every joint to find its nearest, for minutes
+    """
+    a = malformed.base_asset()
+    nodes = a.gltf["nodes"]
+    start = len(nodes)
+    chain = 200000
+    nodes[1]["children"] = [2, start]
+    nodes.extend({"children": [start + i + 1]} for i in range(chain - 1))
+    nodes.append({"name": "deepest"})
+    skin = a.gltf["skins"][0]
+    skin["joints"] = [1, 2] + list(range(start, start + chain))
+    del skin["inverseBindMatrices"]  # the identity: right for every chain joint (they rest at the origin)
+    write(folder, "chain_200k.gltf", a.gltf_bytes())
+
+    a = malformed.base_asset()
+    nodes = a.gltf["nodes"]
+    start = len(nodes)
+    joints = 50000
+    nodes[1]["children"] = [2] + list(range(start, start + joints))
+    nodes.extend({} for _ in range(joints))
+    skin = a.gltf["skins"][0]
+    skin["joints"] = [1, 2] + list(range(start, start + joints))
+    del skin["inverseBindMatrices"]
+    unbacked(a, 1000000)
+    write(folder, "unweighted_50k.gltf", a.gltf_bytes())
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_hostile_commands.py OUTDIR")
     out = sys.argv[1]
     if os.path.exists(out):
         shutil.rmtree(out)
-    for name, make in [("report", report_cases)]:
+    for name, make in [("report", report_cases), ("lint", lint_cases)]:
         os.makedirs(os.path.join(out, name))
         make(os.path.join(out, name))
 

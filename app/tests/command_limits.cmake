@@ -40,3 +40,23 @@ dqskin_limit_test(report_1000_clips_within_max_memory 2 FOLDER ${limits_scratch}
   ARGS report report/clips_1000.gltf -o ${limits_scratch}/report_1000 --max-memory 256M --quiet
   ONE_LINE MAX_RSS_MB 700
   STDERR "^dqskin: report/clips_1000.gltf: needs more memory than --max-memory 256 MiB allows \\(")
+
+# ---- lint ----------------------------------------------------------------------------------------------------
+# A chain of 200,000 joints: lint walked from every joint up to its root and the skeleton (minutes); now
+# about as long as loading the file (`dqskin info`: 2 s). --fix was as quadratic in the skeleton check;
+# it reads the file four times (lint, the fix's data, the fixed .glb's JSON, lint of the fixed file):
+# 7.5 s alone, 16 s beside two other tests on two cores, hence its 60 s.
+file(MAKE_DIRECTORY ${limits_scratch}/lint)
+dqskin_limit_test(lint_200k_joint_chain 1 TIMEOUT 30
+  ARGS lint lint/chain_200k.gltf --max-memory 1G MAX_RSS_MB 1024
+  STDOUT "^lint/chain_200k.gltf: warning\n  info    unused-joint \\(200000\\)")
+dqskin_limit_test(lint_fix_200k_joint_chain 1 TIMEOUT 60
+  ARGS lint --fix lint/chain_200k.gltf -o ${limits_scratch}/lint/chain_200k.fixed.glb --max-memory 1G MAX_RSS_MB 1024
+  STDERR "^dqskin: lint: wrote [^\n]*/chain_200k.fixed.glb "
+  STDOUT "\n[^\n]*chain_200k.fixed.glb: warning\n  info    unused-joint \\(200000\\)")
+# 1,000,000 vertices without weight and 50,000 joints: --fix compared each vertex with every joint for the
+# nearest one (over a minute); a k-d tree answers each in about log(joints).
+dqskin_limit_test(lint_fix_unweighted_vertices_50k_joints 1 TIMEOUT 30
+  ARGS lint --fix lint/unweighted_50k.gltf -o ${limits_scratch}/lint/unweighted_50k.fixed.glb --max-memory 1G
+  MAX_RSS_MB 1024 STDERR "^dqskin: lint: wrote [^\n]*/unweighted_50k.fixed.glb "
+  STDOUT "\n[^\n]*unweighted_50k.fixed.glb: warning\n")

@@ -126,6 +126,35 @@ void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<I
     });
 }
 
+// Marks the joints of each skin that deform mesh primitives [first, last) (one mesh: the same skins) with
+// weight on some vertex. Per mesh, the distinct joint indices with weight, then per skin those below its
+// joint count: O(vertices + skins × min(joints, distinct indices)), where marking per vertex and skin
+// would be vertices × skins.
+void mark_used_joints(const std::vector<gltf::SkinnedPrimitive>& primitives, size_t first, size_t last,
+                      std::vector<std::vector<bool>>& used) {
+  size_t most = 0;  // joints of the largest skin: no index at or beyond it is any skin's
+  for (int s : primitives[first].skins) most = std::max(most, used[size_t(s)].size());
+  std::vector<bool> weighted;
+  std::vector<uint32_t> distinct;
+  for (size_t k = first; k < last && most > 0; ++k)
+    for (const gltf::InfluenceSet& set : primitives[k].sets)
+      for (size_t i = 0; i < set.joints.size(); ++i) {
+        const uint32_t j = set.joints[i];
+        if (!(set.weights[i] > 0) || j >= most) continue;
+        if (j >= weighted.size()) weighted.resize(size_t(j) + 1, false);
+        if (!weighted[j]) weighted[j] = true, distinct.push_back(j);
+      }
+  for (int s : primitives[first].skins) {
+    std::vector<bool>& mark = used[size_t(s)];
+    if (mark.size() < distinct.size()) {
+      for (size_t j = 0; j < mark.size() && j < weighted.size(); ++j) mark[j] = mark[j] || weighted[j];
+    } else {
+      for (uint32_t j : distinct)
+        if (j < mark.size()) mark[j] = true;
+    }
+  }
+}
+
 }  // namespace
 
 void check_influences(const gltf::SkinData& data, const LintOptions& options, Findings& out) {
@@ -135,20 +164,23 @@ void check_influences(const gltf::SkinData& data, const LintOptions& options, Fi
   for (size_t s = 0; s < asset.skins.size(); ++s) used[s].assign(asset.skins[s].joints.size(), false);
 
   std::vector<Influence> in;
-  for (const gltf::SkinnedPrimitive& p : data.primitives) {
+  size_t mesh_first = 0;  // the first primitive of the current mesh (primitives come in mesh order)
+  for (size_t k = 0; k < data.primitives.size(); ++k) {
+    const gltf::SkinnedPrimitive& p = data.primitives[k];
     const size_t limit = joint_limit(p, asset);
     for (int s : p.skins) skinned[size_t(s)] = true;
     for (size_t v = 0; v < p.vertices; ++v) {
       in.clear();
       for (const gltf::InfluenceSet& set : p.sets) {
         const double scale = normalized_max(set.weights_component);
-        for (size_t k = 0; k < 4; ++k)
-          in.push_back({set.joints[4 * v + k], set.weights[4 * v + k], scale > 0 ? 0.5 / scale : 0.0});
+        for (size_t i = 0; i < 4; ++i)
+          in.push_back({set.joints[4 * v + i], set.weights[4 * v + i], scale > 0 ? 0.5 / scale : 0.0});
       }
       check_vertex(p, v, in, limit, options, out);
-      for (int s : p.skins)
-        for (const Influence& i : in)
-          if (i.weight > 0 && i.joint < used[size_t(s)].size()) used[size_t(s)][i.joint] = true;
+    }
+    if (k + 1 == data.primitives.size() || data.primitives[k + 1].mesh != p.mesh) {
+      mark_used_joints(data.primitives, mesh_first, k + 1, used);
+      mesh_first = k + 1;
     }
   }
 

@@ -13,6 +13,8 @@
 #include "../gltf/fixed_glb.hpp"
 #include "../gltf/skin_data.hpp"
 #include "lint_checks.hpp"
+#include "nearest_point.hpp"
+#include "node_tree.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
 
@@ -46,14 +48,47 @@ std::vector<double> round_to_sum(const std::vector<double>& w, double scale) {
   return floor;
 }
 
+// The joint nearest to a vertex in bind space (a joint's bind position is inverse(inverseBind) · origin),
+// among the first `count` joints of `skin` (the mesh's first skin, up to as many joints as every skin that
+// draws the mesh has, so that the index fits each). The tree is made when a vertex first needs it, and
+// kept for the next primitives with the same skins.
+class NearestJoints {
+public:
+  NearestJoints(const Asset& asset, int skin, size_t count) : asset_(asset), skin_(skin), count_(count) {}
+
+  uint32_t operator()(const Vec3<double>& position) {
+    if (!tree_) {
+      std::vector<Vec3<double>> bind_positions;
+      const std::vector<Mat4<double>>& ibms = asset_.skins[size_t(skin_)].inverse_bind;
+      for (size_t j = 0; j < ibms.size() && j < count_; ++j)
+        bind_positions.push_back(Vec3<double>(glm::inverse(ibms[j])[3]));
+      tree_.emplace(bind_positions);
+    }
+    // A mesh without positions of its own (an accessor without a bufferView) has every vertex at one place.
+    if (!last_ || *last_ != position) last_ = position, answer_ = uint32_t(tree_->nearest(position));
+    return answer_;
+  }
+
+  bool fits(int skin, size_t count) const { return skin == skin_ && count == count_; }
+
+private:
+  const Asset& asset_;
+  int skin_;
+  size_t count_;
+  std::optional<lint::NearestPoint> tree_;
+  std::optional<Vec3<double>> last_;
+  uint32_t answer_ = 0;
+};
+
 // The primitive's influences in fixed form, or nothing when they are already in it.
-std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& p, const Asset& asset, size_t keep) {
+std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& p, const Asset& asset, size_t keep,
+                                                  std::optional<NearestJoints>& nearest_joint) {
   const size_t limit = lint::joint_limit(p, asset);
-  std::vector<Vec3<double>> bind_positions;
-  if (!p.skins.empty())
-    for (const Mat4<double>& ibm : asset.skins[size_t(p.skins.front())].inverse_bind)
-      bind_positions.push_back(Vec3<double>(glm::inverse(ibm)[3]));
-  if (limit > 0 && bind_positions.size() > limit) bind_positions.resize(limit);
+  // Joints a vertex without weight may be bound to: the first skin's, up to what every skin has.
+  const int bind_skin = p.skins.empty() ? -1 : p.skins.front();
+  const size_t bind_joints = bind_skin < 0 ? 0 : std::min(asset.skins[size_t(bind_skin)].inverse_bind.size(), limit);
+  if (bind_joints > 0 && !(nearest_joint && nearest_joint->fits(bind_skin, bind_joints)))
+    nearest_joint.emplace(asset, bind_skin, bind_joints);
   const int weights_component = p.sets.front().weights_component;
   const double scale = lint::normalized_max(weights_component);
   std::vector<std::vector<Influence>> fixed(p.vertices);
@@ -77,15 +112,8 @@ std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& 
     });
     if (in.size() > keep) in.resize(keep);
     // A vertex without weight would stay where it was bound whatever the skeleton does: it is given to the
-    // joint nearest to it in bind space (the joint's bind position is inverse(inverseBind) · origin).
-    if (in.empty() && !bind_positions.empty()) {
-      size_t nearest = 0;
-      for (size_t j = 1; j < bind_positions.size(); ++j)
-        if (glm::distance(bind_positions[j], Vec3<double>(p.positions[v])) <
-            glm::distance(bind_positions[nearest], Vec3<double>(p.positions[v])))
-          nearest = j;
-      in.push_back({uint32_t(nearest), 1.0});
-    }
+    // joint nearest to it in bind space.
+    if (in.empty() && bind_joints > 0) in.push_back({(*nearest_joint)(Vec3<double>(p.positions[v])), 1.0});
     double sum = 0;
     for (const Influence& i : in) sum += i.weight;
     if (sum > 0) {
@@ -176,20 +204,19 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
   const gltf::SkinData data = gltf::read_skin_data(input, options.load);
   if (!data.rewritable) throw InputError(data.why_not);
   gltf::FileEdits edits;
+  std::optional<NearestJoints> nearest_joint;
   for (const gltf::SkinnedPrimitive& p : data.primitives)
-    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences)))
+    if (auto e = fix_influences(p, data.structure, size_t(options.max_influences), nearest_joint))
       edits.influences.push_back(std::move(*e));
   for (const gltf::RotationSource& r : data.rotations)
     if (auto e = fix_rotation(r, data.structure)) edits.keys.push_back(std::move(*e));
   const Asset& a = data.structure;
+  const lint::NodeTree tree(a.nodes);
   for (size_t s = 0; s < a.skins.size(); ++s) {
-    bool root = true;
-    for (int joint : a.skins[s].joints) {
-      bool below = false;
-      for (int n = joint; n >= 0 && !below; n = a.nodes[size_t(n)].parent) below = n == a.skins[s].skeleton;
-      root = root && below;
-    }
-    if (a.skins[s].skeleton >= 0 && !root) edits.drop_skeleton.push_back(s);
+    const Skin& skin = a.skins[s];
+    if (skin.skeleton >= 0 && !std::all_of(skin.joints.begin(), skin.joints.end(),
+                                           [&](int joint) { return tree.is_ancestor_or_self(skin.skeleton, joint); }))
+      edits.drop_skeleton.push_back(s);
   }
   const std::string glb = gltf::fixed_glb(input, options.load, edits);
   AtomicFile file(output);
