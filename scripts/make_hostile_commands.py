@@ -59,6 +59,8 @@ def lint_cases(folder):
     unweighted_50k.gltf      1,000,000 vertices without weight (accessors without a bufferView: all zeros)
                              and a skin of 50,000 joints side by side under one root (500 KB): --fix
                              compared every vertex with every joint to find its nearest, for minutes
+    two_skins_one_mesh.gltf  the quad drawn twice, with the two-joint skin and with a three-joint one, its
+                             vertex 3 on joint 2: --fix dropped the influence that the larger skin needs
     """
     a = malformed.base_asset()
     nodes = a.gltf["nodes"]
@@ -83,6 +85,21 @@ def lint_cases(folder):
     del skin["inverseBindMatrices"]
     unbacked(a, 1000000)
     write(folder, "unweighted_50k.gltf", a.gltf_bytes())
+
+    a = malformed.base_asset()
+    third = a.add("nodes", {"name": "third joint", "translation": [1, 0, 0]})
+    a.gltf["nodes"][2]["children"] = [third]
+    larger = a.add("nodes", {"name": "quad drawn by the larger skin", "mesh": 0, "skin": 1})
+    a.gltf["scenes"][0]["nodes"].append(larger)
+    # Inverse bind matrices (column-major) of joints resting at the origin, at y = 1 and at (1, 1, 0).
+    ibm = b"".join(struct.pack("<16f", 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -x, -y, 0, 1)
+                   for x, y in [(0, 0), (0, 1), (1, 1)])
+    view = a.add_view(ibm)
+    ibm3 = a.add("accessors", {"bufferView": view, "componentType": malformed.FLOAT, "count": 3, "type": "MAT4"})
+    a.gltf["skins"].append({"name": "three joints", "joints": [1, 2, third], "inverseBindMatrices": ibm3})
+    at = a.accessor_offset(malformed.JOINTS) + 3 * 4
+    a.bin[at:at + 4] = bytes([1, 2, 0, 0])  # vertex 3: 0.25 on joint 1, 0.75 on joint 2 (the larger skin's)
+    write(folder, "two_skins_one_mesh.gltf", a.gltf_bytes())
 
 
 def main():

@@ -28,7 +28,11 @@ const std::vector<LintCheckInfo>& lint_checks() {
        true},
       {"negative-weight", S::kError, "a weight is negative", true},
       {"duplicate-joint", S::kError, "the same joint twice in one vertex, both with weight", true},
-      {"joint-out-of-range", S::kError, "a joint index beyond the skin's joints", true},
+      {"joint-out-of-range", S::kError, "a joint index beyond the joints of every skin that draws the mesh", true},
+      {"joint-beyond-smaller-skin", S::kWarning,
+       "a joint index that fits the larger of the skins that draw the mesh but not a smaller one (--fix keeps "
+       "it: the larger skin needs it)",
+       false},
       {"over-8-influences", S::kError, "more than 8 joints with weight on one vertex (dqskin and most engines refuse)",
        true},
       {"too-many-influences", S::kWarning,

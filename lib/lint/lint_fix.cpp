@@ -1,13 +1,13 @@
 // `dqskin lint --fix`: what can be corrected in the data itself. Influences: per vertex, every set's
-// (joint, weight) merged per joint, weights ≤ 0 and joints beyond the skin dropped, sorted by weight
+// (joint, weight) merged per joint, weights ≤ 0 and joints beyond every skin that draws the mesh dropped
+// (a joint that fits only the larger of two such skins is kept: that skin needs it), sorted by weight
 // (descending; ties by joint), cut to max_influences (a vertex left without weight bound to its nearest
-// joint) and renormalized in the original component type:
-// normalized integers by the largest-remainder method, so that the stored integers sum exactly to 255 or
-// 65535 (what the Khronos validator checks). Rotation keys: made unit, and each key negated when its dot
-// product with the previous (already fixed) key is negative, CUBICSPLINE tangents with it (q and −q are
-// the same rotation, so the animation is unchanged for a runtime that takes the shortest path, and
-// becomes right for one that does not). A skin's `skeleton` that is not a common root of its joints is
-// removed (the property is optional).
+// joint) and renormalized in the original component type: normalized integers by the largest-remainder
+// method, so that the stored integers sum exactly to 255 or 65535 (what the Khronos validator checks).
+// Rotation keys: made unit, and each key negated when its dot product with the previous (already fixed)
+// key is negative, CUBICSPLINE tangents with it (q and −q are the same rotation, so the animation is
+// unchanged for a runtime that takes the shortest path, and becomes right for one that does not). A
+// skin's `skeleton` that is not a common root of its joints is removed (the property is optional).
 #include "dqskin/lint.hpp"
 
 #include "../gltf/fixed_glb.hpp"
@@ -80,13 +80,17 @@ private:
   uint32_t answer_ = 0;
 };
 
-// The primitive's influences in fixed form, or nothing when they are already in it.
+// The primitive's influences in fixed form, or nothing when they are already in it. An influence is
+// dropped when its joint is beyond every skin that draws the mesh; one that fits the larger skins only is
+// kept (they need it; lint warns, joint-beyond-smaller-skin).
 std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& p, const Asset& asset, size_t keep,
                                                   std::optional<NearestJoints>& nearest_joint) {
-  const size_t limit = lint::joint_limit(p, asset);
+  const lint::JointRange range = lint::joint_range(p, asset);
+  const size_t limit = range.most;
   // Joints a vertex without weight may be bound to: the first skin's, up to what every skin has.
   const int bind_skin = p.skins.empty() ? -1 : p.skins.front();
-  const size_t bind_joints = bind_skin < 0 ? 0 : std::min(asset.skins[size_t(bind_skin)].inverse_bind.size(), limit);
+  const size_t bind_joints =
+      bind_skin < 0 ? 0 : std::min(asset.skins[size_t(bind_skin)].inverse_bind.size(), range.fewest);
   if (bind_joints > 0 && !(nearest_joint && nearest_joint->fits(bind_skin, bind_joints)))
     nearest_joint.emplace(asset, bind_skin, bind_joints);
   const int weights_component = p.sets.front().weights_component;

@@ -78,8 +78,9 @@ struct LintFixSummary {
 };
 
 // Writes a corrected copy of `input` to `output` (.glb, atomically): influences merged per joint, negative
-// weights and joints out of range dropped, sorted by weight and cut to options.max_influences (at most 8),
-// a vertex without weight bound to the joint nearest to it in bind space, renormalized in the original
+// weights and joints beyond every skin that draws the mesh dropped (one that fits a larger skin only is
+// kept), sorted by weight and cut to options.max_influences (at most 8), a vertex without weight bound to
+// the joint nearest to it in bind space, renormalized in the original
 // component type (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
 // hemisphere-consistent; a `skeleton` that is not the joints' common root removed. What it cannot fix
 // (joints without a common root, inverse bind matrices, joint scale) stays. Throws InputError for an input
