@@ -61,6 +61,9 @@ def lint_cases(folder):
                              compared every vertex with every joint to find its nearest, for minutes
     two_skins_one_mesh.gltf  the quad drawn twice, with the two-joint skin and with a three-joint one, its
                              vertex 3 on joint 2: --fix dropped the influence that the larger skin needs
+    zero_rotation_keys.gltf  a LINEAR rotation channel whose middle key is (0, 0, 0, 0), and a second one,
+                             on a node turned at rest, whose keys are all (0, 0, 0, 0): --fix wrote them
+                             unchanged, and the fixed file was as invalid
     """
     a = malformed.base_asset()
     nodes = a.gltf["nodes"]
@@ -100,6 +103,21 @@ def lint_cases(folder):
     at = a.accessor_offset(malformed.JOINTS) + 3 * 4
     a.bin[at:at + 4] = bytes([1, 2, 0, 0])  # vertex 3: 0.25 on joint 1, 0.75 on joint 2 (the larger skin's)
     write(folder, "two_skins_one_mesh.gltf", a.gltf_bytes())
+
+    a = malformed.base_asset()
+    zero = struct.pack("<4f", 0, 0, 0, 0)
+    s = math.sqrt(0.5)
+    view = a.add_view(struct.pack("<4f", 0, 0, 0, 1) + zero + struct.pack("<4f", 0, 0, s, s))
+    a.gltf["accessors"][malformed.ROTATIONS]["bufferView"] = view
+    view = a.add_view(zero * 3)
+    zeros = a.add("accessors", {"bufferView": view, "componentType": malformed.FLOAT, "count": 3, "type": "VEC4"})
+    # A node beside the skeleton, turned at rest: what its all-zero channel's keys become.
+    turned = a.add("nodes", {"name": "turned", "rotation": [0, 0, s, s]})
+    a.gltf["scenes"][0]["nodes"].append(turned)
+    animation = a.gltf["animations"][0]
+    animation["samplers"].append({"input": malformed.TIMES, "output": zeros, "interpolation": "LINEAR"})
+    animation["channels"].append({"sampler": 2, "target": {"node": turned, "path": "rotation"}})
+    write(folder, "zero_rotation_keys.gltf", a.gltf_bytes())
 
 
 def main():

@@ -51,6 +51,8 @@ function(dqskin_lint_generated_case name status check fixable fixed_status valid
   set_tests_properties(cli.lint_${name} PROPERTIES LABELS lint)
 endfunction()
 dqskin_lint_generated_case(two_skins_one_mesh 1 joint-beyond-smaller-skin OFF 1 OFF)
+# Rotation keys of length 0 (one in a channel, and a whole channel): --fix wrote them unchanged.
+dqskin_lint_generated_case(zero_rotation_keys 2 rotation-not-unit ON 0 ON)
 
 # The project's rigs: clean, but for the two that show a rule on purpose.
 foreach(rig bending_arm camera_dolly interpolation_modes morph_skin textured_cylinder twisted_cylinder two_skins)

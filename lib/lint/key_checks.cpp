@@ -44,7 +44,8 @@ void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options,
       if (std::abs(length - 1) > tolerance) {
         e.value = length;
         out["rotation-not-unit"].add(std::abs(length - 1), e, [&] {
-          return "rotation key " + std::to_string(k) + " has length " + number(length) + " in " + where;
+          return "rotation key " + std::to_string(k) + " has length " + number(length) + " in " + where +
+                 (length > 0 ? "" : " (no rotation; --fix takes the nearest valid key of the channel)");
         });
       }
       // STEP keys are never interpolated, so their signs do not matter.

@@ -48,7 +48,10 @@ const std::vector<LintCheckInfo>& lint_checks() {
        false},
       {"joint-nonuniform-scale", S::kWarning, "a joint matrix has non-uniform scale or shear at rest or at a key",
        false},
-      {"rotation-not-unit", S::kError, "a rotation key is not a unit quaternion", true},
+      {"rotation-not-unit", S::kError,
+       "a rotation key is not a unit quaternion (--fix normalizes it; a key of length 0 takes the nearest valid key "
+       "of its channel, or the node's rest rotation)",
+       true},
       {"hemisphere-flip", S::kWarning, "neighbouring rotation keys in opposite hemispheres (dot < 0)", true},
   };
   return checks;

@@ -4,10 +4,11 @@
 // (descending; ties by joint), cut to max_influences (a vertex left without weight bound to its nearest
 // joint) and renormalized in the original component type: normalized integers by the largest-remainder
 // method, so that the stored integers sum exactly to 255 or 65535 (what the Khronos validator checks).
-// Rotation keys: made unit, and each key negated when its dot product with the previous (already fixed)
-// key is negative, CUBICSPLINE tangents with it (q and −q are the same rotation, so the animation is
-// unchanged for a runtime that takes the shortest path, and becomes right for one that does not). A
-// skin's `skeleton` that is not a common root of its joints is removed (the property is optional).
+// Rotation keys: made unit (a key of length 0, no rotation at all, takes the nearest valid key of its
+// channel, or the node's rest rotation), and each key negated when its dot product with the previous
+// (already fixed) key is negative, CUBICSPLINE tangents with it (q and −q are the same rotation, so the
+// animation is unchanged for a runtime that takes the shortest path, and becomes right for one that does
+// not). A skin's `skeleton` that is not a common root of its joints is removed (the property is optional).
 #include "dqskin/lint.hpp"
 
 #include "../gltf/fixed_glb.hpp"
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <optional>
 
@@ -162,6 +164,10 @@ std::optional<gltf::InfluenceEdit> fix_influences(const gltf::SkinnedPrimitive& 
   return e;
 }
 
+// A rotation channel's keys made unit and hemisphere-consistent. A key of length 0 is no rotation and
+// cannot be normalized: it takes the nearest key of the channel that can (nearest in time, the earlier of
+// two equally near), or the node's rest rotation when no key of the channel can; a CUBICSPLINE key so
+// replaced gets zero tangents (the curve rests on it).
 std::optional<gltf::KeyEdit> fix_rotation(const gltf::RotationSource& source, const Asset& asset) {
   const Channel& ch = asset.clips[source.clip].channels[source.channel];
   const bool cubic = ch.interpolation == Interpolation::kCubicSpline;
@@ -180,15 +186,49 @@ std::optional<gltf::KeyEdit> fix_rotation(const gltf::RotationSource& source, co
     for (int i = 0; i < 4; ++i) d += double(a[i]) * double(b[i]);
     return d;
   };
-  const float* previous = nullptr;
-  for (size_t k = 0; k < ch.times.size(); ++k) {
+  const size_t keys = ch.times.size();
+  std::vector<bool> zero(keys, false);
+  for (size_t k = 0; k < keys; ++k) {
     float* key = &e.values[k * stride];
     float* q = key + offset;
     const double length = std::sqrt(dot(q, q));
+    zero[k] = !(length > 0);
     if (length > 0 && std::abs(length - 1) > representable) {
       for (size_t i = 0; i < stride; ++i) key[i] = float(double(key[i]) / length);  // tangents scale with their key
       changed = true;
     }
+  }
+  // The nearest normalizable key before and after each key, in two linear passes.
+  constexpr size_t kNone = SIZE_MAX;
+  std::vector<size_t> before(keys, kNone);
+  for (size_t k = 0, last = kNone; k < keys; ++k) {
+    before[k] = last;
+    if (!zero[k]) last = k;
+  }
+  const Quat<double>& rest = asset.nodes[size_t(ch.node)].local.rotation;
+  const float rest_xyzw[4] = {float(rest.x), float(rest.y), float(rest.z), float(rest.w)};
+  for (size_t k = keys, after = kNone; k-- > 0;) {
+    if (!zero[k]) {
+      after = k;
+      continue;
+    }
+    const size_t b = before[k];
+    const bool take_before =
+        b != kNone &&
+        (after == kNone ||
+         double(ch.times[k]) - double(ch.times[b]) <= double(ch.times[after]) - double(ch.times[k]));
+    const float* from = take_before ? &e.values[b * stride + offset]
+                        : after != kNone ? &e.values[after * stride + offset]
+                                         : rest_xyzw;
+    float* key = &e.values[k * stride];
+    std::fill(key, key + stride, 0.0f);
+    std::copy(from, from + 4, key + offset);
+    changed = true;
+  }
+  const float* previous = nullptr;
+  for (size_t k = 0; k < keys; ++k) {
+    float* key = &e.values[k * stride];
+    float* q = key + offset;
     // STEP keys are never interpolated, so their hemispheres do not matter (and the check reports none).
     if (previous && ch.interpolation != Interpolation::kStep && dot(previous, q) < 0) {
       for (size_t i = 0; i < stride; ++i) key[i] = -key[i];
