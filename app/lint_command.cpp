@@ -5,9 +5,11 @@
 #include "console.hpp"
 #include "exit_codes.hpp"
 #include "guarded_run.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/lint.hpp"
 
 #include <iostream>
@@ -55,6 +57,9 @@ int run_lint(LintSettings& s) {
   if (s.fix && s.output.size() < 4) throw InputError("-o must name a .glb file");
   if (s.fix && s.output.substr(s.output.size() - 4) != ".glb") throw InputError("-o must name a .glb file");
   o.load = to_load_options(s.load);
+  // SIGINT and SIGTERM stop lint as they stop bake: one line, the process ends by the signal, and --fix
+  // leaves neither its temporary nor a partial output (interrupt.hpp).
+  o.cancel = catch_interrupts("lint");
 
   std::vector<LintFileResult> results;
   for (const std::string& input : s.inputs) results.push_back(lint_file(input, o));
@@ -68,10 +73,13 @@ int run_lint(LintSettings& s) {
                 << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, "
                 << fixed.skeletons << " skeleton properties removed); linted again:\n";
       results.push_back(lint_file(s.output, o));
+    } catch (const JobCancelled&) {
+      throw;
     } catch (const InputError& e) {
       print_error(s.inputs.front(), std::string("--fix: ") + e.what());
       fix_failed = true;
     } catch (const OutputError& e) {
+      check_cancelled(o.cancel);  // a stop that removed the temporary under the write: the stop's line only
       print_error(e.what());
       fix_failed = true;
     }

@@ -64,6 +64,8 @@ def lint_cases(folder):
     zero_rotation_keys.gltf  a LINEAR rotation channel whose middle key is (0, 0, 0, 0), and a second one,
                              on a node turned at rest, whose keys are all (0, 0, 0, 0): --fix wrote them
                              unchanged, and the fixed file was as invalid
+    unweighted_4m.gltf       4,000,000 vertices without weight (3 KB): --fix writes 80 MB, long enough to
+                             be stopped while it writes
     """
     a = malformed.base_asset()
     nodes = a.gltf["nodes"]
@@ -118,6 +120,10 @@ def lint_cases(folder):
     animation["samplers"].append({"input": malformed.TIMES, "output": zeros, "interpolation": "LINEAR"})
     animation["channels"].append({"sampler": 2, "target": {"node": turned, "path": "rotation"}})
     write(folder, "zero_rotation_keys.gltf", a.gltf_bytes())
+
+    a = malformed.base_asset()
+    unbacked(a, 4000000)
+    write(folder, "unweighted_4m.gltf", a.gltf_bytes())
 
 
 def main():

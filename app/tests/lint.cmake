@@ -54,6 +54,12 @@ dqskin_lint_generated_case(two_skins_one_mesh 1 joint-beyond-smaller-skin OFF 1 
 # Rotation keys of length 0 (one in a channel, and a whole channel): --fix wrote them unchanged.
 dqskin_lint_generated_case(zero_rotation_keys 2 rotation-not-unit ON 0 ON)
 
+# SIGTERM while --fix writes its output, and while it reads: one line, the process ends by the signal, no
+# temporary and no output (it left a truncated temporary and said nothing).
+add_test(NAME cli.lint_fix_stopped_by_sigterm COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/lint_fix_signal.sh
+  $<TARGET_FILE:dqskin_cli> ${DQSKIN_HOSTILE_DIR}/lint/unweighted_4m.gltf ${lint_scratch}/stopped)
+set_tests_properties(cli.lint_fix_stopped_by_sigterm PROPERTIES LABELS lint TIMEOUT 300)
+
 # The project's rigs: clean, but for the two that show a rule on purpose.
 foreach(rig bending_arm camera_dolly interpolation_modes morph_skin textured_cylinder twisted_cylinder two_skins)
   dqskin_cli_test(cli.lint_rig_${rig} 0 ARGS lint ${PROJECT_SOURCE_DIR}/testdata/${rig}.gltf

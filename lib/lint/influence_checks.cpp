@@ -3,6 +3,8 @@
 // Khronos validator also refuses the same joint twice in a vertex), and the joints no vertex uses.
 #include "lint_checks.hpp"
 
+#include "dqskin/job.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -185,6 +187,7 @@ void check_influences(const gltf::SkinData& data, const LintOptions& options, Fi
     const JointRange range = joint_range(p, asset);
     for (int s : p.skins) skinned[size_t(s)] = true;
     for (size_t v = 0; v < p.vertices; ++v) {
+      if (v % 65536 == 0) check_cancelled(options.cancel);
       in.clear();
       for (const gltf::InfluenceSet& set : p.sets) {
         const double scale = normalized_max(set.weights_component);

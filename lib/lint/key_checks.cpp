@@ -4,6 +4,8 @@
 // dot(q_k, q_k+1) < 0.
 #include "lint_checks.hpp"
 
+#include "dqskin/job.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +23,7 @@ double dot(const Q& a, const Q& b) { return a.x * b.x + a.y * b.y + a.z * b.z + 
 void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options, Findings& out) {
   const Asset& asset = data.structure;
   for (const gltf::RotationSource& source : data.rotations) {
+    check_cancelled(options.cancel);
     const Clip& clip = asset.clips[source.clip];
     const Channel& ch = clip.channels[source.channel];
     const bool cubic = ch.interpolation == Interpolation::kCubicSpline;

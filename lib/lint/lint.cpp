@@ -3,6 +3,7 @@
 #include "dqskin/lint.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "lint_checks.hpp"
 
@@ -75,8 +76,10 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
   LintFileResult result;
   result.path = path;
   try {
+    check_cancelled(options.cancel);
     const gltf::SkinData data = gltf::read_skin_data(path, options.load);
     lint::Findings found;
+    check_cancelled(options.cancel);
     lint::check_influences(data, options, found);
     lint::check_skeletons(data, options, found);
     lint::check_rotation_keys(data, options, found);

@@ -18,10 +18,16 @@
 #include "node_tree.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <optional>
 
@@ -240,6 +246,15 @@ std::optional<gltf::KeyEdit> fix_rotation(const gltf::RotationSource& source, co
   return e;
 }
 
+// Flushes the written file `temporary` to disk. Throws OutputError naming `output`.
+void sync_to_disk(const std::string& temporary, const std::string& output) {
+  const int fd = ::open(temporary.c_str(), O_RDONLY | O_CLOEXEC);
+  const bool synced = fd >= 0 && ::fsync(fd) == 0;
+  const int error = errno;
+  if (fd >= 0) ::close(fd);
+  if (!synced) throw OutputError(output + ": cannot write: " + std::strerror(error));
+}
+
 }  // namespace
 
 LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options) {
@@ -247,11 +262,14 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
     throw InputError("--max-influences must be from 1 to 8 for --fix");
   const gltf::SkinData data = gltf::read_skin_data(input, options.load);
   if (!data.rewritable) throw InputError(data.why_not);
+  check_cancelled(options.cancel);
   gltf::FileEdits edits;
   std::optional<NearestJoints> nearest_joint;
-  for (const gltf::SkinnedPrimitive& p : data.primitives)
+  for (const gltf::SkinnedPrimitive& p : data.primitives) {
     if (auto e = fix_influences(p, data.structure, size_t(options.max_influences), nearest_joint))
       edits.influences.push_back(std::move(*e));
+    check_cancelled(options.cancel);
+  }
   for (const gltf::RotationSource& r : data.rotations)
     if (auto e = fix_rotation(r, data.structure)) edits.keys.push_back(std::move(*e));
   const Asset& a = data.structure;
@@ -262,9 +280,15 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
                                            [&](int joint) { return tree.is_ancestor_or_self(skin.skeleton, joint); }))
       edits.drop_skeleton.push_back(s);
   }
+  check_cancelled(options.cancel);
   const std::string glb = gltf::fixed_glb(input, options.load, edits);
+  check_cancelled(options.cancel);
   AtomicFile file(output);
   file.write(glb);
+  // On disk before the last look at the flag, so that a stop while the bytes are flushed (the longest
+  // part of writing) leaves nothing; commit() then syncs a clean file and renames it, at once.
+  sync_to_disk(file.hand_over(), output);
+  check_cancelled(options.cancel);
   file.commit(Overwrite::kReplace);
   return {edits.influences.size(), edits.keys.size(), edits.drop_skeleton.size()};
 }

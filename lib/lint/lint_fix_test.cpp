@@ -5,12 +5,14 @@
 
 #include "../gltf/skin_data.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "../test_support/read_file.hpp"
 #include "../test_support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -254,6 +256,17 @@ TEST(LintFix, SameInputSameBytes) {
   lint_fix(catalogue("five_influences.gltf"), a, {});
   lint_fix(catalogue("five_influences.gltf"), b, {});
   EXPECT_EQ(testing_support::read_file(a), testing_support::read_file(b));
+}
+
+TEST(LintFix, StopsWhenCancelledLeavingNothing) {
+  ScratchDir dir("lint_fix");
+  const std::string out = (dir.path() / "fixed.glb").string();
+  std::atomic<bool> cancel{true};
+  LintOptions options;
+  options.cancel = &cancel;
+  EXPECT_THROW(lint_fix(catalogue("five_influences.gltf"), out, options), JobCancelled);
+  EXPECT_THROW(lint_file(catalogue("five_influences.gltf"), options), JobCancelled);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << "no output and no temporary";
 }
 
 TEST(LintFix, RefusesWhatItCannotRead) {

@@ -8,6 +8,7 @@
 
 #include "dqskin/animation.hpp"
 #include "dqskin/dual_quat.hpp"
+#include "dqskin/job.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -178,6 +179,7 @@ void check_joint_scale(const Asset& rig, const LintOptions& o, Findings& out) {
     for (size_t i = 0; i < times.size(); i += step) {
       const size_t k = i + step >= times.size() ? times.size() - 1 : i;
       const double t = double(times[k]);
+      check_cancelled(o.cancel);
       visit(sample_pose(rig, &clip, t), "in animation '" + clip.name + "' at " + number(t) + " s");
       if (k == times.size() - 1) break;
     }
@@ -203,6 +205,7 @@ void check_skeletons(const gltf::SkinData& data, const LintOptions& options, Fin
   const NodeTree tree(rig.nodes);
   const std::vector<Mat4<double>> placements = bind_placements(rig, rest);
   for (size_t s = 0; s < rig.skins.size(); ++s) {
+    check_cancelled(options.cancel);
     check_roots(rig, tree, s, out);
     check_inverse_binds(rig, s, rest, placements[s], options, out);
   }
