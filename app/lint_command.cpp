@@ -11,9 +11,11 @@
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"
 #include "dqskin/lint.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <iostream>
 #include <memory>
+#include <new>
 
 namespace dqskin::cli {
 namespace {
@@ -81,6 +83,14 @@ int run_lint(LintSettings& s) {
     } catch (const OutputError& e) {
       check_cancelled(o.cancel);  // a stop that removed the temporary under the write: the stop's line only
       print_error(e.what());
+      fix_failed = true;
+    } catch (const std::bad_alloc&) {
+      // The fix's memory is freed by now; the message is made without the ceiling, as guarded_run does.
+      const MemoryCeilingLifted lifted;
+      print_error(s.inputs.front(), "--fix: " + out_of_memory_message());
+      fix_failed = true;
+    } catch (const std::exception& e) {
+      print_error(s.inputs.front(), std::string("--fix: ") + e.what());
       fix_failed = true;
     }
   }

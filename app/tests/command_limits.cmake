@@ -60,3 +60,15 @@ dqskin_limit_test(lint_fix_unweighted_vertices_50k_joints 1 TIMEOUT 30
   ARGS lint --fix lint/unweighted_50k.gltf -o ${limits_scratch}/lint/unweighted_50k.fixed.glb --max-memory 1G
   MAX_RSS_MB 1024 STDERR "^dqskin: lint: wrote [^\n]*/unweighted_50k.fixed.glb "
   STDOUT "\n[^\n]*unweighted_50k.fixed.glb: warning\n")
+# 4,000,000 vertices without weight in a 3 KB file: lint fits in 640 MiB, --fix did not, and the
+# ceiling's refusal escaped as "dqskin: needs more memory ..." without the file (at the default 2 GiB
+# too, for 16,000,000 vertices). --fix now estimates what it will hold before it starts and refuses in one
+# line naming the file; the report of the input is still printed, and nothing is written.
+dqskin_limit_test(lint_fix_4m_vertices_within_max_memory 2 TIMEOUT 60
+  ARGS lint --fix lint/unweighted_4m.gltf -o ${limits_scratch}/lint/unweighted_4m.fixed.glb --max-memory 640M
+  ONE_LINE MAX_RSS_MB 800 ABSENT ${limits_scratch}/lint/unweighted_4m.fixed.glb
+  STDOUT "^lint/unweighted_4m.gltf: error\n"
+  STDERR "^dqskin: lint/unweighted_4m.gltf: --fix: rewriting the influences of 4000000 vertices needs about [^\n]*, more than --max-memory 640 MiB\n$")
+dqskin_limit_test(lint_4m_vertices_within_max_memory 2 TIMEOUT 60
+  ARGS lint lint/unweighted_4m.gltf --max-memory 200M ONE_LINE MAX_RSS_MB 400
+  STDERR "^dqskin: lint/unweighted_4m.gltf: loading it needs about [^\n]*, more than --max-memory 200 MiB\n$")

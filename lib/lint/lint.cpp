@@ -94,6 +94,11 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
     result.error = e.what();
   } catch (const std::bad_alloc&) {
     result.error = out_of_memory_message();
+  } catch (const JobCancelled&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Whatever else a malformed file makes the reading throw is still this file's problem, named with it.
+    result.error = e.what();
   }
   return result;
 }

@@ -17,6 +17,7 @@
 #include "nearest_point.hpp"
 #include "node_tree.hpp"
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"
 
@@ -24,10 +25,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <numeric>
 #include <optional>
 
@@ -255,13 +258,50 @@ void sync_to_disk(const std::string& temporary, const std::string& output) {
   if (!synced) throw OutputError(output + ": cannot write: " + std::strerror(error));
 }
 
-}  // namespace
+// About the most --fix holds, from the counts alone, so that a file whose rewrite cannot fit in
+// --max-memory is refused at once with the figures (the ceiling, dqskin/memory_ceiling.hpp, would refuse
+// it midway). While the influences are fixed: the data read (a position, and per set 4 joints and 4
+// weights as double: 12 + 48 bytes a vertex), each vertex's merged influences (a vector: 24 bytes, and
+// up to 4 a set of 16 bytes, as the allocator rounds a power of two, with its own 16) and the rewritten
+// sets (4 slots a set, a 4-byte joint and an 8-byte weight). While the .glb is made: the rewritten sets,
+// the file read again (its bytes and the model's buffers, then all of them in the BIN chunk and the
+// .glb: 4 times its size) and the new accessors (up to 2-byte joints and 4-byte weights: in their view,
+// in the BIN chunk and in the .glb).
+struct FixMemory {
+  uint64_t data = 0, influences = 0, sets = 0, glb = 0;
+  uint64_t total() const { return std::max(data + influences + sets, sets + glb); }
+};
+FixMemory fix_memory(const gltf::SkinData& data, size_t keep, uint64_t file_bytes) {
+  FixMemory m;
+  const uint64_t out_sets = (std::min<uint64_t>(keep, 8) + 3) / 4;
+  for (const gltf::SkinnedPrimitive& p : data.primitives) {
+    const uint64_t v = p.vertices, slots = std::bit_ceil(std::max<uint64_t>(1, 4 * p.sets.size()));
+    m.data += v * (12 + 48 * p.sets.size());
+    m.influences += v * (24 + 16 + 16 * slots);
+    m.sets += v * out_sets * 4 * (4 + 8);
+    m.glb += 3 * v * out_sets * 4 * (2 + 4);
+  }
+  m.glb += 4 * file_bytes;
+  return m;
+}
 
-LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options) {
-  if (options.max_influences < 1 || options.max_influences > 8)
-    throw InputError("--max-influences must be from 1 to 8 for --fix");
+// The edits that --fix makes to `input`: the data it reads for them is freed on return, before the .glb
+// is made. Throws InputError for a file it cannot rewrite, or whose rewrite would take more than
+// --max-memory.
+gltf::FileEdits plan_edits(const std::string& input, const LintOptions& options) {
   const gltf::SkinData data = gltf::read_skin_data(input, options.load);
   if (!data.rewritable) throw InputError(data.why_not);
+  std::error_code no_size;
+  const uintmax_t file_bytes = std::filesystem::file_size(input, no_size);
+  const FixMemory need = fix_memory(data, size_t(options.max_influences), no_size ? 0 : uint64_t(file_bytes));
+  if (need.total() > options.load.max_memory) {
+    size_t vertices = 0;
+    for (const gltf::SkinnedPrimitive& p : data.primitives) vertices += p.vertices;
+    throw InputError("rewriting the influences of " + std::to_string(vertices) + " vertices needs about " +
+                     byte_size(need.total()) + " (" + byte_size(need.data) + " of data read, " +
+                     byte_size(need.influences + need.sets) + " while they are fixed, " + byte_size(need.glb) +
+                     " while the .glb is made), more than --max-memory " + byte_size(options.load.max_memory));
+  }
   check_cancelled(options.cancel);
   gltf::FileEdits edits;
   std::optional<NearestJoints> nearest_joint;
@@ -280,6 +320,15 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
                                            [&](int joint) { return tree.is_ancestor_or_self(skin.skeleton, joint); }))
       edits.drop_skeleton.push_back(s);
   }
+  return edits;
+}
+
+}  // namespace
+
+LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options) {
+  if (options.max_influences < 1 || options.max_influences > 8)
+    throw InputError("--max-influences must be from 1 to 8 for --fix");
+  const gltf::FileEdits edits = plan_edits(input, options);
   check_cancelled(options.cancel);
   const std::string glb = gltf::fixed_glb(input, options.load, edits);
   check_cancelled(options.cancel);

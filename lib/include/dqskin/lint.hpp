@@ -89,8 +89,9 @@ struct LintFixSummary {
 // component type (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
 // hemisphere-consistent; a `skeleton` that is not the joints' common root removed. What it cannot fix
 // (joints without a common root, inverse bind matrices, joint scale) stays. Throws InputError for an input
-// it cannot read or rewrite faithfully (compressed data), OutputError when the output cannot be written,
-// JobCancelled when options.cancel is set (no output then).
+// it cannot read or rewrite faithfully (compressed data) or whose rewrite would take more than
+// options.load.max_memory, OutputError when the output cannot be written, JobCancelled when
+// options.cancel is set (no output then).
 LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options);
 
 // Reports, in the conventions of `dqskin diff` (diff_report.hpp). Text: per file "FILE: STATUS" (clean,
