@@ -5,13 +5,17 @@
 #include "console.hpp"
 #include "exit_codes.hpp"
 #include "guarded_run.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/lint.hpp"
+#include "dqskin/memory_ceiling.hpp"
 
 #include <iostream>
 #include <memory>
+#include <new>
 
 namespace dqskin::cli {
 namespace {
@@ -55,6 +59,9 @@ int run_lint(LintSettings& s) {
   if (s.fix && s.output.size() < 4) throw InputError("-o must name a .glb file");
   if (s.fix && s.output.substr(s.output.size() - 4) != ".glb") throw InputError("-o must name a .glb file");
   o.load = to_load_options(s.load);
+  // SIGINT and SIGTERM stop lint as they stop bake: one line, the process ends by the signal, and --fix
+  // leaves neither its temporary nor a partial output (interrupt.hpp).
+  o.cancel = catch_interrupts("lint");
 
   std::vector<LintFileResult> results;
   for (const std::string& input : s.inputs) results.push_back(lint_file(input, o));
@@ -68,11 +75,22 @@ int run_lint(LintSettings& s) {
                 << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, "
                 << fixed.skeletons << " skeleton properties removed); linted again:\n";
       results.push_back(lint_file(s.output, o));
+    } catch (const JobCancelled&) {
+      throw;
     } catch (const InputError& e) {
       print_error(s.inputs.front(), std::string("--fix: ") + e.what());
       fix_failed = true;
     } catch (const OutputError& e) {
+      check_cancelled(o.cancel);  // a stop that removed the temporary under the write: the stop's line only
       print_error(e.what());
+      fix_failed = true;
+    } catch (const std::bad_alloc&) {
+      // The fix's memory is freed by now; the message is made without the ceiling, as guarded_run does.
+      const MemoryCeilingLifted lifted;
+      print_error(s.inputs.front(), "--fix: " + out_of_memory_message());
+      fix_failed = true;
+    } catch (const std::exception& e) {
+      print_error(s.inputs.front(), std::string("--fix: ") + e.what());
       fix_failed = true;
     }
   }

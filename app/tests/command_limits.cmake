@@ -98,3 +98,35 @@ dqskin_limit_test(diff_disjoint_meshes_name_both 2 ARGS diff diff/quad.gltf diff
 add_test(NAME limits.diff_interrupted_writes_nothing_half
   COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/diff_interrupted.sh $<TARGET_FILE:dqskin_cli> ${limits_scratch}/diff/interrupted)
 set_tests_properties(limits.diff_interrupted_writes_nothing_half PROPERTIES LABELS limits TIMEOUT 120)
+
+# ---- lint ----------------------------------------------------------------------------------------------------
+# A chain of 200,000 joints: lint walked from every joint up to its root and the skeleton (minutes); now
+# about as long as loading the file (`dqskin info`: 2 s). --fix was as quadratic in the skeleton check;
+# it reads the file four times (lint, the fix's data, the fixed .glb's JSON, lint of the fixed file):
+# 7.5 s alone, 16 s beside two other tests on two cores, hence its 60 s.
+file(MAKE_DIRECTORY ${limits_scratch}/lint)
+dqskin_limit_test(lint_200k_joint_chain 1 TIMEOUT 30
+  ARGS lint lint/chain_200k.gltf --max-memory 1G MAX_RSS_MB 1024
+  STDOUT "^lint/chain_200k.gltf: warning\n  info    unused-joint \\(200000\\)")
+dqskin_limit_test(lint_fix_200k_joint_chain 1 TIMEOUT 60
+  ARGS lint --fix lint/chain_200k.gltf -o ${limits_scratch}/lint/chain_200k.fixed.glb --max-memory 1G MAX_RSS_MB 1024
+  STDERR "^dqskin: lint: wrote [^\n]*/chain_200k.fixed.glb "
+  STDOUT "\n[^\n]*chain_200k.fixed.glb: warning\n  info    unused-joint \\(200000\\)")
+# 1,000,000 vertices without weight and 50,000 joints: --fix compared each vertex with every joint for the
+# nearest one (over a minute); a k-d tree answers each in about log(joints).
+dqskin_limit_test(lint_fix_unweighted_vertices_50k_joints 1 TIMEOUT 30
+  ARGS lint --fix lint/unweighted_50k.gltf -o ${limits_scratch}/lint/unweighted_50k.fixed.glb --max-memory 1G
+  MAX_RSS_MB 1024 STDERR "^dqskin: lint: wrote [^\n]*/unweighted_50k.fixed.glb "
+  STDOUT "\n[^\n]*unweighted_50k.fixed.glb: warning\n")
+# 4,000,000 vertices without weight in a 3 KB file: lint fits in 640 MiB, --fix did not, and the
+# ceiling's refusal escaped as "dqskin: needs more memory ..." without the file (at the default 2 GiB
+# too, for 16,000,000 vertices). --fix now estimates what it will hold before it starts and refuses in one
+# line naming the file; the report of the input is still printed, and nothing is written.
+dqskin_limit_test(lint_fix_4m_vertices_within_max_memory 2 TIMEOUT 60
+  ARGS lint --fix lint/unweighted_4m.gltf -o ${limits_scratch}/lint/unweighted_4m.fixed.glb --max-memory 640M
+  ONE_LINE MAX_RSS_MB 800 ABSENT ${limits_scratch}/lint/unweighted_4m.fixed.glb
+  STDOUT "^lint/unweighted_4m.gltf: error\n"
+  STDERR "^dqskin: lint/unweighted_4m.gltf: --fix: rewriting the influences of 4000000 vertices needs about [^\n]*, more than --max-memory 640 MiB\n$")
+dqskin_limit_test(lint_4m_vertices_within_max_memory 2 TIMEOUT 60
+  ARGS lint lint/unweighted_4m.gltf --max-memory 200M ONE_LINE MAX_RSS_MB 400
+  STDERR "^dqskin: lint/unweighted_4m.gltf: loading it needs about [^\n]*, more than --max-memory 200 MiB\n$")

@@ -39,6 +39,27 @@ dqskin_lint_case(nonuniform_scaled_joint 1 joint-nonuniform-scale OFF 1 ON)
 dqskin_lint_case(uniform_scaled_joint 0 joint-uniform-scale OFF 0 ON)
 dqskin_lint_case(non_orthonormal_ibm 1 ibm-not-orthonormal OFF 1 ON)
 
+# Generated cases (scripts/make_hostile_commands.py lint_cases, in DQSKIN_HOSTILE_DIR/lint), the same way.
+# A mesh drawn by a two-joint and a three-joint skin, one vertex on joint 2: a warning, and --fix keeps
+# the influence (it dropped it, checking against the smaller skin).
+function(dqskin_lint_generated_case name status check fixable fixed_status validate)
+  add_test(NAME cli.lint_${name} COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli>
+    -DFILE=${DQSKIN_HOSTILE_DIR}/lint/${name}.gltf -DEXPECTED=${status} -DCHECKS=${check} -DWORK=${lint_scratch}/${name}
+    -DFIX=ON -DFIXABLE=${fixable} -DFIXED_EXPECTED=${fixed_status} -DVALIDATE=${validate} -DNODE=${DQSKIN_NODE}
+    -DVALIDATOR=${CMAKE_BINARY_DIR}/tools/node_modules/gltf-validator
+    -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs -P ${CMAKE_CURRENT_LIST_DIR}/lint_case.cmake)
+  set_tests_properties(cli.lint_${name} PROPERTIES LABELS lint)
+endfunction()
+dqskin_lint_generated_case(two_skins_one_mesh 1 joint-beyond-smaller-skin OFF 1 OFF)
+# Rotation keys of length 0 (one in a channel, and a whole channel): --fix wrote them unchanged.
+dqskin_lint_generated_case(zero_rotation_keys 2 rotation-not-unit ON 0 ON)
+
+# SIGTERM while --fix writes its output, and while it reads: one line, the process ends by the signal, no
+# temporary and no output (it left a truncated temporary and said nothing).
+add_test(NAME cli.lint_fix_stopped_by_sigterm COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/lint_fix_signal.sh
+  $<TARGET_FILE:dqskin_cli> ${DQSKIN_HOSTILE_DIR}/lint/unweighted_4m.gltf ${lint_scratch}/stopped)
+set_tests_properties(cli.lint_fix_stopped_by_sigterm PROPERTIES LABELS lint TIMEOUT 300)
+
 # The project's rigs: clean, but for the two that show a rule on purpose.
 foreach(rig bending_arm camera_dolly interpolation_modes morph_skin textured_cylinder twisted_cylinder two_skins)
   dqskin_cli_test(cli.lint_rig_${rig} 0 ARGS lint ${PROJECT_SOURCE_DIR}/testdata/${rig}.gltf

@@ -43,11 +43,19 @@ void put(std::string& out, T value) {
   out.append(reinterpret_cast<const char*>(&value), sizeof value);
 }
 
-// A VEC4 accessor over `values` (stored as `component`, normalized for integer weights and rotations) in a
-// view of its own. Integers are rounded from value × the type's largest value (§3.11 "Animations").
-int vec4_accessor(glb::BinWriter& bin, const std::vector<double>& values, int component, bool normalized, int target) {
+// A VEC4 accessor of `count` elements, component i being value(i) (stored as `component`, normalized for
+// integer weights and rotations), in a view of its own. Integers are rounded from value × the type's
+// largest value (§3.11 "Animations"). The bytes are written straight from the edit, with no copy of it as
+// doubles: a rewrite of millions of vertices then takes about the output's size.
+template <typename Value>
+int vec4_accessor(glb::BinWriter& bin, size_t count, const Value& value, int component, bool normalized, int target) {
+  const size_t size = component == 5120 || component == kComponentUnsignedByte ? 1
+                      : component == 5122 || component == kComponentUnsignedShort ? 2
+                                                                                  : 4;
   std::string bytes;
-  for (double v : values) {
+  bytes.reserve(count * 4 * size);
+  for (size_t i = 0; i < count * 4; ++i) {
+    const double v = value(i);
     switch (component) {
       case 5120: put(bytes, int8_t(std::clamp(std::lround(v * 127), -127L, 127L))); break;
       case kComponentUnsignedByte:
@@ -61,7 +69,7 @@ int vec4_accessor(glb::BinWriter& bin, const std::vector<double>& values, int co
     }
   }
   const int view = bin.view(bytes.data(), bytes.size(), target);
-  json a = {{"bufferView", view}, {"componentType", component}, {"count", values.size() / 4}, {"type", "VEC4"}};
+  json a = {{"bufferView", view}, {"componentType", component}, {"count", count}, {"type", "VEC4"}};
   if (normalized && component != kComponentFloat) a["normalized"] = true;
   bin.accessors.push_back(std::move(a));
   return int(bin.accessors.size()) - 1;
@@ -120,23 +128,20 @@ std::string fixed_glb(const std::string& path, const LoadOptions& options, const
       if (is_influence_attribute(item.key())) old.push_back(item.key());
     for (const std::string& name : old) attributes.erase(name);
     for (size_t s = 0; s < e.sets; ++s) {
-      std::vector<double> joints(e.vertices * 4), weights(e.vertices * 4);
-      for (size_t v = 0; v < e.vertices; ++v)
-        for (size_t k = 0; k < 4; ++k) {
-          joints[4 * v + k] = e.joints[(v * e.sets + s) * 4 + k];
-          weights[4 * v + k] = e.weights[(v * e.sets + s) * 4 + k];
-        }
-      attributes["JOINTS_" + std::to_string(s)] =
-          vec4_accessor(bin, joints, e.joints_component, false, glb::kArrayBuffer);
+      // Element i of set s: vertex i / 4, slot i % 4 of that set (the edit holds every set of a vertex together).
+      auto at = [&](size_t i) { return (i / 4 * e.sets + s) * 4 + i % 4; };
+      attributes["JOINTS_" + std::to_string(s)] = vec4_accessor(
+          bin, e.vertices, [&](size_t i) { return double(e.joints[at(i)]); }, e.joints_component, false,
+          glb::kArrayBuffer);
       attributes["WEIGHTS_" + std::to_string(s)] =
-          vec4_accessor(bin, weights, e.weights_component, e.weights_component != kComponentFloat, glb::kArrayBuffer);
+          vec4_accessor(bin, e.vertices, [&](size_t i) { return e.weights[at(i)]; }, e.weights_component,
+                        e.weights_component != kComponentFloat, glb::kArrayBuffer);
     }
   }
-  for (const KeyEdit& e : edits.keys) {
-    const std::vector<double> values(e.values.begin(), e.values.end());
+  for (const KeyEdit& e : edits.keys)
     doc["animations"][e.animation]["samplers"][e.sampler]["output"] =
-        vec4_accessor(bin, values, e.component, e.component != kComponentFloat, 0);
-  }
+        vec4_accessor(bin, e.values.size() / 4, [&](size_t i) { return double(e.values[i]); }, e.component,
+                      e.component != kComponentFloat, 0);
 
   for (size_t skin : edits.drop_skeleton) doc["skins"][skin].erase("skeleton");
 

@@ -3,6 +3,8 @@
 // Khronos validator also refuses the same joint twice in a vertex), and the joints no vertex uses.
 #include "lint_checks.hpp"
 
+#include "dqskin/job.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,13 +36,14 @@ double normalized_max(int component) {
   }
 }
 
-size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset) {
-  size_t limit = 0;
+JointRange joint_range(const gltf::SkinnedPrimitive& p, const Asset& asset) {
+  JointRange r;
   for (size_t k = 0; k < p.skins.size(); ++k) {
     const size_t n = asset.skins[size_t(p.skins[k])].joints.size();
-    limit = k == 0 ? n : std::min(limit, n);
+    if (k == 0 || n < r.fewest) r.fewest = n, r.smallest = p.skins[k];
+    if (k == 0 || n > r.most) r.most = n, r.largest = p.skins[k];
   }
-  return limit;
+  return r;
 }
 
 namespace {
@@ -51,7 +54,7 @@ struct Influence {
   double rounding;  // half a stored unit: 0.5/255, 0.5/65535, or 0 for float
 };
 
-void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<Influence>& in, size_t limit,
+void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<Influence>& in, const JointRange& range,
                   const LintOptions& o, Findings& out) {
   const std::string where = primitive_name(p);
   auto example = [&](long long joint, double value) {
@@ -115,15 +118,58 @@ void check_vertex(const gltf::SkinnedPrimitive& p, size_t v, const std::vector<I
              number(in[dup_b].weight) + ")" + at();
     });
   }
+  // Beyond every skin that draws the mesh, or beyond the smaller ones only: the larger skin needs the
+  // latter, so it is a warning and --fix keeps it.
   const Influence* beyond = nullptr;
-  if (limit > 0)
-    for (const Influence& i : in)
-      if (i.joint >= limit && (!beyond || std::abs(i.weight) > std::abs(beyond->weight))) beyond = &i;
+  const Influence* beyond_some = nullptr;
+  for (const Influence& i : in) {
+    if (range.most == 0 || i.joint < range.fewest) continue;
+    const Influence*& worst = i.joint >= range.most ? beyond : beyond_some;
+    if (!worst || std::abs(i.weight) > std::abs(worst->weight)) worst = &i;
+  }
   if (beyond)
     out["joint-out-of-range"].add(std::abs(beyond->weight), example(beyond->joint, double(beyond->joint)), [&] {
-      return "joint index " + std::to_string(beyond->joint) + " (weight " + number(beyond->weight) +
-             "), but the skin has " + std::to_string(limit) + " joints" + at();
+      return "joint index " + std::to_string(beyond->joint) + " (weight " + number(beyond->weight) + "), but the " +
+             (range.fewest == range.most ? "skin has " : "largest skin that draws it has ") +
+             std::to_string(range.most) + " joints" + at();
     });
+  if (beyond_some)
+    out["joint-beyond-smaller-skin"].add(
+        std::abs(beyond_some->weight), example(beyond_some->joint, double(beyond_some->joint)), [&] {
+          return "joint index " + std::to_string(beyond_some->joint) + " (weight " + number(beyond_some->weight) +
+                 ") fits skin " + std::to_string(range.largest) + " (" + std::to_string(range.most) +
+                 " joints) but not skin " + std::to_string(range.smallest) + " (" + std::to_string(range.fewest) +
+                 " joints), which also draws it," + at();
+        });
+}
+
+// Marks the joints of each skin that deform mesh primitives [first, last) (one mesh: the same skins) with
+// weight on some vertex. Per mesh, the distinct joint indices with weight, then per skin those below its
+// joint count: O(vertices + skins × min(joints, distinct indices)), where marking per vertex and skin
+// would be vertices × skins.
+void mark_used_joints(const std::vector<gltf::SkinnedPrimitive>& primitives, size_t first, size_t last,
+                      std::vector<std::vector<bool>>& used) {
+  size_t most = 0;  // joints of the largest skin: no index at or beyond it is any skin's
+  for (int s : primitives[first].skins) most = std::max(most, used[size_t(s)].size());
+  std::vector<bool> weighted;
+  std::vector<uint32_t> distinct;
+  for (size_t k = first; k < last && most > 0; ++k)
+    for (const gltf::InfluenceSet& set : primitives[k].sets)
+      for (size_t i = 0; i < set.joints.size(); ++i) {
+        const uint32_t j = set.joints[i];
+        if (!(set.weights[i] > 0) || j >= most) continue;
+        if (j >= weighted.size()) weighted.resize(size_t(j) + 1, false);
+        if (!weighted[j]) weighted[j] = true, distinct.push_back(j);
+      }
+  for (int s : primitives[first].skins) {
+    std::vector<bool>& mark = used[size_t(s)];
+    if (mark.size() < distinct.size()) {
+      for (size_t j = 0; j < mark.size() && j < weighted.size(); ++j) mark[j] = mark[j] || weighted[j];
+    } else {
+      for (uint32_t j : distinct)
+        if (j < mark.size()) mark[j] = true;
+    }
+  }
 }
 
 }  // namespace
@@ -135,20 +181,24 @@ void check_influences(const gltf::SkinData& data, const LintOptions& options, Fi
   for (size_t s = 0; s < asset.skins.size(); ++s) used[s].assign(asset.skins[s].joints.size(), false);
 
   std::vector<Influence> in;
-  for (const gltf::SkinnedPrimitive& p : data.primitives) {
-    const size_t limit = joint_limit(p, asset);
+  size_t mesh_first = 0;  // the first primitive of the current mesh (primitives come in mesh order)
+  for (size_t k = 0; k < data.primitives.size(); ++k) {
+    const gltf::SkinnedPrimitive& p = data.primitives[k];
+    const JointRange range = joint_range(p, asset);
     for (int s : p.skins) skinned[size_t(s)] = true;
     for (size_t v = 0; v < p.vertices; ++v) {
+      if (v % 65536 == 0) check_cancelled(options.cancel);
       in.clear();
       for (const gltf::InfluenceSet& set : p.sets) {
         const double scale = normalized_max(set.weights_component);
-        for (size_t k = 0; k < 4; ++k)
-          in.push_back({set.joints[4 * v + k], set.weights[4 * v + k], scale > 0 ? 0.5 / scale : 0.0});
+        for (size_t i = 0; i < 4; ++i)
+          in.push_back({set.joints[4 * v + i], set.weights[4 * v + i], scale > 0 ? 0.5 / scale : 0.0});
       }
-      check_vertex(p, v, in, limit, options, out);
-      for (int s : p.skins)
-        for (const Influence& i : in)
-          if (i.weight > 0 && i.joint < used[size_t(s)].size()) used[size_t(s)][i.joint] = true;
+      check_vertex(p, v, in, range, options, out);
+    }
+    if (k + 1 == data.primitives.size() || data.primitives[k + 1].mesh != p.mesh) {
+      mark_used_joints(data.primitives, mesh_first, k + 1, used);
+      mesh_first = k + 1;
     }
   }
 

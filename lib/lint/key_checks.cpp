@@ -4,6 +4,8 @@
 // dot(q_k, q_k+1) < 0.
 #include "lint_checks.hpp"
 
+#include "dqskin/job.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +23,7 @@ double dot(const Q& a, const Q& b) { return a.x * b.x + a.y * b.y + a.z * b.z + 
 void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options, Findings& out) {
   const Asset& asset = data.structure;
   for (const gltf::RotationSource& source : data.rotations) {
+    check_cancelled(options.cancel);
     const Clip& clip = asset.clips[source.clip];
     const Channel& ch = clip.channels[source.channel];
     const bool cubic = ch.interpolation == Interpolation::kCubicSpline;
@@ -44,7 +47,8 @@ void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options,
       if (std::abs(length - 1) > tolerance) {
         e.value = length;
         out["rotation-not-unit"].add(std::abs(length - 1), e, [&] {
-          return "rotation key " + std::to_string(k) + " has length " + number(length) + " in " + where;
+          return "rotation key " + std::to_string(k) + " has length " + number(length) + " in " + where +
+                 (length > 0 ? "" : " (no rotation; --fix takes the nearest valid key of the channel)");
         });
       }
       // STEP keys are never interpolated, so their signs do not matter.

@@ -3,6 +3,7 @@
 #include "dqskin/lint.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "lint_checks.hpp"
 
@@ -28,7 +29,11 @@ const std::vector<LintCheckInfo>& lint_checks() {
        true},
       {"negative-weight", S::kError, "a weight is negative", true},
       {"duplicate-joint", S::kError, "the same joint twice in one vertex, both with weight", true},
-      {"joint-out-of-range", S::kError, "a joint index beyond the skin's joints", true},
+      {"joint-out-of-range", S::kError, "a joint index beyond the joints of every skin that draws the mesh", true},
+      {"joint-beyond-smaller-skin", S::kWarning,
+       "a joint index that fits the larger of the skins that draw the mesh but not a smaller one (--fix keeps "
+       "it: the larger skin needs it)",
+       false},
       {"over-8-influences", S::kError, "more than 8 joints with weight on one vertex (dqskin and most engines refuse)",
        true},
       {"too-many-influences", S::kWarning,
@@ -44,7 +49,10 @@ const std::vector<LintCheckInfo>& lint_checks() {
        false},
       {"joint-nonuniform-scale", S::kWarning, "a joint matrix has non-uniform scale or shear at rest or at a key",
        false},
-      {"rotation-not-unit", S::kError, "a rotation key is not a unit quaternion", true},
+      {"rotation-not-unit", S::kError,
+       "a rotation key is not a unit quaternion (--fix normalizes it; a key of length 0 takes the nearest valid key "
+       "of its channel, or the node's rest rotation)",
+       true},
       {"hemisphere-flip", S::kWarning, "neighbouring rotation keys in opposite hemispheres (dot < 0)", true},
   };
   return checks;
@@ -68,8 +76,10 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
   LintFileResult result;
   result.path = path;
   try {
+    check_cancelled(options.cancel);
     const gltf::SkinData data = gltf::read_skin_data(path, options.load);
     lint::Findings found;
+    check_cancelled(options.cancel);
     lint::check_influences(data, options, found);
     lint::check_skeletons(data, options, found);
     lint::check_rotation_keys(data, options, found);
@@ -84,6 +94,11 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
     result.error = e.what();
   } catch (const std::bad_alloc&) {
     result.error = out_of_memory_message();
+  } catch (const JobCancelled&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Whatever else a malformed file makes the reading throw is still this file's problem, named with it.
+    result.error = e.what();
   }
   return result;
 }

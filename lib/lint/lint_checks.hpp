@@ -50,9 +50,15 @@ std::string primitive_name(const gltf::SkinnedPrimitive& p);
 // so it is also the unit of rounding), 0 for float.
 double normalized_max(int component);
 
-// The smallest joint count of the skins that deform the primitive (an index must fit every one of them),
-// or 0 when none does.
-size_t joint_limit(const gltf::SkinnedPrimitive& p, const Asset& asset);
+// The joint counts of the skins that deform the primitive (0 and 0, skins -1, when none does). An index
+// below `fewest` fits every skin; one from `fewest` to below `most` fits the larger skins only: a mesh
+// drawn by two skins may hold indices its larger skin needs, which only the node with the smaller skin
+// draws wrong; an index of `most` or more fits none.
+struct JointRange {
+  size_t fewest = 0, most = 0;
+  int smallest = -1, largest = -1;  // a skin with `fewest` joints and one with `most` (the first of equals)
+};
+JointRange joint_range(const gltf::SkinnedPrimitive& p, const Asset& asset);
 
 // A number for messages: 6 significant digits (%g).
 std::string number(double value);

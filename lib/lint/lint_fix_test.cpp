@@ -5,13 +5,17 @@
 
 #include "../gltf/skin_data.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "../test_support/read_file.hpp"
 #include "../test_support/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 namespace dqskin {
 namespace {
@@ -162,12 +166,107 @@ TEST(LintFix, CubicSplineTangentsTurnWithTheirKey) {
   EXPECT_GT(b.values[12 + 3], 0.0f);
 }
 
+// The catalogue's rig with its rotation channel's times and keys replaced (x, y, z, w per key; CUBICSPLINE:
+// in-tangent, value, out-tangent), in an external buffer beside the .gltf written to `dir`; `rest`, when
+// given, the animated node's rotation at rest.
+std::string rig_with_rotation_keys(const ScratchDir& dir, const std::vector<float>& times,
+                                   const std::vector<float>& keys, const char* interpolation,
+                                   const std::vector<double>& rest = {}) {
+  std::ifstream in(catalogue("non_unit_rotation_keys.gltf"));
+  nlohmann::json doc = nlohmann::json::parse(in);
+  std::ofstream(dir.path() / "keys.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(times.data()), std::streamsize(times.size() * sizeof(float)))
+      .write(reinterpret_cast<const char*>(keys.data()), std::streamsize(keys.size() * sizeof(float)));
+  const size_t buffer = doc["buffers"].size(), view = doc["bufferViews"].size(), accessor = doc["accessors"].size();
+  doc["buffers"].push_back({{"uri", "keys.bin"}, {"byteLength", (times.size() + keys.size()) * sizeof(float)}});
+  doc["bufferViews"].push_back({{"buffer", buffer}, {"byteLength", times.size() * sizeof(float)}});
+  doc["bufferViews"].push_back(
+      {{"buffer", buffer}, {"byteOffset", times.size() * sizeof(float)}, {"byteLength", keys.size() * sizeof(float)}});
+  doc["accessors"].push_back({{"bufferView", view}, {"componentType", 5126}, {"count", times.size()},
+                              {"type", "SCALAR"}, {"min", {times.front()}}, {"max", {times.back()}}});
+  doc["accessors"].push_back({{"bufferView", view + 1}, {"componentType", 5126}, {"count", keys.size() / 4},
+                              {"type", "VEC4"}});
+  nlohmann::json& sampler = doc["animations"][0]["samplers"][0];
+  sampler = {{"input", accessor}, {"output", accessor + 1}, {"interpolation", interpolation}};
+  const int node = doc["animations"][0]["channels"][0]["target"]["node"];
+  if (!rest.empty()) doc["nodes"][size_t(node)]["rotation"] = rest;
+  const std::string path = (dir.path() / "keys.gltf").string();
+  std::ofstream(path) << doc.dump();
+  return path;
+}
+
+// The fixed file's first rotation channel: its keys, 4 floats each (CUBICSPLINE: 12).
+std::vector<float> fixed_keys(const std::string& input, const ScratchDir& dir) {
+  const std::string out = (dir.path() / "fixed.glb").string();
+  lint_fix(input, out, {});
+  const LintFileResult again = lint_file(out, {});
+  EXPECT_FALSE(again.has("rotation-not-unit")) << lint_text({again});
+  return gltf::read_skin_data(out, {}).structure.clips[0].channels[0].values;
+}
+
+const float kHalf = float(std::sqrt(0.5));
+
+TEST(LintFix, ZeroRotationKeyTakesTheNearestValidKeyOfItsChannel) {
+  // Key 1 is (0, 0, 0, 0) between the identity and a quarter turn about z; which neighbour is nearer in
+  // time decides, the earlier one when both are as near.
+  const std::vector<float> keys = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, kHalf, kHalf};
+  for (const auto& [middle, expected] : {std::pair{0.2f, std::vector<float>{0, 0, 0, 1}},
+                                         {0.8f, {0, 0, kHalf, kHalf}},
+                                         {0.5f, {0, 0, 0, 1}}}) {
+    ScratchDir dir("lint_fix");
+    const std::vector<float> fixed = fixed_keys(rig_with_rotation_keys(dir, {0, middle, 1}, keys, "LINEAR"), dir);
+    ASSERT_EQ(fixed.size(), 12u);
+    for (size_t i = 0; i < 4; ++i) EXPECT_FLOAT_EQ(fixed[4 + i], expected[i]) << "key at " << middle;
+  }
+  // Zero keys at both ends have one valid neighbour each.
+  ScratchDir dir("lint_fix");
+  const std::vector<float> ends = {0, 0, 0, 0, 0, 0, kHalf, kHalf, 0, 0, 0, 0};
+  const std::vector<float> fixed = fixed_keys(rig_with_rotation_keys(dir, {0, 0.5f, 1}, ends, "LINEAR"), dir);
+  ASSERT_EQ(fixed.size(), 12u);
+  for (size_t i = 0; i < 12; ++i) EXPECT_FLOAT_EQ(fixed[i], ends[4 + i % 4]) << "component " << i;
+}
+
+TEST(LintFix, AllZeroRotationChannelTakesTheNodesRestRotation) {
+  ScratchDir dir("lint_fix");
+  const std::vector<float> zeros(12, 0.0f);
+  const std::vector<float> fixed =
+      fixed_keys(rig_with_rotation_keys(dir, {0, 0.5f, 1}, zeros, "LINEAR", {0, 0, std::sqrt(0.5), std::sqrt(0.5)}), dir);
+  ASSERT_EQ(fixed.size(), 12u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_FLOAT_EQ(fixed[4 * k + 2], kHalf) << "key " << k;
+    EXPECT_FLOAT_EQ(fixed[4 * k + 3], kHalf) << "key " << k;
+  }
+}
+
+TEST(LintFix, ZeroCubicSplineKeyTakesItsNeighbourWithZeroTangents) {
+  ScratchDir dir("lint_fix");
+  // Key 1's value is (0, 0, 0, 0), its tangents are not: it becomes key 0's value, resting (zero tangents).
+  const std::vector<float> keys = {0, 0, 0, 0,   0, 0, 0, 1,   0, 0, 0.1f, 0,
+                                   0, 0, 0.1f, 0, 0, 0, 0, 0,   0, 0, 0.1f, 0,
+                                   0, 0, 0.1f, 0, 0, 0, kHalf, kHalf, 0, 0, 0, 0};
+  const std::vector<float> fixed = fixed_keys(rig_with_rotation_keys(dir, {0, 0.5f, 1}, keys, "CUBICSPLINE"), dir);
+  ASSERT_EQ(fixed.size(), 36u);
+  const std::vector<float> expected = {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0};
+  for (size_t i = 0; i < 12; ++i) EXPECT_FLOAT_EQ(fixed[12 + i], expected[i]) << "component " << i;
+}
+
 TEST(LintFix, SameInputSameBytes) {
   ScratchDir dir("lint_fix");
   const std::string a = (dir.path() / "a.glb").string(), b = (dir.path() / "b.glb").string();
   lint_fix(catalogue("five_influences.gltf"), a, {});
   lint_fix(catalogue("five_influences.gltf"), b, {});
   EXPECT_EQ(testing_support::read_file(a), testing_support::read_file(b));
+}
+
+TEST(LintFix, StopsWhenCancelledLeavingNothing) {
+  ScratchDir dir("lint_fix");
+  const std::string out = (dir.path() / "fixed.glb").string();
+  std::atomic<bool> cancel{true};
+  LintOptions options;
+  options.cancel = &cancel;
+  EXPECT_THROW(lint_fix(catalogue("five_influences.gltf"), out, options), JobCancelled);
+  EXPECT_THROW(lint_file(catalogue("five_influences.gltf"), options), JobCancelled);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << "no output and no temporary";
 }
 
 TEST(LintFix, RefusesWhatItCannotRead) {

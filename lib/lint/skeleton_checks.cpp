@@ -4,9 +4,11 @@
 // "Non-rigid joints": uniform scale survives DQS with the two-phase rule; shear and non-uniform scale need
 // it, and plain DQS runtimes distort them).
 #include "lint_checks.hpp"
+#include "node_tree.hpp"
 
 #include "dqskin/animation.hpp"
 #include "dqskin/dual_quat.hpp"
+#include "dqskin/job.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,17 +17,6 @@
 
 namespace dqskin::lint {
 namespace {
-
-int root_of(const Asset& a, int node) {
-  while (a.nodes[size_t(node)].parent >= 0) node = a.nodes[size_t(node)].parent;
-  return node;
-}
-
-bool is_ancestor_or_self(const Asset& a, int ancestor, int node) {
-  for (int n = node; n >= 0; n = a.nodes[size_t(n)].parent)
-    if (n == ancestor) return true;
-  return false;
-}
 
 std::string node_name(const Asset& a, int node) {
   std::string s = "node " + std::to_string(node);
@@ -43,17 +34,17 @@ LintExample joint_example(std::string where, size_t joint, double value) {
   return e;
 }
 
-void check_roots(const Asset& a, size_t s, Findings& out) {
+void check_roots(const Asset& a, const NodeTree& tree, size_t s, Findings& out) {
   const Skin& skin = a.skins[s];
-  const int root = root_of(a, skin.joints.front());
+  const int root = tree.root(skin.joints.front());
   for (size_t j = 0; j < skin.joints.size(); ++j) {
-    const int r = root_of(a, skin.joints[j]);
+    const int r = tree.root(skin.joints[j]);
     if (r != root)
       out["no-common-root"].add(0, joint_example(skin_name(s), j, r), [&] {
         return "joint " + std::to_string(j) + " (" + node_name(a, skin.joints[j]) + ") hangs under root " +
                node_name(a, r) + ", joint 0 under " + node_name(a, root) + " (" + skin_name(s) + ")";
       });
-    if (skin.skeleton >= 0 && !is_ancestor_or_self(a, skin.skeleton, skin.joints[j]))
+    if (skin.skeleton >= 0 && !tree.is_ancestor_or_self(skin.skeleton, skin.joints[j]))
       out["skeleton-not-root"].add(0, joint_example(skin_name(s), j, skin.skeleton), [&] {
         return "skeleton " + node_name(a, skin.skeleton) + " is not an ancestor of joint " + std::to_string(j) + " (" +
                node_name(a, skin.joints[j]) + ") of " + skin_name(s);
@@ -90,21 +81,28 @@ double skeleton_size(const Skin& skin, const Pose& rest) {
   return std::max(1.0, glm::length(hi - lo));
 }
 
-// The skin's bind space placed in the world at rest: the world matrix of the first node that draws a mesh
+// Each skin's bind space placed in the world at rest: the world matrix of the first node that draws a mesh
 // with the skin, or the identity when none does. At the bind pose every joint matrix world · inverseBind
 // equals it (the mesh then appears where it was bound: exporters put the armature's own transform, such as
 // a Z-up to Y-up turn, into both), so a joint whose matrix differs was bound elsewhere than the file's rest
-// pose puts it.
-Mat4<double> bind_placement(const Asset& a, size_t s, const Pose& rest) {
-  for (size_t n = 0; n < a.nodes.size(); ++n)
-    if (a.nodes[n].skin == int(s)) return rest.world[n];
-  return Mat4<double>(1.0);
+// pose puts it. One pass over the nodes for every skin (a pass per skin is skins × nodes).
+std::vector<Mat4<double>> bind_placements(const Asset& a, const Pose& rest) {
+  std::vector<Mat4<double>> placement(a.skins.size(), Mat4<double>(1.0));
+  std::vector<bool> placed(a.skins.size(), false);
+  for (size_t n = 0; n < a.nodes.size(); ++n) {
+    const int s = a.nodes[n].skin;
+    if (s < 0 || placed[size_t(s)]) continue;
+    placement[size_t(s)] = rest.world[n];
+    placed[size_t(s)] = true;
+  }
+  return placement;
 }
 
-void check_inverse_binds(const Asset& a, size_t s, const Pose& rest, const LintOptions& o, Findings& out) {
+void check_inverse_binds(const Asset& a, size_t s, const Pose& rest, const Mat4<double>& placement,
+                         const LintOptions& o, Findings& out) {
   const Skin& skin = a.skins[s];
   const double size = skeleton_size(skin, rest);
-  const Mat4<double> unplace = glm::inverse(bind_placement(a, s, rest));
+  const Mat4<double> unplace = glm::inverse(placement);
   for (size_t j = 0; j < skin.joints.size(); ++j) {
     const Mat4<double>& ibm = skin.inverse_bind[j];
     const Mat4<double> m = unplace * rest.world[size_t(skin.joints[j])] * ibm;
@@ -181,6 +179,7 @@ void check_joint_scale(const Asset& rig, const LintOptions& o, Findings& out) {
     for (size_t i = 0; i < times.size(); i += step) {
       const size_t k = i + step >= times.size() ? times.size() - 1 : i;
       const double t = double(times[k]);
+      check_cancelled(o.cancel);
       visit(sample_pose(rig, &clip, t), "in animation '" + clip.name + "' at " + number(t) + " s");
       if (k == times.size() - 1) break;
     }
@@ -203,9 +202,12 @@ void check_skeletons(const gltf::SkinData& data, const LintOptions& options, Fin
   rig.skins = data.structure.skins;
   rig.clips = data.structure.clips;
   const Pose rest = sample_pose(rig, nullptr, 0);
+  const NodeTree tree(rig.nodes);
+  const std::vector<Mat4<double>> placements = bind_placements(rig, rest);
   for (size_t s = 0; s < rig.skins.size(); ++s) {
-    check_roots(rig, s, out);
-    check_inverse_binds(rig, s, rest, options, out);
+    check_cancelled(options.cancel);
+    check_roots(rig, tree, s, out);
+    check_inverse_binds(rig, s, rest, placements[s], options, out);
   }
   check_joint_scale(rig, options, out);
 }

@@ -5,6 +5,7 @@
 
 #include "dqskin/load.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ struct LintOptions {
   // Rotation keys whose length differs from 1 by more than this.
   double unit_tolerance = 1e-3;
   LoadOptions load;
+  // Set from a signal handler: lint_file and lint_fix stop at their next check with JobCancelled, lint_fix
+  // before its output is under its name (the temporary is removed).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // The single worst case of a finding. Fields that do not apply are -1.
@@ -67,7 +71,8 @@ struct LintCheckInfo {
 };
 const std::vector<LintCheckInfo>& lint_checks();
 
-// Lints one file. Never throws for a bad input: its message goes into `error`.
+// Lints one file. Never throws for a bad input: its message goes into `error`. Throws JobCancelled when
+// options.cancel is set.
 LintFileResult lint_file(const std::string& path, const LintOptions& options);
 
 // What --fix changed, for the report.
@@ -78,12 +83,15 @@ struct LintFixSummary {
 };
 
 // Writes a corrected copy of `input` to `output` (.glb, atomically): influences merged per joint, negative
-// weights and joints out of range dropped, sorted by weight and cut to options.max_influences (at most 8),
-// a vertex without weight bound to the joint nearest to it in bind space, renormalized in the original
+// weights and joints beyond every skin that draws the mesh dropped (one that fits a larger skin only is
+// kept), sorted by weight and cut to options.max_influences (at most 8), a vertex without weight bound to
+// the joint nearest to it in bind space, renormalized in the original
 // component type (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
 // hemisphere-consistent; a `skeleton` that is not the joints' common root removed. What it cannot fix
 // (joints without a common root, inverse bind matrices, joint scale) stays. Throws InputError for an input
-// it cannot read or rewrite faithfully (compressed data), OutputError when the output cannot be written.
+// it cannot read or rewrite faithfully (compressed data) or whose rewrite would take more than
+// options.load.max_memory, OutputError when the output cannot be written, JobCancelled when
+// options.cancel is set (no output then).
 LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options);
 
 // Reports, in the conventions of `dqskin diff` (diff_report.hpp). Text: per file "FILE: STATUS" (clean,
