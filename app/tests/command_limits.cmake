@@ -40,3 +40,36 @@ dqskin_limit_test(report_1000_clips_within_max_memory 2 FOLDER ${limits_scratch}
   ARGS report report/clips_1000.gltf -o ${limits_scratch}/report_1000 --max-memory 256M --quiet
   ONE_LINE MAX_RSS_MB 700
   STDERR "^dqskin: report/clips_1000.gltf: needs more memory than --max-memory 256 MiB allows \\(")
+
+# ---- verify and merge ----------------------------------------------------------------------------------------
+# 400,000 files listed (none there): verify took 32 s and merge 58 s, 95 s and 77 s on a busy machine, for the
+# JSON parser's depth callback searched the whole outputs list after each entry. Each now names the problems
+# within 20 s: verify every file, merge the first 20 and a count, writing nothing.
+dqskin_limit_test(verify_400k_entries 2 TIMEOUT 20
+  ARGS verify verify/entries_400k
+  ONE_LINE STDERR "^verify/entries_400k: 400000 files \\(0 bytes\\) listed by manifest.shard-0-of-2.json, manifest.shard-1-of-2.json: 400000 problems\n$")
+dqskin_limit_test(merge_400k_entries 2 TIMEOUT 20
+  ARGS merge verify/entries_400k
+  ABSENT ${DQSKIN_HOSTILE_DIR}/verify/entries_400k/manifest.json
+  STDERR "dqskin: verify/entries_400k: merge refused, nothing written \\(400000 problems\\)\n$")
+# One listed path 20,000 folders deep: verify split every ancestor's path into its parts and never returned.
+dqskin_limit_test(verify_deep_path 2 TIMEOUT 15
+  ARGS verify verify/deep_path --quiet
+  STDOUT "^verify/deep_path/o/a/a/a/[a/]*f: missing \\(listed in manifest.json\\)\n$")
+# Hostile manifests are one problem each, naming the manifest, and exit 2 (merge: the problem, and its
+# refusal with the folder as it was).
+foreach(case truncated huge_numbers deep_nesting dot_dot absolute nul_name)
+  dqskin_limit_test(verify_manifest_${case} 2 TIMEOUT 15
+    ARGS verify verify/${case} --quiet
+    STDOUT "^verify/${case}/manifest.json: the manifest [^\n]*\n$")
+  dqskin_limit_test(merge_manifest_${case} 2 TIMEOUT 15
+    ARGS merge verify/${case}
+    STDERR "^dqskin: verify/${case}/manifest.json: the manifest [^\n]*\n")
+endforeach()
+dqskin_limit_test(verify_symlink_not_followed 2 TIMEOUT 15
+  ARGS verify verify/symlink --quiet
+  STDOUT "^verify/symlink/o: is a symbolic link, which verify does not follow\nverify/symlink/o/passwd: lies behind a symbolic link")
+dqskin_limit_test(verify_conflicting_entries 2 TIMEOUT 15
+  ARGS verify verify/conflict --quiet
+  STDOUT "^verify/conflict/o/a: listed differently by manifest.json and manifest.json\n")
+

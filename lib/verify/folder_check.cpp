@@ -21,7 +21,7 @@ using nlohmann::json;
 struct Listed {
   uint64_t size = 0;
   std::string sha256;
-  std::string manifest;  // the first manifest that lists it
+  const std::string* manifest = nullptr;  // the name of the first manifest that lists it
 };
 
 std::string leftover_message(const leftover_files::Leftover& l) {
@@ -34,18 +34,18 @@ std::optional<FolderProblem> check_file(const fs::path& folder, const std::strin
   std::error_code ec;
   const fs::path file = folder / path;
   const fs::file_status status = fs::symlink_status(file, ec);
-  if (ec || !fs::exists(status)) return FolderProblem{path, "missing", "missing (listed in " + listed.manifest + ")"};
+  if (ec || !fs::exists(status)) return FolderProblem{path, "missing", "missing (listed in " + *listed.manifest + ")"};
   if (!fs::is_regular_file(status))
-    return FolderProblem{path, "missing", "is not a regular file (listed in " + listed.manifest + " as one)"};
+    return FolderProblem{path, "missing", "is not a regular file (listed in " + *listed.manifest + " as one)"};
   const uintmax_t size = fs::file_size(file, ec);
   if (ec) return FolderProblem{path, "missing", "cannot be read: " + ec.message()};
   if (size != listed.size)
     return FolderProblem{path, "size",
-                         std::to_string(size) + " bytes where " + listed.manifest + " lists " + std::to_string(listed.size) +
+                         std::to_string(size) + " bytes where " + *listed.manifest + " lists " + std::to_string(listed.size) +
                              (size < listed.size ? " (truncated)" : " (grown)")};
   try {
     if (sha256_file(file.string()) != listed.sha256)
-      return FolderProblem{path, "hash", "its SHA-256 differs from the one " + listed.manifest + " lists (the bytes changed)"};
+      return FolderProblem{path, "hash", "its SHA-256 differs from the one " + *listed.manifest + " lists (the bytes changed)"};
   } catch (const std::exception&) {
     return FolderProblem{path, "missing", "cannot be read"};
   }
@@ -70,31 +70,57 @@ void find_missing_shards(const std::vector<const JobManifest*>& manifests, const
     }
 }
 
-// Whether a folder under `root` (relative, "" for root itself) is reached through a symbolic link: verify
-// follows none, so that a link in a copied folder cannot make it read, or walk, what lies elsewhere.
-class LinkCheck {
+// Whether folders under `root` (relative, "" for root itself) are reached through a symbolic link: verify
+// follows none, so that a link in a copied folder cannot make it read, or walk, what lies elsewhere. Keeps
+// the chain of folders of the last one asked about, each with what it is; a folder under one that is a link
+// or absent is not looked at. Paths asked in sorted order share their folders with the ones before (what
+// lies under one folder sorts together), so each folder is looked at once and the work is linear in the
+// paths' length, however deep they nest.
+class FolderChain {
 public:
-  explicit LinkCheck(const fs::path& root) : root_(root) {}
-  bool linked(const std::string& folder) {
-    if (folder.empty()) return false;
-    if (const auto it = known_.find(folder); it != known_.end()) return it->second;
-    const size_t slash = folder.find_last_of('/');
-    bool result = linked(slash == std::string::npos ? "" : folder.substr(0, slash));
-    if (!result) {
-      std::error_code ec;
-      result = fs::symlink_status(root_ / folder, ec).type() == fs::file_type::symlink;
+  explicit FolderChain(const fs::path& root) : root_(root.string()) {}
+
+  bool linked(std::string_view folder) {
+    // Keep the levels that are folders of `folder` too.
+    while (!levels_.empty()) {
+      const size_t end = levels_.back().end;
+      if (folder.size() >= end && folder.compare(0, end, current_, 0, end) == 0 &&
+          (folder.size() == end || folder[end] == '/'))
+        break;
+      levels_.pop_back();
     }
-    return known_[folder] = result;
+    current_.assign(folder);
+    for (size_t start = levels_.empty() ? 0 : levels_.back().end + 1; start < current_.size();) {
+      const size_t slash = current_.find('/', start);
+      const size_t end = slash == std::string::npos ? current_.size() : slash;
+      Level level{end, levels_.empty() ? Kind::kFolder : levels_.back().kind};
+      if (level.kind == Kind::kFolder) level.kind = kind_of(root_ + "/" + current_.substr(0, end));
+      levels_.push_back(level);
+      start = end + 1;
+    }
+    return !levels_.empty() && levels_.back().kind == Kind::kLinked;
   }
 
 private:
-  const fs::path root_;
-  std::map<std::string, bool> known_;
+  enum class Kind { kFolder, kLinked, kOther };  // kOther: absent, or not a folder (nothing lies under it)
+  struct Level {
+    size_t end;  // current_'s first `end` bytes name it
+    Kind kind;   // its own, or kLinked / kOther when one above it is
+  };
+  static Kind kind_of(const std::string& path) {
+    std::error_code ec;
+    const fs::file_type type = fs::symlink_status(path, ec).type();
+    return type == fs::file_type::symlink ? Kind::kLinked : type == fs::file_type::directory ? Kind::kFolder : Kind::kOther;
+  }
+
+  const std::string root_;
+  std::string current_;
+  std::vector<Level> levels_;
 };
 
-std::string parent_of(const std::string& path) {
+std::string_view parent_of(std::string_view path) {
   const size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? "" : path.substr(0, slash);
+  return slash == std::string_view::npos ? std::string_view() : path.substr(0, slash);
 }
 
 }  // namespace
@@ -114,10 +140,10 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   for (const JobManifest* m : manifests) {
     report.manifests.push_back(m->name);
     for (const json& out : m->json["outputs"]) {
-      const Listed entry{out["size"].get<uint64_t>(), out["sha256"].get<std::string>(), m->name};
+      const Listed entry{out["size"].get<uint64_t>(), out["sha256"].get<std::string>(), &m->name};
       const auto [it, inserted] = listed.emplace(out["path"].get<std::string>(), entry);
       if (!inserted && (it->second.size != entry.size || it->second.sha256 != entry.sha256))
-        report.problems.push_back({it->first, "conflict", "listed differently by " + it->second.manifest + " and " + m->name});
+        report.problems.push_back({it->first, "conflict", "listed differently by " + *it->second.manifest + " and " + m->name});
     }
     for (const json& in : m->json["inputs"])
       if (!in.contains("error")) owned.insert(in["output_folder"].get<std::string>());
@@ -125,23 +151,24 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   report.files = listed.size();
   for (const auto& [path, entry] : listed) report.bytes += entry.size;
 
-  LinkCheck links(folder);
-  std::vector<std::pair<std::string, Listed>> files;
-  for (const auto& [path, entry] : listed) {
-    if (links.linked(parent_of(path)))
-      report.problems.push_back({path, "missing", "lies behind a symbolic link, which verify does not follow"});
+  FolderChain folders(folder);
+  std::vector<const std::pair<const std::string, Listed>*> files;  // the listed files to look at
+  for (const auto& file : listed) {
+    if (folders.linked(parent_of(file.first)))
+      report.problems.push_back({file.first, "missing", "lies behind a symbolic link, which verify does not follow"});
     else
-      files.emplace_back(path, entry);
+      files.push_back(&file);
   }
   std::vector<std::optional<FolderProblem>> results(files.size());
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   concurrency::parallel_for(files.size(), threads,
-                            [&](size_t i) { results[i] = check_file(folder, files[i].first, files[i].second); });
+                            [&](size_t i) { results[i] = check_file(folder, files[i]->first, files[i]->second); });
   for (std::optional<FolderProblem>& p : results)
     if (p) report.problems.push_back(std::move(*p));
 
+  FolderChain stems(folder);
   for (const std::string& stem : owned) {
-    if (links.linked(stem)) {
+    if (stems.linked(stem)) {
       report.problems.push_back({stem, "unlisted", "is a symbolic link, which verify does not follow"});
       continue;
     }

@@ -219,6 +219,20 @@ TEST_F(VerifyTest, SymbolicLinksAreNotFollowed) {
   EXPECT_EQ(r.problems.size(), r.files + 1) << "every listed file, and the folder itself";
 }
 
+// A listed path 20,000 folders deep is one file missing, found at once (each of its folders was looked at
+// through a copy of its whole path split into parts: verify never returned).
+TEST_F(VerifyTest, DeepPathsAreLookedAtOnce) {
+  bake_into("out");
+  const fs::path manifest = root_ / "out" / "manifest.json";
+  auto json = nlohmann::json::parse(read_file(manifest));
+  std::string deep = "bending_arm";
+  for (int i = 0; i < 20000; ++i) deep += "/a";
+  json["outputs"].push_back({{"path", deep + "/f"}, {"size", 0}, {"sha256", std::string(64, '0')}});
+  std::ofstream(manifest) << json.dump();
+  const std::vector<std::string> expected = {"missing " + deep + "/f"};
+  EXPECT_EQ(kinds(verify_folder(at("out"))), expected);
+}
+
 // A shard killed mid-bake leaves temporaries; its rerun keeps the finished files and removes them.
 TEST_F(VerifyTest, ARerunShardRemovesWhatItsKilledRunLeft) {
   bake_into("sharded", {0, 2});
