@@ -59,6 +59,7 @@ def verify_cases(folder):
                       depth callback searched the whole outputs list after each entry)
     deep_path/        one listed path 20,000 folders deep: verify never returned (every ancestor's path
                       split into its parts, and copied, for each ancestor)
+    many_shards/      manifest.shard-0-of-999999.json alone: 999,998 shards missing
     truncated/        a manifest cut in the middle of an entry
     huge_numbers/     a size past 2^64 and a shard index of 1e400
     deep_nesting/     a manifest 100,000 arrays deep
@@ -77,6 +78,7 @@ def verify_cases(folder):
         "manifest.shard-0-of-2.json": manifest_text([("o/%06d" % i, 0, EMPTY_SHA256) for i in range(400000)], 0, 2),
         "manifest.shard-1-of-2.json": manifest_text([], 1, 2)})
     case("deep_path", {"manifest.json": manifest_text([("o/" + "a/" * 20000 + "f", 0, EMPTY_SHA256)])})
+    case("many_shards", {"manifest.shard-0-of-999999.json": manifest_text([], 0, 999999)})
     whole = manifest_text([("o/%d" % i, 0, EMPTY_SHA256) for i in range(4)])
     case("truncated", {"manifest.json": whole[:len(whole) // 2]})
     case("huge_numbers", {"manifest.json": manifest_text([("o/a", 0, EMPTY_SHA256)]).replace(

@@ -56,6 +56,10 @@ dqskin_limit_test(merge_400k_entries 2 TIMEOUT 20
 dqskin_limit_test(verify_deep_path 2 TIMEOUT 15
   ARGS verify verify/deep_path --quiet
   STDOUT "^verify/deep_path/o/a/a/a/[a/]*f: missing \\(listed in manifest.json\\)\n$")
+# manifest.shard-0-of-999999.json alone: 999,998 lines, one per missing shard; consecutive ones are one now.
+dqskin_limit_test(verify_many_missing_shards 2 TIMEOUT 15
+  ARGS verify verify/many_shards --quiet
+  STDOUT "^verify/many_shards/manifest.shard-1-of-999999.json: missing, and so are the manifests up to manifest.shard-999998-of-999999.json: [^\n]*\n$")
 # Hostile manifests are one problem each, naming the manifest, and exit 2 (merge: the problem, and its
 # refusal with the folder as it was).
 foreach(case truncated huge_numbers deep_nesting dot_dot absolute nul_name)

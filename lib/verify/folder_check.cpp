@@ -53,21 +53,41 @@ std::optional<FolderProblem> check_file(const fs::path& folder, const std::strin
 }
 
 // Shards of a job that left no manifest: every count N seen for a job needs all of 0 … N-1. A shard manifest
-// that is there but unreadable is a problem of its own (in `present`), not a missing one.
+// that is there but unreadable is a problem of its own (in `present`), not a missing one. Consecutive missing
+// shards are one problem, so that what is reported grows with the manifests there, not with the count a
+// manifest's name declares (manifest.shard-0-of-999999.json alone is one problem, not 999,998).
 void find_missing_shards(const std::vector<const JobManifest*>& manifests, const std::vector<FolderProblem>& present,
                          std::vector<FolderProblem>& problems) {
-  std::map<std::pair<std::string, size_t>, std::set<size_t>> seen;  // (base, count) → indices
+  std::map<std::pair<std::string, size_t>, std::set<size_t>> seen;  // (base, count) → indices there
   for (const JobManifest* m : manifests)
     if (m->sharded()) seen[{m->base, m->shard.count}].insert(m->shard.index);
-  for (const auto& [job, indices] : seen)
-    for (size_t i = 0; i < job.second; ++i) {
-      const std::string name = job_manifest::file_name(job.first, Shard{i, job.second});
-      if (indices.count(i) || std::any_of(present.begin(), present.end(), [&](const FolderProblem& p) { return p.path == name; }))
-        continue;
-      problems.push_back({name, "shard-missing",
-                          "missing: shard " + std::to_string(i) + "/" + std::to_string(job.second) +
-                              " did not finish (run it again; a shard all of whose inputs fail writes none)"});
+  for (const FolderProblem& p : present)
+    if (const std::optional<JobManifest> m = parse_manifest_name(p.path); m && m->sharded())
+      if (const auto it = seen.find({m->base, m->shard.count}); it != seen.end()) it->second.insert(m->shard.index);
+  for (const auto& [job, there] : seen) {
+    const std::string& base = job.first;  // not a structured binding: the lambda below captures it
+    const size_t count = job.second;
+    size_t next = 0;  // the first index not yet accounted for
+    auto missing_until = [&](size_t end) {  // indices next … end-1 are missing
+      if (next >= end) return;
+      const size_t last = end - 1;
+      const std::string name = job_manifest::file_name(base, Shard{next, count});
+      if (next == last)
+        problems.push_back({name, "shard-missing",
+                            "missing: shard " + std::to_string(next) + "/" + std::to_string(count) +
+                                " did not finish (run it again; a shard all of whose inputs fail writes none)"});
+      else
+        problems.push_back({name, "shard-missing",
+                            "missing, and so are the manifests up to " + job_manifest::file_name(base, Shard{last, count}) +
+                                ": shards " + std::to_string(next) + " to " + std::to_string(last) + " of " +
+                                std::to_string(count) + " did not finish (run them again; a shard all of whose inputs fail writes none)"});
+    };
+    for (const size_t index : there) {
+      missing_until(index);
+      next = index + 1;
     }
+    missing_until(count);
+  }
 }
 
 // Whether folders under `root` (relative, "" for root itself) are reached through a symbolic link: verify
@@ -166,12 +186,20 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   for (std::optional<FolderProblem>& p : results)
     if (p) report.problems.push_back(std::move(*p));
 
+  // The files in the owned folders that no manifest lists. A folder inside another owned one is walked
+  // with it, not again (owned folders nested a thousand deep would be walked a thousand times).
   FolderChain stems(folder);
+  std::vector<std::string_view> walked;  // the stems walked that may hold the next ones (sorted order)
   for (const std::string& stem : owned) {
+    while (!walked.empty() && !(stem.size() > walked.back().size() && stem.compare(0, walked.back().size(), walked.back()) == 0 &&
+                                stem[walked.back().size()] == '/'))
+      walked.pop_back();
+    if (!walked.empty()) continue;
     if (stems.linked(stem)) {
       report.problems.push_back({stem, "unlisted", "is a symbolic link, which verify does not follow"});
       continue;
     }
+    walked.push_back(stem);
     std::error_code ec;
     for (fs::recursive_directory_iterator it(folder / stem, ec), end; !ec && it != end; it.increment(ec)) {
       std::error_code type_error;  // folders hold the files; a link to one is a file here, not followed
