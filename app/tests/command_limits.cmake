@@ -52,6 +52,21 @@ dqskin_limit_test(merge_400k_entries 2 TIMEOUT 20
   ARGS merge verify/entries_400k
   ABSENT ${DQSKIN_HOSTILE_DIR}/verify/entries_400k/manifest.json
   STDERR "dqskin: verify/entries_400k: merge refused, nothing written \\(400000 problems\\)\n$")
+# Past --max-memory, the one line names the manifest being read, or the folder when checking its files
+# took the memory (it said "needs more memory than --max-memory" without a file, or ended in std::terminate:
+# nlohmann allocates to free a document, which a ceiling nearly reached refused in a destructor).
+dqskin_limit_test(verify_400k_entries_within_max_memory 2
+  ARGS verify verify/entries_400k --max-memory 64M --quiet
+  ONE_LINE MAX_RSS_MB 500
+  STDERR "^dqskin: verify/entries_400k/manifest.shard-0-of-2.json: needs more memory than --max-memory 64.0 MiB allows \\(")
+dqskin_limit_test(verify_400k_entries_files_within_max_memory 2
+  ARGS verify verify/entries_400k --max-memory 350M --quiet
+  ONE_LINE MAX_RSS_MB 800
+  STDERR "^dqskin: verify/entries_400k: needs more memory than --max-memory 350 MiB allows \\(")
+dqskin_limit_test(merge_400k_entries_within_max_memory 2
+  ARGS merge verify/entries_400k --max-memory 350M --quiet
+  ONE_LINE MAX_RSS_MB 800 ABSENT ${DQSKIN_HOSTILE_DIR}/verify/entries_400k/manifest.json
+  STDERR "^dqskin: verify/entries_400k: needs more memory than --max-memory 350 MiB allows \\(")
 # One listed path 20,000 folders deep: verify split every ancestor's path into its parts and never returned.
 dqskin_limit_test(verify_deep_path 2 TIMEOUT 15
   ARGS verify verify/deep_path --quiet

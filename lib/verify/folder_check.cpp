@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <new>
 #include <set>
 #include <thread>
 #include <tuple>
@@ -46,6 +47,8 @@ std::optional<FolderProblem> check_file(const fs::path& folder, const std::strin
   try {
     if (sha256_file(file.string()) != listed.sha256)
       return FolderProblem{path, "hash", "its SHA-256 differs from the one " + *listed.manifest + " lists (the bytes changed)"};
+  } catch (const std::bad_alloc&) {
+    throw;  // --max-memory's refusal: the whole check's, not this file's
   } catch (const std::exception&) {
     return FolderProblem{path, "missing", "cannot be read"};
   }

@@ -3,10 +3,12 @@
 #include "../io/leftover_files.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
+#include "free_unbounded.hpp"
 
 #include <algorithm>
 #include <fstream>
-#include <vector>
+#include <new>
 
 namespace dqskin::verify_detail {
 namespace {
@@ -56,7 +58,9 @@ std::string shape_problem(const JobManifest& m) {
 // Builds a document as nlohmann's SAX parser reads the text, and stops the parser where the text nests
 // deeper than `deepest` levels, before anything deeper is built. (The parser's own depth callback cannot be
 // used: after every object it ends, the DOM parser that calls it searches the whole enclosing list for a
-// discarded value, which made a manifest of 400,000 outputs take minutes to read.)
+// discarded value, which made a manifest of 400,000 outputs take minutes to read.) The document is the
+// caller's, so that when the parser stops, or std::bad_alloc unwinds it, the caller frees what was built
+// (free_unbounded).
 class BoundedDocument final : public nlohmann::json_sax<json> {
 public:
   BoundedDocument(json& root, int deepest) : root_(root), deepest_(deepest) {}
@@ -134,10 +138,25 @@ std::string parse_manifest_file(const fs::path& path, json& out) {
   if (size_t(file.gcount()) != text.size()) return "cannot be read";
   BoundedDocument document(out, kDeepest);
   if (!json::sax_parse(text, &document)) {
-    out = json();  // what was built before the parser stopped
+    free_unbounded(out);  // what was built before the parser stopped
     return document.too_deep ? "is nested deeper than " + std::to_string(kDeepest) + " levels" : "is not valid JSON";
   }
   return {};
+}
+
+// Reads the manifest at `path` into `m`; why it cannot be relied on, or empty. Throws InputError naming the
+// manifest when it takes more memory than --max-memory allows (its document is several times its size).
+std::string read_manifest(const fs::path& path, JobManifest& m) {
+  try {
+    std::string problem = parse_manifest_file(path, m.json);
+    if (problem.empty()) problem = shape_problem(m);
+    if (!problem.empty()) free_unbounded(m.json);
+    return problem;
+  } catch (const std::bad_alloc&) {
+    free_unbounded(m.json);  // what was read, freed before the message is made
+    const MemoryCeilingLifted lifted;
+    throw InputError(path.string() + ": " + out_of_memory_message());
+  }
 }
 
 }  // namespace
@@ -182,6 +201,8 @@ std::optional<JobManifest> parse_manifest_name(std::string_view name) {
   return std::nullopt;
 }
 
+ManifestSet::~ManifestSet() { free_unbounded(manifests); }
+
 ManifestSet read_manifests(const fs::path& folder) {
   ManifestSet set;
   std::error_code ec;
@@ -200,8 +221,7 @@ ManifestSet read_manifests(const fs::path& folder) {
     const fs::file_status status = fs::symlink_status(it->path(), status_error);
     if (fs::is_symlink(status)) problem = "is a symbolic link, which verify does not follow";
     else if (status_error || !fs::is_regular_file(status)) problem = "is not a regular file";  // a FIFO would block
-    else problem = parse_manifest_file(it->path(), m->json);
-    if (problem.empty()) problem = shape_problem(*m);
+    else problem = read_manifest(it->path(), *m);
     if (problem.empty()) set.manifests.push_back(std::move(*m));
     else set.problems.push_back({name, "manifest", "the manifest " + problem});
   }

@@ -35,9 +35,15 @@ struct ManifestSet {
   std::vector<JobManifest> manifests;  // well-formed ones, sorted by name
   std::vector<FolderProblem> problems;  // manifests that cannot be read or do not have a manifest's shape
   std::vector<std::string> root_leftovers;  // temporaries left in the folder itself
+
+  ManifestSet() = default;
+  ManifestSet(ManifestSet&&) = default;
+  ManifestSet& operator=(ManifestSet&&) = default;
+  ~ManifestSet();  // frees the documents whatever --max-memory says (free_unbounded.hpp)
 };
 
-// Reads every manifest in `folder`. Throws InputError when the folder cannot be listed.
+// Reads every manifest in `folder`. Throws InputError when the folder cannot be listed, and naming the
+// manifest when reading it takes more memory than --max-memory allows.
 ManifestSet read_manifests(const std::filesystem::path& folder);
 
 // `folder` as messages name it: without trailing slashes ("out/" is "out"; "/" stays).

@@ -28,7 +28,8 @@ struct VerifyReport {
 };
 
 // Checks `folder` against every manifest in it, hashing on `threads` threads (0: one per core). Throws
-// InputError when `folder` is not a readable folder.
+// InputError when `folder` is not a readable folder, or naming a manifest that takes more memory to read
+// than --max-memory allows.
 VerifyReport verify_folder(const std::string& folder, unsigned threads = 0);
 
 // Where a problem is, for a person: FOLDER/PATH, or FOLDER for the folder itself.
