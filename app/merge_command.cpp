@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
@@ -64,11 +65,12 @@ int print_report(const MergeSettings& settings, const MergeReport& report) {
   return report.failed_inputs.empty() ? kSuccess : kSomeInputsFailed;
 }
 
-// Merges and prints what happened. When the merge takes more than --max-memory, the one line names the
-// folder (a manifest too large to read is named by the library).
+// Merges and prints what happened. A signal stops it with the folder as it was (merge_shards swaps the
+// manifests all at once); so does a refusal of --max-memory, whose one line names the folder (a manifest
+// too large to read is named by the library).
 int run_merge(const MergeSettings& s) {
   try {
-    return print_report(s, merge_shards(s.folder, s.threads));
+    return print_report(s, merge_shards(s.folder, s.threads, catch_interrupts("merge")));
   } catch (const std::bad_alloc&) {
     const MemoryCeilingLifted lifted;  // the merge's memory is freed; the message allocates
     print_error(problem_location(s.folder, {}), out_of_memory_message());

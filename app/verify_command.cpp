@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
@@ -43,11 +44,12 @@ int print_report(const VerifySettings& s, const VerifyReport& report) {
   return report.ok() ? kSuccess : kUsageOrInputError;
 }
 
-// Checks the folder and prints what it found. When the files listed and the problems found take more than
-// --max-memory, the one line names the folder (a manifest too large to read is named by the library).
+// Checks the folder and prints what it found. A signal stops it (it writes nothing). When the files listed
+// and the problems found take more than --max-memory, the one line names the folder (a manifest too large
+// to read is named by the library).
 int run_verify(const VerifySettings& s) {
   try {
-    return print_report(s, verify_folder(s.folder, s.threads));
+    return print_report(s, verify_folder(s.folder, s.threads, catch_interrupts("verify")));
   } catch (const std::bad_alloc&) {
     const MemoryCeilingLifted lifted;  // the report's memory is freed; the message allocates
     print_error(problem_location(s.folder, {}), out_of_memory_message());

@@ -68,6 +68,8 @@ def verify_cases(folder):
     symlink/          the output folder o a symbolic link to /etc, listing o/passwd
     nul_name/         a listed path with a NUL byte in it ("o/a\\u0000b")
     conflict/         one path listed twice, with other sizes
+    mergeable/        10,000 empty files under o/ and the two shard manifests that list them: a merge that
+                      succeeds, to be stopped by a signal at any point
     """
     def case(name, files):
         os.makedirs(os.path.join(folder, name))
@@ -90,6 +92,11 @@ def verify_cases(folder):
     os.symlink("/etc", os.path.join(folder, "symlink", "o"))
     case("nul_name", {"manifest.json": manifest_text([("o/a\0b", 0, EMPTY_SHA256)])})
     case("conflict", {"manifest.json": manifest_text([("o/a", 0, EMPTY_SHA256), ("o/a", 1, EMPTY_SHA256)])})
+    case("mergeable", {"manifest.shard-%d-of-2.json" % s: manifest_text(
+        [("o/%05d" % i, 0, EMPTY_SHA256) for i in range(s, 10000, 2)], s, 2) for s in range(2)})
+    os.makedirs(os.path.join(folder, "mergeable", "o"))
+    for i in range(10000):
+        write(os.path.join(folder, "mergeable", "o"), "%05d" % i, b"")
 
 
 def main():

@@ -92,3 +92,9 @@ dqskin_limit_test(verify_conflicting_entries 2 TIMEOUT 15
   ARGS verify verify/conflict --quiet
   STDOUT "^verify/conflict/o/a: listed differently by manifest.json and manifest.json\n")
 
+# SIGTERM and SIGINT: one line, the process ended by the signal, the folder as it was (merge wrote its
+# manifest without any handler: a signal left the temporary, or a half-swapped folder).
+add_test(NAME limits.merge_and_verify_stopped_by_signals
+  COMMAND bash ${PROJECT_SOURCE_DIR}/app/tests/interrupt_merge.sh $<TARGET_FILE:dqskin_cli> ${DQSKIN_HOSTILE_DIR}
+    ${limits_scratch}/interrupt_merge)
+set_tests_properties(limits.merge_and_verify_stopped_by_signals PROPERTIES TIMEOUT 300 LABELS limits)

@@ -3,6 +3,7 @@
 #include "../concurrency/parallel_for.hpp"
 #include "../io/leftover_files.hpp"
 #include "../job/job_manifest.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/sha256.hpp"
 
 #include <algorithm>
@@ -149,7 +150,7 @@ std::string_view parent_of(std::string_view path) {
 }  // namespace
 
 VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const std::vector<const JobManifest*>& manifests,
-                          unsigned threads) {
+                          unsigned threads, const std::atomic<bool>* cancel) {
   VerifyReport report;
   report.folder = folder.string();
   report.problems = set.problems;
@@ -161,6 +162,7 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   std::map<std::string, Listed> listed;
   std::set<std::string> owned;  // the output folders of inputs that did not fail
   for (const JobManifest* m : manifests) {
+    check_cancelled(cancel);
     report.manifests.push_back(m->name);
     for (const json& out : m->json["outputs"]) {
       const Listed entry{out["size"].get<uint64_t>(), out["sha256"].get<std::string>(), &m->name};
@@ -184,8 +186,10 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
   }
   std::vector<std::optional<FolderProblem>> results(files.size());
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  concurrency::parallel_for(files.size(), threads,
-                            [&](size_t i) { results[i] = check_file(folder, files[i]->first, files[i]->second); });
+  concurrency::parallel_for(files.size(), threads, [&](size_t i) {
+    check_cancelled(cancel);
+    results[i] = check_file(folder, files[i]->first, files[i]->second);
+  });
   for (std::optional<FolderProblem>& p : results)
     if (p) report.problems.push_back(std::move(*p));
 
@@ -205,6 +209,7 @@ VerifyReport check_folder(const fs::path& folder, const ManifestSet& set, const 
     walked.push_back(stem);
     std::error_code ec;
     for (fs::recursive_directory_iterator it(folder / stem, ec), end; !ec && it != end; it.increment(ec)) {
+      check_cancelled(cancel);
       std::error_code type_error;  // folders hold the files; a link to one is a file here, not followed
       if (it->symlink_status(type_error).type() == fs::file_type::directory) continue;
       const std::string path = stem + "/" + it->path().lexically_relative(folder / stem).generic_string();

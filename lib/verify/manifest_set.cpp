@@ -3,6 +3,7 @@
 #include "../io/leftover_files.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "free_unbounded.hpp"
 
@@ -203,12 +204,13 @@ std::optional<JobManifest> parse_manifest_name(std::string_view name) {
 
 ManifestSet::~ManifestSet() { free_unbounded(manifests); }
 
-ManifestSet read_manifests(const fs::path& folder) {
+ManifestSet read_manifests(const fs::path& folder, const std::atomic<bool>* cancel) {
   ManifestSet set;
   std::error_code ec;
   fs::directory_iterator it(folder, ec);
   if (ec) throw InputError(folder.string() + ": " + (fs::exists(folder) ? "cannot be listed: " + ec.message() : "no such folder"));
   for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
+    check_cancelled(cancel);
     const std::string name = it->path().filename().string();
     if (leftover_files::parse(name)) {
       set.root_leftovers.push_back(name);

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -43,8 +44,9 @@ struct ManifestSet {
 };
 
 // Reads every manifest in `folder`. Throws InputError when the folder cannot be listed, and naming the
-// manifest when reading it takes more memory than --max-memory allows.
-ManifestSet read_manifests(const std::filesystem::path& folder);
+// manifest when reading it takes more memory than --max-memory allows; JobCancelled once `cancel` (may be
+// null) is set.
+ManifestSet read_manifests(const std::filesystem::path& folder, const std::atomic<bool>* cancel = nullptr);
 
 // `folder` as messages name it: without trailing slashes ("out/" is "out"; "/" stays).
 std::string folder_name(std::string folder);

@@ -7,8 +7,10 @@
 
 #include "../job/job_manifest.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "folder_check.hpp"
 #include "free_unbounded.hpp"
+#include "manifest_swap.hpp"
 
 #include <algorithm>
 #include <iterator>
@@ -174,15 +176,15 @@ void merge_job(const std::string& folder, const std::vector<const JobManifest*>&
 
 }  // namespace
 
-MergeReport merge_shards(const std::string& given_folder, unsigned threads) {
+MergeReport merge_shards(const std::string& given_folder, unsigned threads, const std::atomic<bool>* cancel) {
   MergeReport report;
   const std::string folder = folder_name(given_folder);
-  ManifestSet set = read_manifests(folder);
+  ManifestSet set = read_manifests(folder, cancel);
   std::map<std::string, std::vector<const JobManifest*>> jobs;  // base → its shard manifests, by index
   for (const JobManifest& m : set.manifests)
     if (m.sharded()) jobs[m.base].push_back(&m);
   if (jobs.empty()) {
-    report.verify = verify_folder(folder, threads);
+    report.verify = verify_folder(folder, threads, cancel);
     if (report.verify.ok()) return report;  // merged already, or a job that was never sharded
     report.refusals.push_back(folder + ": no shard manifests (manifest.shard-I-of-N.json) to merge");
     return report;
@@ -196,7 +198,7 @@ MergeReport merge_shards(const std::string& given_folder, unsigned threads) {
   std::erase_if(set.problems, [&](const FolderProblem& p) {
     return std::any_of(jobs.begin(), jobs.end(), [&](const auto& job) { return p.path == job.first + ".json"; });
   });
-  report.verify = check_folder(folder, set, checked, threads);
+  report.verify = check_folder(folder, set, checked, threads, cancel);
 
   for (auto& [base, shards] : jobs) {
     std::set<size_t> counts;
@@ -215,25 +217,28 @@ MergeReport merge_shards(const std::string& given_folder, unsigned threads) {
   const FreedUnbounded<std::vector<std::pair<std::string, json>>> free_merged(merged);
   merged.reserve(jobs.size());
   for (const auto& [base, shards] : jobs) {
+    check_cancelled(cancel);
     merged.emplace_back(base + ".json", json());
     merge_job(folder, shards, merged.back().second, report.refusals);
   }
   if (!report.refusals.empty()) return report;
 
+  // All that the report says is made before the folder changes, so that nothing fails after it has.
+  std::vector<ManifestText> written;
+  std::vector<std::string> replaced;
   for (const auto& [name, manifest] : merged) {
-    job_manifest::write(folder, name, manifest);
+    check_cancelled(cancel);
+    written.push_back({name, job_manifest::text(manifest)});
     for (const json& in : manifest["inputs"])
       if (in.contains("error") && in["path"].is_string() && in["error"].is_string())
         report.failed_inputs.emplace_back(in["path"].get<std::string>(), in["error"].get<std::string>());
   }
   for (const auto& [base, shards] : jobs) {
-    for (const JobManifest* s : shards) {
-      std::error_code ec;
-      if (!fs::remove(fs::path(folder) / s->name, ec) && ec)
-        throw OutputError(folder + "/" + s->name + ": cannot be deleted after the merge: " + ec.message());
-    }
+    for (const JobManifest* s : shards) replaced.push_back(s->name);
     report.merged.push_back({base + ".json", shards.size()});
   }
+  swap_in_manifests(folder, written, replaced, cancel);
+  for (const auto& [name, manifest] : merged) job_manifest::clear_leftovers(folder, name, manifest);
   return report;
 }
 
