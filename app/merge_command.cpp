@@ -4,14 +4,17 @@
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 #include "dqskin/verify.hpp"
 
 #include <algorithm>
 #include <iostream>
 #include <memory>
+#include <new>
 
 namespace dqskin::cli {
 namespace {
@@ -23,8 +26,8 @@ struct MergeSettings {
   std::string max_memory = "2G";  // run_cli's MemoryCeiling: a manifest of millions of entries is refused
 };
 
-int run_merge(const MergeSettings& settings) {
-  const MergeReport report = merge_shards(settings.folder, settings.threads);
+// Prints the refusal's problems, or what was merged, on stderr; returns the exit status.
+int print_report(const MergeSettings& settings, const MergeReport& report) {
   MergeSettings s = settings;
   s.folder = report.verify.folder;  // as messages name it (no trailing slash)
   // A folder far from its manifests (an unmerged folder copied half, a stale shard) can have thousands of
@@ -60,6 +63,19 @@ int run_merge(const MergeSettings& settings) {
   // As the unsharded bake: an input that failed (in every shard alike) is named, and the status says so.
   for (const auto& [input, error] : report.failed_inputs) print_error(input, error + " (in every shard)");
   return report.failed_inputs.empty() ? kSuccess : kSomeInputsFailed;
+}
+
+// Merges and prints what happened. A signal stops it with the folder as it was (merge_shards swaps the
+// manifests all at once); so does a refusal of --max-memory, whose one line names the folder (a manifest
+// too large to read is named by the library).
+int run_merge(const MergeSettings& s) {
+  try {
+    return print_report(s, merge_shards(s.folder, s.threads, catch_interrupts("merge")));
+  } catch (const std::bad_alloc&) {
+    const MemoryCeilingLifted lifted;  // the merge's memory is freed; the message allocates
+    print_error(problem_location(s.folder, {}), out_of_memory_message());
+    return kUsageOrInputError;
+  }
 }
 
 }  // namespace

@@ -3,13 +3,16 @@
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"
+#include "interrupt.hpp"
 
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/memory_ceiling.hpp"
 #include "dqskin/verify.hpp"
 
 #include <iostream>
 #include <memory>
+#include <new>
 
 namespace dqskin::cli {
 namespace {
@@ -22,8 +25,8 @@ struct VerifySettings {
   std::string max_memory = "2G";  // run_cli's MemoryCeiling: a manifest of millions of entries is refused
 };
 
-int run_verify(const VerifySettings& s) {
-  const VerifyReport report = verify_folder(s.folder, s.threads);
+// Prints the problems (stdout) and the summary line (stderr); returns the exit status.
+int print_report(const VerifySettings& s, const VerifyReport& report) {
   if (s.json) {
     std::cout << verify_json(report) << std::flush;
   } else {
@@ -39,6 +42,19 @@ int run_verify(const VerifySettings& s) {
               << '\n';
   }
   return report.ok() ? kSuccess : kUsageOrInputError;
+}
+
+// Checks the folder and prints what it found. A signal stops it (it writes nothing). When the files listed
+// and the problems found take more than --max-memory, the one line names the folder (a manifest too large
+// to read is named by the library).
+int run_verify(const VerifySettings& s) {
+  try {
+    return print_report(s, verify_folder(s.folder, s.threads, catch_interrupts("verify")));
+  } catch (const std::bad_alloc&) {
+    const MemoryCeilingLifted lifted;  // the report's memory is freed; the message allocates
+    print_error(problem_location(s.folder, {}), out_of_memory_message());
+    return kUsageOrInputError;
+  }
 }
 
 }  // namespace

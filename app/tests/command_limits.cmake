@@ -130,3 +130,61 @@ dqskin_limit_test(lint_fix_4m_vertices_within_max_memory 2 TIMEOUT 60
 dqskin_limit_test(lint_4m_vertices_within_max_memory 2 TIMEOUT 60
   ARGS lint lint/unweighted_4m.gltf --max-memory 200M ONE_LINE MAX_RSS_MB 400
   STDERR "^dqskin: lint/unweighted_4m.gltf: loading it needs about [^\n]*, more than --max-memory 200 MiB\n$")
+
+# ---- verify and merge ----------------------------------------------------------------------------------------
+# 400,000 files listed (none there): verify took 32 s and merge 58 s, 95 s and 77 s on a busy machine, for the
+# JSON parser's depth callback searched the whole outputs list after each entry. Each now names the problems
+# within 20 s: verify every file, merge the first 20 and a count, writing nothing.
+dqskin_limit_test(verify_400k_entries 2 TIMEOUT 20
+  ARGS verify verify/entries_400k
+  ONE_LINE STDERR "^verify/entries_400k: 400000 files \\(0 bytes\\) listed by manifest.shard-0-of-2.json, manifest.shard-1-of-2.json: 400000 problems\n$")
+dqskin_limit_test(merge_400k_entries 2 TIMEOUT 20
+  ARGS merge verify/entries_400k
+  ABSENT ${DQSKIN_HOSTILE_DIR}/verify/entries_400k/manifest.json
+  STDERR "dqskin: verify/entries_400k: merge refused, nothing written \\(400000 problems\\)\n$")
+# Past --max-memory, the one line names the manifest being read, or the folder when checking its files
+# took the memory (it said "needs more memory than --max-memory" without a file, or ended in std::terminate:
+# nlohmann allocates to free a document, which a ceiling nearly reached refused in a destructor).
+dqskin_limit_test(verify_400k_entries_within_max_memory 2
+  ARGS verify verify/entries_400k --max-memory 64M --quiet
+  ONE_LINE MAX_RSS_MB 500
+  STDERR "^dqskin: verify/entries_400k/manifest.shard-0-of-2.json: needs more memory than --max-memory 64.0 MiB allows \\(")
+dqskin_limit_test(verify_400k_entries_files_within_max_memory 2
+  ARGS verify verify/entries_400k --max-memory 350M --quiet
+  ONE_LINE MAX_RSS_MB 800
+  STDERR "^dqskin: verify/entries_400k: needs more memory than --max-memory 350 MiB allows \\(")
+dqskin_limit_test(merge_400k_entries_within_max_memory 2
+  ARGS merge verify/entries_400k --max-memory 350M --quiet
+  ONE_LINE MAX_RSS_MB 800 ABSENT ${DQSKIN_HOSTILE_DIR}/verify/entries_400k/manifest.json
+  STDERR "^dqskin: verify/entries_400k: needs more memory than --max-memory 350 MiB allows \\(")
+# One listed path 20,000 folders deep: verify split every ancestor's path into its parts and never returned.
+dqskin_limit_test(verify_deep_path 2 TIMEOUT 15
+  ARGS verify verify/deep_path --quiet
+  STDOUT "^verify/deep_path/o/a/a/a/[a/]*f: missing \\(listed in manifest.json\\)\n$")
+# manifest.shard-0-of-999999.json alone: 999,998 lines, one per missing shard; consecutive ones are one now.
+dqskin_limit_test(verify_many_missing_shards 2 TIMEOUT 15
+  ARGS verify verify/many_shards --quiet
+  STDOUT "^verify/many_shards/manifest.shard-1-of-999999.json: missing, and so are the manifests up to manifest.shard-999998-of-999999.json: [^\n]*\n$")
+# Hostile manifests are one problem each, naming the manifest, and exit 2 (merge: the problem, and its
+# refusal with the folder as it was).
+foreach(case truncated huge_numbers deep_nesting dot_dot absolute nul_name)
+  dqskin_limit_test(verify_manifest_${case} 2 TIMEOUT 15
+    ARGS verify verify/${case} --quiet
+    STDOUT "^verify/${case}/manifest.json: the manifest [^\n]*\n$")
+  dqskin_limit_test(merge_manifest_${case} 2 TIMEOUT 15
+    ARGS merge verify/${case}
+    STDERR "^dqskin: verify/${case}/manifest.json: the manifest [^\n]*\n")
+endforeach()
+dqskin_limit_test(verify_symlink_not_followed 2 TIMEOUT 15
+  ARGS verify verify/symlink --quiet
+  STDOUT "^verify/symlink/o: is a symbolic link, which verify does not follow\nverify/symlink/o/passwd: lies behind a symbolic link")
+dqskin_limit_test(verify_conflicting_entries 2 TIMEOUT 15
+  ARGS verify verify/conflict --quiet
+  STDOUT "^verify/conflict/o/a: listed differently by manifest.json and manifest.json\n")
+
+# SIGTERM and SIGINT: one line, the process ended by the signal, the folder as it was (merge wrote its
+# manifest without any handler: a signal left the temporary, or a half-swapped folder).
+add_test(NAME limits.merge_and_verify_stopped_by_signals
+  COMMAND bash ${PROJECT_SOURCE_DIR}/app/tests/interrupt_merge.sh $<TARGET_FILE:dqskin_cli> ${DQSKIN_HOSTILE_DIR}
+    ${limits_scratch}/interrupt_merge)
+set_tests_properties(limits.merge_and_verify_stopped_by_signals PROPERTIES TIMEOUT 300 LABELS limits)

@@ -30,4 +30,9 @@ std::string text(const nlohmann::json& manifest);
 // it lists and beside the manifest itself (leftover_files.hpp): they are all in place now.
 std::string write(const std::string& folder, const std::string& name, const nlohmann::json& manifest);
 
+// Deletes what a killed run of the job left beside the manifest `name` in `folder` and beside every file
+// `manifest` lists: what write() does once the manifest is in place. Never throws (a leftover that stays
+// is reported by dqskin verify).
+void clear_leftovers(const std::string& folder, const std::string& name, const nlohmann::json& manifest) noexcept;
+
 }  // namespace dqskin::job_manifest

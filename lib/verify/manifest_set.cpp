@@ -3,10 +3,13 @@
 #include "../io/leftover_files.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
+#include "dqskin/memory_ceiling.hpp"
+#include "free_unbounded.hpp"
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
+#include <new>
 
 namespace dqskin::verify_detail {
 namespace {
@@ -53,6 +56,75 @@ std::string shape_problem(const JobManifest& m) {
   return {};
 }
 
+// Builds a document as nlohmann's SAX parser reads the text, and stops the parser where the text nests
+// deeper than `deepest` levels, before anything deeper is built. (The parser's own depth callback cannot be
+// used: after every object it ends, the DOM parser that calls it searches the whole enclosing list for a
+// discarded value, which made a manifest of 400,000 outputs take minutes to read.) The document is the
+// caller's, so that when the parser stops, or std::bad_alloc unwinds it, the caller frees what was built
+// (free_unbounded).
+class BoundedDocument final : public nlohmann::json_sax<json> {
+public:
+  BoundedDocument(json& root, int deepest) : root_(root), deepest_(deepest) {}
+  bool too_deep = false;
+
+  bool null() override { return add(nullptr); }
+  bool boolean(bool value) override { return add(value); }
+  bool number_integer(number_integer_t value) override { return add(value); }
+  bool number_unsigned(number_unsigned_t value) override { return add(value); }
+  bool number_float(number_float_t value, const string_t&) override { return add(value); }
+  bool string(string_t& value) override { return add(std::move(value)); }
+  bool binary(binary_t& value) override { return add(json::binary(std::move(value))); }
+  bool key(string_t& name) override {
+    key_ = std::move(name);
+    return true;
+  }
+  bool start_object(std::size_t) override { return open(json::object()); }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(json::array()); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+private:
+  // Puts `value` where the text has it: the root, the next element of an array, or the member named by
+  // the last key (the last of equal keys wins, as nlohmann's own parser has it). Pointers to the open
+  // arrays and objects stay valid: an array grows only while it is the innermost one open.
+  json* place(json&& value) {
+    if (open_.empty()) {
+      root_ = std::move(value);
+      return &root_;
+    }
+    json& parent = *open_.back();
+    if (parent.is_array()) {
+      parent.push_back(std::move(value));
+      return &parent.back();
+    }
+    json& member = parent[key_];
+    member = std::move(value);
+    return &member;
+  }
+  bool add(json&& value) {
+    place(std::move(value));
+    return true;
+  }
+  bool open(json&& container) {
+    if (int(open_.size()) >= deepest_) {
+      too_deep = true;
+      return false;
+    }
+    open_.push_back(place(std::move(container)));
+    return true;
+  }
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+
+  json& root_;
+  const int deepest_;
+  std::vector<json*> open_;  // the arrays and objects being read, outermost first
+  std::string key_;
+};
+
 // Reads and parses `path` into `json`; why it is not a manifest, or empty. Nesting is bounded: every
 // manifest dqskin writes is 5 levels deep, and the merge walks the document recursively.
 std::string parse_manifest_file(const fs::path& path, json& out) {
@@ -62,18 +134,30 @@ std::string parse_manifest_file(const fs::path& path, json& out) {
   std::ifstream file(path, std::ios::binary);
   if (size_error || !file) return "cannot be read";
   if (size > kLargestManifest) return "is larger than any manifest (" + std::to_string(size) + " bytes)";
-  std::stringstream text;
-  text << file.rdbuf();
-  bool too_deep = false;
-  // The parser keeps its own stack; what is deeper than kDeepest is dropped as it is read, then refused.
-  const json::parser_callback_t depth_limit = [&](int depth, json::parse_event_t, json&) {
-    if (depth > kDeepest) too_deep = true;
-    return depth <= kDeepest;
-  };
-  out = json::parse(text.str(), depth_limit, false);
-  if (out.is_discarded()) return "is not valid JSON";
-  if (too_deep) return "is nested deeper than " + std::to_string(kDeepest) + " levels";
+  std::string text(size_t(size), '\0');  // read at once: a stream's buffer would double, then be copied
+  file.read(text.data(), std::streamsize(text.size()));
+  if (size_t(file.gcount()) != text.size()) return "cannot be read";
+  BoundedDocument document(out, kDeepest);
+  if (!json::sax_parse(text, &document)) {
+    free_unbounded(out);  // what was built before the parser stopped
+    return document.too_deep ? "is nested deeper than " + std::to_string(kDeepest) + " levels" : "is not valid JSON";
+  }
   return {};
+}
+
+// Reads the manifest at `path` into `m`; why it cannot be relied on, or empty. Throws InputError naming the
+// manifest when it takes more memory than --max-memory allows (its document is several times its size).
+std::string read_manifest(const fs::path& path, JobManifest& m) {
+  try {
+    std::string problem = parse_manifest_file(path, m.json);
+    if (problem.empty()) problem = shape_problem(m);
+    if (!problem.empty()) free_unbounded(m.json);
+    return problem;
+  } catch (const std::bad_alloc&) {
+    free_unbounded(m.json);  // what was read, freed before the message is made
+    const MemoryCeilingLifted lifted;
+    throw InputError(path.string() + ": " + out_of_memory_message());
+  }
 }
 
 }  // namespace
@@ -118,12 +202,15 @@ std::optional<JobManifest> parse_manifest_name(std::string_view name) {
   return std::nullopt;
 }
 
-ManifestSet read_manifests(const fs::path& folder) {
+ManifestSet::~ManifestSet() { free_unbounded(manifests); }
+
+ManifestSet read_manifests(const fs::path& folder, const std::atomic<bool>* cancel) {
   ManifestSet set;
   std::error_code ec;
   fs::directory_iterator it(folder, ec);
   if (ec) throw InputError(folder.string() + ": " + (fs::exists(folder) ? "cannot be listed: " + ec.message() : "no such folder"));
   for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
+    check_cancelled(cancel);
     const std::string name = it->path().filename().string();
     if (leftover_files::parse(name)) {
       set.root_leftovers.push_back(name);
@@ -136,8 +223,7 @@ ManifestSet read_manifests(const fs::path& folder) {
     const fs::file_status status = fs::symlink_status(it->path(), status_error);
     if (fs::is_symlink(status)) problem = "is a symbolic link, which verify does not follow";
     else if (status_error || !fs::is_regular_file(status)) problem = "is not a regular file";  // a FIFO would block
-    else problem = parse_manifest_file(it->path(), m->json);
-    if (problem.empty()) problem = shape_problem(*m);
+    else problem = read_manifest(it->path(), *m);
     if (problem.empty()) set.manifests.push_back(std::move(*m));
     else set.problems.push_back({name, "manifest", "the manifest " + problem});
   }

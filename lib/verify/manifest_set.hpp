@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -35,10 +36,17 @@ struct ManifestSet {
   std::vector<JobManifest> manifests;  // well-formed ones, sorted by name
   std::vector<FolderProblem> problems;  // manifests that cannot be read or do not have a manifest's shape
   std::vector<std::string> root_leftovers;  // temporaries left in the folder itself
+
+  ManifestSet() = default;
+  ManifestSet(ManifestSet&&) = default;
+  ManifestSet& operator=(ManifestSet&&) = default;
+  ~ManifestSet();  // frees the documents whatever --max-memory says (free_unbounded.hpp)
 };
 
-// Reads every manifest in `folder`. Throws InputError when the folder cannot be listed.
-ManifestSet read_manifests(const std::filesystem::path& folder);
+// Reads every manifest in `folder`. Throws InputError when the folder cannot be listed, and naming the
+// manifest when reading it takes more memory than --max-memory allows; JobCancelled once `cancel` (may be
+// null) is set.
+ManifestSet read_manifests(const std::filesystem::path& folder, const std::atomic<bool>* cancel = nullptr);
 
 // `folder` as messages name it: without trailing slashes ("out/" is "out"; "/" stays).
 std::string folder_name(std::string folder);

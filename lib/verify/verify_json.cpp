@@ -1,5 +1,7 @@
 #include "dqskin/verify.hpp"
 
+#include "free_unbounded.hpp"
+
 #include <nlohmann/json.hpp>
 
 namespace dqskin {
@@ -13,11 +15,13 @@ std::string problem_location(const std::string& folder, const FolderProblem& pro
 
 std::string verify_json(const VerifyReport& report) {
   using nlohmann::json;
-  json problems = json::array();
+  // Freed whatever --max-memory says (free_unbounded.hpp): a folder can have a problem per listed file.
+  json problems = json::array(), doc;
+  const verify_detail::FreedUnbounded<json> free_problems(problems), free_doc(doc);
   for (const FolderProblem& p : report.problems)
     problems.push_back({{"path", p.path}, {"kind", p.kind}, {"message", p.message}});
-  const json doc = {{"folder", report.folder},   {"ok", report.ok()},       {"manifests", report.manifests},
-                    {"files", report.files},     {"bytes", report.bytes},   {"problems", std::move(problems)}};
+  doc = {{"folder", report.folder},   {"ok", report.ok()},       {"manifests", report.manifests},
+         {"files", report.files},     {"bytes", report.bytes},   {"problems", std::move(problems)}};
   return doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 

@@ -94,6 +94,23 @@ TEST_F(VerifyTest, AnUnfinishedShardIsNamedAndNothingIsMerged) {
   EXPECT_TRUE(tree(root_ / "sharded") == before) << "a refused merge writes and deletes nothing";
 }
 
+// Consecutive shards missing are one problem: what verify reports grows with the manifests there, not with
+// the count their names declare (manifest.shard-0-of-999999.json alone was 999,998 lines).
+TEST_F(VerifyTest, ConsecutiveMissingShardsAreOneProblem) {
+  bake_into("sharded", {0, 5});
+  bake_into("sharded", {3, 5});
+  std::vector<std::string> missing;
+  for (const FolderProblem& p : verify_folder(at("sharded")).problems)
+    if (p.kind == "shard-missing") missing.push_back(p.path + ": " + p.message);
+  const std::vector<std::string> expected = {
+      "manifest.shard-1-of-5.json: missing, and so are the manifests up to manifest.shard-2-of-5.json: shards 1 to 2 of "
+      "5 did not finish (run them again; a shard all of whose inputs fail writes none)",
+      "manifest.shard-4-of-5.json: missing: shard 4/5 did not finish (run it again; a shard all of whose inputs fail "
+      "writes none)",
+  };
+  EXPECT_EQ(missing, expected);
+}
+
 TEST_F(VerifyTest, ShardsRunWithOtherFlagsAreRefused) {
   bake_into("sharded", {0, 2});
   bake_into("sharded", {1, 2}, BlendMode::kLbs);
@@ -217,6 +234,24 @@ TEST_F(VerifyTest, SymbolicLinksAreNotFollowed) {
   ASSERT_FALSE(r.ok());
   for (const FolderProblem& p : r.problems) EXPECT_NE(p.message.find("symbolic link"), std::string::npos) << p.path;
   EXPECT_EQ(r.problems.size(), r.files + 1) << "every listed file, and the folder itself";
+}
+
+// A listed path 20,000 folders deep is one file missing, found at once (each of its folders was looked at
+// through a copy of its whole path split into parts: verify never returned); an output folder inside
+// another is walked with it, so that a file there is named once.
+TEST_F(VerifyTest, DeepPathsAndNestedOutputFoldersAreLookedAtOnce) {
+  bake_into("out");
+  const fs::path manifest = root_ / "out" / "manifest.json";
+  auto json = nlohmann::json::parse(read_file(manifest));
+  std::string deep = "bending_arm";
+  for (int i = 0; i < 20000; ++i) deep += "/a";
+  json["outputs"].push_back({{"path", deep + "/f"}, {"size", 0}, {"sha256", std::string(64, '0')}});
+  json["inputs"].push_back(json["inputs"][0]);
+  json["inputs"][1]["output_folder"] = "bending_arm/bend";
+  std::ofstream(manifest) << json.dump();
+  std::ofstream(root_ / "out" / "bending_arm" / "bend" / "notes.txt") << "extra";
+  const std::vector<std::string> expected = {"missing " + deep + "/f", "unlisted bending_arm/bend/notes.txt"};
+  EXPECT_EQ(kinds(verify_folder(at("out"))), expected);
 }
 
 // A shard killed mid-bake leaves temporaries; its rerun keeps the finished files and removes them.

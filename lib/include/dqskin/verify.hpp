@@ -4,6 +4,7 @@
 // folders), no temporary file of an interrupted write is left, and every shard of a sharded job finished.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -28,8 +29,9 @@ struct VerifyReport {
 };
 
 // Checks `folder` against every manifest in it, hashing on `threads` threads (0: one per core). Throws
-// InputError when `folder` is not a readable folder.
-VerifyReport verify_folder(const std::string& folder, unsigned threads = 0);
+// InputError when `folder` is not a readable folder, or naming a manifest that takes more memory to read
+// than --max-memory allows; JobCancelled once `cancel` (may be null; set from a signal handler) is set.
+VerifyReport verify_folder(const std::string& folder, unsigned threads = 0, const std::atomic<bool>* cancel = nullptr);
 
 // Where a problem is, for a person: FOLDER/PATH, or FOLDER for the folder itself.
 std::string problem_location(const std::string& folder, const FolderProblem& problem);
@@ -54,7 +56,9 @@ struct MergeReport {
 // For every job in `folder` whose shards have run (bake: manifest.shard-I-of-N.json, render:
 // render-manifest.shard-I-of-N.json): verifies their files, checks that all N shards finished with the
 // same flags, inputs and deformer, and writes the manifest an unsharded run would have written (byte for
-// byte), then deletes the shard manifests it replaces. Writes nothing when any check fails.
-MergeReport merge_shards(const std::string& folder, unsigned threads = 0);
+// byte), then deletes the shard manifests it replaces. Writes nothing when any check fails. The manifests
+// change all at once: an error, or `cancel` (as verify_folder's) set before the end, leaves the folder as
+// it was, and throws (OutputError, JobCancelled).
+MergeReport merge_shards(const std::string& folder, unsigned threads = 0, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace dqskin
