@@ -20,8 +20,17 @@ namespace dqskin::report_detail {
 namespace {
 
 // Frames deformed per Deformer::run: the three blends of a chunk are kept while it is measured, so the
-// memory a clip needs does not grow with its length.
-constexpr size_t kFramesPerChunk = 32;
+// memory a clip needs does not grow with its length. At most 32 frames, and fewer for large meshes, so that
+// a chunk's deformed frames (positions and normals in double, three blends) take at most 256 MiB: 32
+// frames of a million vertices took 4.4 GiB and the report of a 1M-vertex character passed the 2 GiB
+// default of --max-memory. The figures do not depend on the chunk.
+constexpr size_t kMaxFramesPerChunk = 32;
+constexpr size_t kChunkBytes = size_t(256) << 20;
+
+size_t frames_per_chunk(size_t vertices) {
+  const size_t frame_bytes = 3 * std::max<size_t>(vertices, 1) * 6 * sizeof(double);
+  return std::clamp<size_t>(kChunkBytes / frame_bytes, 1, kMaxFramesPerChunk);
+}
 
 // The blends the report compares, each on the double-precision CPU reference: dib has no other path,
 // and lbs and dqs run there too so that every difference measured is the blends', not float rounding's
@@ -117,9 +126,10 @@ InputData measure_input(const InputPlan& input, const ReportOptions& options, Pr
     clip.times = plan.times;
     if (has_volume) clip.volume = ClipVolume{rest_volume, {}, {}, {}};
     for (JointData& j : data.joints) j.clips.emplace_back().reserve(plan.times.size());
-    for (size_t first = 0; first < plan.times.size(); first += kFramesPerChunk) {
+    const size_t chunk = frames_per_chunk(data.vertices);
+    for (size_t first = 0; first < plan.times.size(); first += chunk) {
       check_cancelled(options.cancel);
-      const size_t count = std::min(kFramesPerChunk, plan.times.size() - first);
+      const size_t count = std::min(chunk, plan.times.size() - first);
       const std::span<const double> times(plan.times.data() + first, count);
       const auto batches = blends.deform(plan.clip, times);
       std::vector<std::vector<JointFrame>> measured(count);
