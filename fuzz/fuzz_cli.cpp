@@ -8,62 +8,18 @@
 // status other than 0, 1 (some inputs failed) and 2 (input error).
 // What it cannot see: an unexpected std::exception inside one input becomes that input's error, as it
 // does for users (fuzz_load, which calls the loader directly, treats anything but InputError as a finding).
-#include "commands.hpp"
+#include "command_line.hpp"
 
-#include <fcntl.h>
-#include <stdlib.h>  // mkdtemp
-#include <unistd.h>
-
-#include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <string>
-#include <vector>
+using namespace dqskin::fuzz;
 
 namespace {
 
-namespace fs = std::filesystem;
-
-// One scratch folder per process, emptied after every input and removed when the process exits.
-const fs::path& scratch() {
-  // Never destroyed: the exit handler registered while it is made runs after static destructors would.
-  static const fs::path* const folder = [] {
-    std::string name = (fs::temp_directory_path() / "dqskin-fuzz-cli-XXXXXX").string();
-    if (!::mkdtemp(name.data())) std::abort();
-    const fs::path* path = new fs::path(name);
-    std::atexit([] {
-      std::error_code ignored;
-      fs::remove_all(scratch(), ignored);
-    });
-    return path;
-  }();
-  return *folder;
-}
-
-int run(std::vector<std::string> args) {
-  args.insert(args.begin(), "dqskin");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  argv.push_back(nullptr);
-  return dqskin::cli::run_cli(int(args.size()), argv.data());
-}
-
-// A copy of stderr made before libFuzzer's -close_fd_mask=3 closes it, for this target's own diagnosis.
-int g_stderr = 2;
-
-void expect_status(int status) {
-  if (status < 0 || status > 2) {
-    dprintf(g_stderr, "fuzz_cli: exit status %d\n", status);
-    std::abort();
-  }
-}
+void expect_status(int status) { dqskin::fuzz::expect_status("fuzz_cli", status); }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  if (const int fd = ::fcntl(2, F_DUPFD_CLOEXEC, 3); fd >= 0) g_stderr = fd;
+  keep_stderr();
   return 0;
 }
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Fuzzes for SECONDS seconds in all: configures and builds the "fuzz" preset (clang, libFuzzer, ASan +
-# UBSan), makes a seed corpus under build/fuzz/, checks every truncated prefix of the seeds, then runs,
-# with the glTF dictionary, dqskin_fuzz_load (the loader, two thirds of the time) and dqskin_fuzz_cli (the
-# command line's info and bake on the fuzzed file, the rest). Exits non-zero on any finding: crash,
+# UBSan), makes seed corpora under build/fuzz/, checks every truncated prefix of the loader's seeds, then
+# runs, with the glTF dictionary, dqskin_fuzz_load (the loader, half the time), then for an eighth each
+# dqskin_fuzz_cli (the command line's info, lint and bake on the fuzzed file), dqskin_fuzz_manifest (verify
+# and merge on a fuzzed manifest), dqskin_fuzz_exr (diff on a fuzzed EXR) and dqskin_fuzz_bake_folder (diff
+# of a bake folder with one file fuzzed). Exits non-zero on any finding: crash,
 # sanitizer report, uncaught exception, hang (-timeout), leak, or out-of-memory (-rss_limit_mb /
 # -malloc_limit_mb).
 #
@@ -27,7 +29,7 @@ cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz -j "${FUZZ_JOBS:-1}"
 fuzzer=$build/fuzz/dqskin_fuzz_load
 
-# Seed corpus: the valid files of the malformed catalogue (the compressed ones too, so that the meshopt and
+# Seed corpus of the loader and the command line: the valid files of the malformed catalogue (the compressed ones too, so that the meshopt and
 # Draco decoders are reached) and the project's test data, each at most 1 MiB.
 seeds=$build/seeds
 corpus=$build/corpus
@@ -85,13 +87,37 @@ run_target() {
   return "$status"
 }
 
-load_seconds=$(( (seconds * 2 + 2) / 3 ))
+# Seeds of the newer commands' inputs (docs/SECURITY.md "Every command"): a bake of the twisted cylinder
+# (its files for bake folders, its manifest and a shard's for manifests, its VAT textures for EXRs) and the
+# crafted EXRs of scripts/make_hostile_commands.py, each at most 1 MiB.
+file_seeds=$build/file-seeds
+rm -rf "$file_seeds"
+mkdir -p "$file_seeds/manifest" "$file_seeds/exr" "$file_seeds/bake_folder"
+bake_flags=(--format ply,obj,glb,vat --frames 0:1 --backend cpu -j 1 --quiet)
+"$build/app/dqskin" bake "$root/testdata/twisted_cylinder.gltf" -o "$file_seeds/bake" "${bake_flags[@]}"
+"$build/app/dqskin" bake "$root/testdata/twisted_cylinder.gltf" -o "$file_seeds/shard" "${bake_flags[@]}" --shard 0/2
+cp "$file_seeds/bake/manifest.json" "$file_seeds/shard/manifest.shard-0-of-2.json" "$file_seeds/manifest/"
+find "$file_seeds/bake" -type f -size -1025k -exec cp --backup=numbered {} "$file_seeds/bake_folder/" \;
+find "$file_seeds/bake" -name '*.exr' -exec cp --backup=numbered {} "$file_seeds/exr/" \;
+python3 "$root/scripts/make_hostile_commands.py" "$file_seeds/hostile" >/dev/null
+find "$file_seeds/hostile/diff" -name '*.exr' -size -1025k -exec cp {} "$file_seeds/exr/" \;
+for kind in manifest exr bake_folder; do
+  mkdir -p "$build/corpus-$kind"
+  echo "fuzz: $(ls "$file_seeds/$kind" | wc -l) $kind seeds"
+done
+
+# Half the time to the loader, the rest shared by the command line and the three newer kinds of input.
+# The commands print; -close_fd_mask=3 silences them (sanitizer reports still reach the log).
+load_seconds=$(( (seconds + 1) / 2 ))
+share=$(( (seconds - load_seconds) / 4 ))
 status=0
 run_target load "$corpus" "$load_seconds" || status=$?
-# The commands print; -close_fd_mask=3 silences them (sanitizer reports still reach the log).
-cli_seconds=$(( seconds - load_seconds ))  # 0 would mean no limit to libFuzzer
-if [ "$status" -eq 0 ] && [ "$cli_seconds" -gt 0 ]; then
-  run_target cli "$build/corpus-cli" "$cli_seconds" -close_fd_mask=3 || status=$?
+if [ "$share" -gt 0 ]; then  # 0 would mean no limit to libFuzzer
+  [ "$status" -eq 0 ] && { run_target cli "$build/corpus-cli" "$share" -close_fd_mask=3 || status=$?; }
+  for kind in manifest exr bake_folder; do
+    [ "$status" -eq 0 ] || break
+    seeds=$file_seeds/$kind run_target "$kind" "$build/corpus-$kind" "$share" -close_fd_mask=3 || status=$?
+  done
 fi
 [ "$status" -ne 0 ] && exit "$status"
 echo "fuzz: no finding"
