@@ -36,7 +36,7 @@ def report_cases(folder):
 
     clips_1000.gltf   the quad with its clip repeated 1,000 times (a 120 KB file): each clip's contact sheet
                       and the page that embeds them all took 5.7 GB whatever --max-memory said
-    clip_1e6.gltf     the quad whose clip lasts 10^6 s: at 1 fps, a million frames of figures; past
+    clip_2e5.gltf     the quad whose clip lasts 2·10^5 s: at 1 fps, 200,000 frames of figures; past
                       --max-memory the report's document was destroyed while the refusal unwound, and its
                       destructor's own allocation ended the process (abort, two lines, a stray sheet)
     rig_300_joints.glb  a tube of 6,000 vertices on 300 joints (scripts/make_big_rig.py): its report.json
@@ -50,9 +50,9 @@ def report_cases(folder):
 
     a = malformed.base_asset()
     offset = a.accessor_offset(malformed.TIMES)
-    a.bin[offset:offset + 12] = struct.pack("<3f", 0.0, 0.5, 1e6)
-    a.gltf["accessors"][malformed.TIMES]["max"] = [1e6]
-    write(folder, "clip_1e6.gltf", a.gltf_bytes())
+    a.bin[offset:offset + 12] = struct.pack("<3f", 0.0, 0.5, 2e5)
+    a.gltf["accessors"][malformed.TIMES]["max"] = [2e5]
+    write(folder, "clip_2e5.gltf", a.gltf_bytes())
 
     subprocess.run([sys.executable, os.path.join(HERE, "make_big_rig.py"), os.path.join(folder, "rig_300_joints.glb"),
                     "--vertices", "6000", "--joints", "300", "--seconds", "4"], check=True, stdout=subprocess.DEVNULL,
