@@ -4,7 +4,6 @@
 #include "../io/oiio_message.hpp"
 #include "../io/saturating.hpp"
 
-#include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 
@@ -106,11 +105,7 @@ BakedPoints read_glb(const std::string& path, const LoadOptions& load) {
   DiffSide side;
   try {
     Asset asset = load_asset(path, load);
-    const SideSize size = diff_side_size(asset);
-    const uint64_t left = memory_left(load.max_memory);
-    if (size.bytes > left)
-      throw InputError("comparing its " + std::to_string(size.vertices) + " vertices needs about " + byte_size(size.bytes) +
-                       ", more than " + left_text(left, load.max_memory));
+    check_side_fits(asset, load.max_memory);
     side = make_diff_side(std::move(asset), BlendMode::kLbs);
   } catch (const InputError& e) {
     throw InputError(without_quote(e.what()));

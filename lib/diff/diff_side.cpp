@@ -80,14 +80,18 @@ std::string left_text(uint64_t left, uint64_t max) {
                      : "the " + byte_size(left) + " that --max-memory " + byte_size(max) + " leaves";
 }
 
+void check_side_fits(const Asset& asset, uint64_t max) {
+  const SideSize size = diff_side_size(asset);
+  const uint64_t left = memory_left(max);
+  if (size.bytes > left)
+    throw InputError("comparing its " + std::to_string(size.vertices) + " vertices needs about " + byte_size(size.bytes) +
+                     ", more than " + left_text(left, max));
+}
+
 DiffSide load_diff_side(const std::string& path, const LoadOptions& load, BlendMode mode) {
   try {
     Asset asset = load_asset(path, load);
-    const SideSize size = diff_side_size(asset);
-    const uint64_t left = memory_left(load.max_memory);
-    if (size.bytes > left)
-      throw InputError("comparing its " + std::to_string(size.vertices) + " vertices needs about " + byte_size(size.bytes) +
-                       ", more than " + left_text(left, load.max_memory));
+    check_side_fits(asset, load.max_memory);
     return make_diff_side(std::move(asset), mode);
   } catch (const InputError& e) {
     throw InputError(path + ": " + e.what());

@@ -51,6 +51,10 @@ uint64_t memory_left(uint64_t max);
 // "--max-memory 2.00 GiB", or when less is left, "the 1.20 GiB that --max-memory 2.00 GiB leaves".
 std::string left_text(uint64_t left, uint64_t max);
 
+// Throws InputError (without the file's name) when `asset`'s side needs more memory than `max` (--max-memory)
+// leaves beside what is held now.
+void check_side_fits(const Asset& asset, uint64_t max);
+
 // Loads `path` with `load` and makes its side (make_diff_side); refuses a file whose side needs more
 // memory than load.max_memory leaves after loading it (diff_side_size). Throws InputError naming the file,
 // also for the memory ceiling's refusal (std::bad_alloc).
