@@ -2,6 +2,7 @@
 
 #include "dqskin/error.hpp"
 #include "../io/file_kind.hpp"
+#include "file_signature.hpp"
 #include "meshopt.hpp"
 #include "precheck.hpp"
 
@@ -114,6 +115,7 @@ std::vector<uint8_t> read_regular_file(const std::string& path, uint64_t max_byt
 ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& folder, const LoadOptions& options) {
   const bool glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   if (bytes.size() > UINT32_MAX) throw InputError("larger than 4 GiB, the most glTF allows");
+  if (const std::optional<std::string> reason = not_gltf_reason(bytes)) throw InputError(*reason);
   // tinygltf joins URIs to this folder as given: "" would make them relative to the current directory.
   const std::string base_dir = folder.empty() ? "." : folder;
   const ResourceRoot root(base_dir, options.resource_roots);

@@ -1,0 +1,39 @@
+// not_gltf_reason: what a file that is not glTF looks like, and no word for what is (or may be) glTF.
+#include "file_signature.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string_view>
+
+namespace dqskin::gltf {
+namespace {
+
+std::optional<std::string> reason(std::string_view text) {
+  return not_gltf_reason({reinterpret_cast<const uint8_t*>(text.data()), text.size()});
+}
+
+TEST(FileSignature, GltfAndJsonObjectsAreLeftToTheParser) {
+  EXPECT_FALSE(reason("glTF\x02\x00\x00\x00"));
+  EXPECT_FALSE(reason("{\"asset\":{\"version\":\"2.0\"}}"));
+  EXPECT_FALSE(reason("\xEF\xBB\xBF \r\n\t{}"));  // a byte order mark and whitespace first
+  EXPECT_FALSE(reason(""));                       // empty and blank files: the parser says "empty"
+  EXPECT_FALSE(reason(" \n"));
+}
+
+TEST(FileSignature, NamesTheFormatsUsersMeetInsteadOfGltf) {
+  EXPECT_EQ(reason(std::string_view("PK\x03\x04\x14\x00", 6)), "is not a glTF file: it is a ZIP archive");
+  EXPECT_EQ(reason("\x89PNG\r\n\x1A\nrest"), "is not a glTF file: it is a PNG image");
+  EXPECT_EQ(reason("Kaydara FBX Binary  \x00"), "is not a glTF file: it is a binary FBX file");
+}
+
+TEST(FileSignature, QuotesTheFirstLineOfAnythingElsePrintably) {
+  EXPECT_EQ(reason("<!DOCTYPE html>\n<html>"), "is not a glTF file: it starts with '<!DOCTYPE html>'");
+  EXPECT_EQ(reason("[1, 2, 3]"), "is not a glTF file: it starts with '[1, 2, 3]'");
+  EXPECT_EQ(reason("0123456789012345678901234567890"), "is not a glTF file: it starts with '012345678901234567890123'");
+  const std::optional<std::string> escaped = reason("\x1B[31mred");
+  ASSERT_TRUE(escaped);
+  EXPECT_EQ(escaped->find('\x1B'), std::string::npos) << *escaped;  // no terminal escape reaches stderr
+}
+
+}  // namespace
+}  // namespace dqskin::gltf
