@@ -168,19 +168,13 @@ private:
 }  // namespace
 
 void write_report_json(const nlohmann::json& report, AtomicFile& file) {
-  // As json::dump(2, ' ', false, replace) does it, to a file instead of a string.
+  // As json::dump(2, ' ', false, replace) does it, to a file instead of a string. Replace, not throw: the
+  // input's file name may be any bytes (as in the manifest).
   const auto adapter = std::make_shared<FileAdapter>(file);
   nlohmann::detail::serializer<nlohmann::json> serializer(adapter, ' ', nlohmann::json::error_handler_t::replace);
   serializer.dump(report, true, false, 2);
   adapter->write_character('\n');
   adapter->flush();
-}
-
-std::string report_json_text(const nlohmann::json& report) {
-  // Replace, not throw: the input's file name may be any bytes (as in the manifest).
-  std::string text = report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
-  text += '\n';
-  return text;
 }
 
 }  // namespace dqskin::report_detail

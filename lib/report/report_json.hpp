@@ -12,11 +12,9 @@ namespace dqskin::report_detail {
 
 nlohmann::json report_json(const InputData& input, const ReportOptions& options);
 
-// report.json's bytes: two-space indentation and a final newline, so that equal reports are equal files.
-std::string report_json_text(const nlohmann::json& report);
-
-// The same bytes written to `file` as they are made, never whole in memory (a long clip's series run to
-// hundreds of megabytes of text). Throws OutputError.
+// report.json's bytes, written to `file` as they are made, never whole in memory (a long clip's series run
+// to hundreds of megabytes of text): two-space indentation and a final newline, so that equal reports are
+// equal files. Throws OutputError.
 void write_report_json(const nlohmann::json& report, AtomicFile& file);
 
 }  // namespace dqskin::report_detail
