@@ -351,6 +351,7 @@ Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& 
   if (bytes.empty()) fail("the file is empty");
   gltf::ParsedModel parsed = gltf::parse_model(bytes, base_dir, options);
   Asset asset = convert(parsed.model, parsed.json_bytes, name, options);
+  if (options.refuse_undeformable && !asset.cannot_deform.empty()) fail(asset.cannot_deform.front());
   asset.warnings.insert(asset.warnings.begin(), parsed.warnings.begin(), parsed.warnings.end());
   if (options.keep_source) asset.source = gltf::keep_source(parsed, asset, options);
   return asset;

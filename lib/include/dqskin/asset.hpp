@@ -198,6 +198,10 @@ struct Asset {
   std::vector<SceneCamera> cameras;
   int default_scene = -1;
   std::vector<std::string> warnings;  // things that are allowed but worth telling the user
+  // Why the file, though it is read, cannot be deformed (two different channels for one node and path,
+  // say): one line each, naming the objects and the rule. Empty for every file the deforming commands
+  // accept. Only loads with LoadOptions::refuse_undeformable off can see it non-empty (info, lint).
+  std::vector<std::string> cannot_deform;
   std::shared_ptr<const SourceDocument> source;  // with LoadOptions::keep_source, else null
 };
 

@@ -34,6 +34,9 @@ struct LoadOptions {
   // Folders besides the model's own that its external buffers and images may come from (--resource-root).
   // A URI that resolves anywhere else, by "..", an absolute path or a symbolic link, is refused.
   std::vector<std::string> resource_roots;
+  // Throw the first of Asset::cannot_deform. The commands that only describe a file (info, lint) turn it
+  // off: they report what they find in every file a viewer opens, and only the commands that deform refuse.
+  bool refuse_undeformable = true;
 };
 
 // Loads a .gltf (external or data-URI buffers) or .glb file. Images are not decoded. Throws InputError
