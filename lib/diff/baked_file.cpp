@@ -112,8 +112,8 @@ BakedPoints read_glb(const std::string& path, const LoadOptions& load) {
   }
   BakedPoints points;
   for (size_t v = 0; v < side.vertices; ++v) {
-    points.positions.emplace_back(side.rest[v]);
-    points.normals.emplace_back(side.rest_normals[v]);
+    points.positions.emplace_back(side.rest.positions[v]);
+    points.normals.emplace_back(side.rest.normals[v]);
   }
   return points;
 }

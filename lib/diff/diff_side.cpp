@@ -122,17 +122,24 @@ DiffSide make_diff_side(Asset asset, BlendMode mode) {
   if (side.triangles.empty()) throw InputError("the scene has no triangles to compare");
   if (side.vertices > UINT32_MAX) throw InputError("the scene has more than 2^32 vertices");
 
-  const DeformedFrame rest = deform_frame(side.asset, side.instances, sample_pose(side.asset, nullptr, 0), mode);
-  side.rest.reserve(side.vertices);
-  for (size_t i = 0; i < rest.primitives.size(); ++i) {
-    const DeformedPrimitive& p = rest.primitives[i];
-    side.rest.insert(side.rest.end(), p.positions.begin(), p.positions.end());
-    if (!side.file_normals[i])
-      side.rest_normals.resize(side.rest.size(), glm::dvec3(0));
-    else
-      side.rest_normals.insert(side.rest_normals.end(), p.normals.begin(), p.normals.end());
-  }
+  side.rest = pose_surface(side, sample_pose(side.asset, nullptr, 0), mode);
   return side;
+}
+
+PosedSurface pose_surface(const DiffSide& side, const Pose& pose, BlendMode mode) {
+  const DeformedFrame frame = deform_frame(side.asset, side.instances, pose, mode);
+  PosedSurface surface;
+  surface.positions.reserve(side.vertices);
+  surface.normals.reserve(side.vertices);
+  for (size_t i = 0; i < frame.primitives.size(); ++i) {
+    const DeformedPrimitive& p = frame.primitives[i];
+    surface.positions.insert(surface.positions.end(), p.positions.begin(), p.positions.end());
+    if (!side.file_normals[i])
+      surface.normals.resize(surface.positions.size(), glm::dvec3(0));
+    else
+      surface.normals.insert(surface.normals.end(), p.normals.begin(), p.normals.end());
+  }
+  return surface;
 }
 
 void gather_frame(const DiffSide& side, const DeformedBatch& batch, size_t frame, SideFrame& out) {

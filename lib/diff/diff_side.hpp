@@ -16,6 +16,12 @@
 
 namespace dqskin::diff_detail {
 
+// A side's surface at one pose: world positions and normals per vertex, in vertex numbers (normals zero
+// where a primitive has none from the file).
+struct PosedSurface {
+  std::vector<glm::dvec3> positions, normals;
+};
+
 struct DiffSide {
   Asset asset;
   std::vector<MeshInstance> instances;
@@ -30,8 +36,7 @@ struct DiffSide {
   std::vector<uint8_t> on_surface;     // per vertex: on a triangle primitive, so compared
   std::vector<uint32_t> joint;         // per vertex: index into joint_names of the joint it mostly follows
   std::vector<std::string> joint_names;
-  std::vector<glm::dvec3> rest;        // world positions at the rest pose (the CPU reference, double)
-  std::vector<glm::dvec3> rest_normals;  // and normals (zero where a primitive has none)
+  PosedSurface rest;                   // at the rest pose (the CPU reference, double)
 };
 
 // What make_diff_side takes for `asset`, from its vertex and triangle counts: what the side holds (the rest
@@ -63,6 +68,9 @@ DiffSide load_diff_side(const std::string& path, const LoadOptions& load, BlendM
 // Prepares a loaded asset's `scene` (-1: the default) for a diff. Throws InputError when the scene has no
 // triangles.
 DiffSide make_diff_side(Asset asset, BlendMode mode);
+
+// `side`'s surface at `pose` (sample_pose's), deformed by the CPU reference in double.
+PosedSurface pose_surface(const DiffSide& side, const Pose& pose, BlendMode mode);
 
 // Positions and normals of every vertex at one frame, in vertex numbers: 3 floats each; normals are zero
 // where a primitive has none from the file.

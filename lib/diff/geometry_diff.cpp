@@ -3,9 +3,11 @@
 #include "dqskin/geometry_diff.hpp"
 
 #include "clip_matching.hpp"
+#include "correspondence.hpp"
 #include "diff_numbers.hpp"
 #include "diff_side.hpp"
 #include "error_heat_map.hpp"
+#include "frame_measure.hpp"
 #include "largest_errors.hpp"
 #include "surface_correspondence.hpp"
 #include "../concurrency/parallel_for.hpp"
@@ -34,7 +36,11 @@
 
 namespace dqskin {
 
+using diff_detail::Correspondence;
 using diff_detail::DiffSide;
+using diff_detail::FrameResult;
+using diff_detail::at;
+using diff_detail::measure;
 using diff_detail::LargestErrors;
 using diff_detail::SideFrame;
 using diff_detail::SurfacePoint;
@@ -50,148 +56,6 @@ constexpr uint64_t kMaxFramesAtOnce = 32;
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// Where each compared vertex of one side lies on the other side's surface.
-struct Correspondence {
-  std::vector<uint32_t> vertices;  // the compared vertices (those on triangles)
-  std::vector<SurfacePoint> points;
-  std::vector<uint32_t> joint;  // per compared vertex: the joint it mostly follows (the diff's joint table)
-  double max_rest_distance = 0;
-};
-
-glm::dvec3 lower(const std::vector<glm::dvec3>& p) {
-  glm::dvec3 m(kInf);
-  for (const glm::dvec3& v : p) m = glm::min(m, v);
-  return m;
-}
-glm::dvec3 upper(const std::vector<glm::dvec3>& p) {
-  glm::dvec3 m(-kInf);
-  for (const glm::dvec3& v : p) m = glm::max(m, v);
-  return m;
-}
-
-// Identity when the files have the same primitives with the same vertex counts and every vertex of one is
-// where the other's is: a re-export that kept the order is then compared vertex by vertex.
-bool same_vertices(const DiffSide& a, const DiffSide& b, double tolerance) {
-  if (a.primitive_size != b.primitive_size) return false;
-  for (size_t v = 0; v < a.vertices; ++v)
-    if (glm::length(a.rest[v] - b.rest[v]) > tolerance) return false;
-  return true;
-}
-
-Correspondence identity(const DiffSide& side) {
-  Correspondence c;
-  for (size_t v = 0; v < side.vertices; ++v) {
-    if (!side.on_surface[v]) continue;
-    c.vertices.push_back(uint32_t(v));
-    SurfacePoint p;
-    p.vertex[0] = p.vertex[1] = p.vertex[2] = uint32_t(v);
-    c.points.push_back(p);
-  }
-  return c;
-}
-
-// `onto_name`: "A" or "B", for the message when its triangles have no area.
-Correspondence closest_points(const DiffSide& from, const DiffSide& onto, const char* onto_name, unsigned threads) {
-  const diff_detail::SurfaceIndex index(onto.rest, onto.triangles, onto.rest_normals);
-  if (index.empty()) throw InputError(std::string(onto_name) + "'s triangles all have zero area");
-  Correspondence c;
-  for (size_t v = 0; v < from.vertices; ++v)
-    if (from.on_surface[v]) c.vertices.push_back(uint32_t(v));
-  c.points.resize(c.vertices.size());
-  constexpr size_t kBlock = 1024;
-  concurrency::parallel_for((c.vertices.size() + kBlock - 1) / kBlock, threads, [&](size_t block) {
-    const size_t end = std::min(c.vertices.size(), (block + 1) * kBlock);
-    for (size_t i = block * kBlock; i < end; ++i) c.points[i] = index.closest(from.rest[c.vertices[i]], from.rest_normals[c.vertices[i]]);
-  });
-  for (const SurfacePoint& p : c.points) c.max_rest_distance = std::max(c.max_rest_distance, double(p.distance));
-  return c;
-}
-
-// The figures of one frame, with what the clip accumulates from it.
-struct FrameResult {
-  FrameDiff figures;
-  double max_a_to_b = 0, max_b_to_a = 0;
-  char worst_side = 'A';
-  size_t worst_vertex = 0;
-  double sum = 0;
-  uint64_t samples = 0, over_warn = 0, over_fail = 0;
-  std::vector<float> joint_max;  // per joint name of the clip's table
-  glm::vec3 low{kInfF}, high{-kInfF};  // A's bounding box
-};
-
-glm::vec3 at(const std::vector<float>& a, size_t v) { return {a[3 * v], a[3 * v + 1], a[3 * v + 2]}; }
-
-// One direction of one frame: `from`'s compared vertices against the surface points of `onto`. Errors go
-// to `largest`, which keeps the frame's largest errors (for its percentile). The normal angle is found through the
-// smallest cosine, then measured exactly once (atan2 of |m × n| and m · n: an acos of a rounded cosine
-// reads 1e-5 degrees for equal normals).
-void measure(const SideFrame& from_frame, const SideFrame& onto_frame, const Correspondence& c, double warn, double fail,
-             char side, FrameResult& r, LargestErrors& largest, double& direction_max) {
-  const float* P = onto_frame.positions.data();
-  const float* N = onto_frame.normals.data();
-  const float* A = from_frame.positions.data();
-  const float* M = from_frame.normals.data();
-  // Two passes: the distances and normal cosines without a branch, so that the fetches of many samples
-  // are in flight at once; then the reductions over them.
-  const size_t count = c.vertices.size();
-  thread_local std::vector<float> distance, cosine;
-  distance.resize(count);
-  cosine.resize(count);
-  for (size_t i = 0; i < count; ++i) {
-    const size_t a = 3 * size_t(c.vertices[i]);
-    const SurfacePoint& s = c.points[i];
-    float p[3] = {0, 0, 0}, n[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) {
-      const size_t o = 3 * size_t(s.vertex[k]);
-      for (int j = 0; j < 3; ++j) p[j] += s.weight[k] * P[o + size_t(j)], n[j] += s.weight[k] * N[o + size_t(j)];
-    }
-    const float dx = A[a] - p[0], dy = A[a + 1] - p[1], dz = A[a + 2] - p[2];
-    distance[i] = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const float mm = M[a] * M[a] + M[a + 1] * M[a + 1] + M[a + 2] * M[a + 2];
-    const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const float dot = M[a] * n[0] + M[a + 1] * n[1] + M[a + 2] * n[2];
-    // 2 (no angle) where either normal is missing: never the smallest cosine.
-    cosine[i] = mm > 0 && nn > 1e-12f ? dot / std::sqrt(mm * nn) : 2.0f;
-  }
-  float worst = -1;
-  size_t worst_i = 0;
-  bool nan = false;
-  float min_cosine = 2;
-  size_t min_cosine_i = SIZE_MAX;
-  double sum = 0;
-  uint64_t over_warn = 0, over_fail = 0;
-  const float w = float(warn), f = float(fail);
-  for (size_t i = 0; i < count; ++i) {
-    const float e = distance[i];
-    largest.add(e);
-    sum += double(e);
-    over_warn += e > w;
-    over_fail += e > f;
-    if (e > worst) worst = e, worst_i = i;
-    nan |= std::isnan(e);
-    float& joint = r.joint_max[c.joint[i]];
-    joint = std::max(joint, e);
-    if (cosine[i] < min_cosine) min_cosine = cosine[i], min_cosine_i = i;
-  }
-  r.sum += sum, r.over_warn += over_warn, r.over_fail += over_fail;
-  // A NaN is the worst error there is: it must fail whatever the thresholds.
-  const double max = nan ? std::numeric_limits<double>::quiet_NaN() : double(std::max(worst, 0.0f));
-  direction_max = std::max(direction_max, max);
-  if (nan) direction_max = max;
-  if (worst >= 0 && !std::isnan(r.figures.max_error) && (nan || max > r.figures.max_error)) {
-    r.figures.max_error = max;
-    r.worst_side = side, r.worst_vertex = c.vertices[worst_i];
-  }
-  if (min_cosine_i != SIZE_MAX) {
-    const SurfacePoint& s = c.points[min_cosine_i];
-    glm::dvec3 n(0);
-    for (int k = 0; k < 3; ++k) n += double(s.weight[k]) * glm::dvec3(at(onto_frame.normals, s.vertex[k]));
-    const glm::dvec3 m = at(from_frame.normals, c.vertices[min_cosine_i]);
-    const double angle = std::atan2(glm::length(glm::cross(m, n)), glm::dot(m, n));
-    r.figures.max_normal_degrees = std::max(r.figures.max_normal_degrees, angle * 180.0 / M_PI);
-  }
-}
 
 struct Thresholds {
   double warn, fail, hard_warn, hard_fail;
@@ -244,17 +108,18 @@ public:
 
   void correspond() {
     const auto start = Clock::now();
-    const glm::dvec3 la = lower(a_.rest), ua = upper(a_.rest), lb = lower(b_.rest), ub = upper(b_.rest);
+    const diff_detail::Box box_a = diff_detail::bounding_box(a_.rest), box_b = diff_detail::bounding_box(b_.rest);
+    const glm::dvec3 la = box_a.low, ua = box_a.high, lb = box_b.low, ub = box_b.high;
     const double diagonal = std::max(glm::length(ua - la), glm::length(ub - lb));
     const double slack = 1e-6 * diagonal;
     if (glm::any(glm::greaterThan(la, ub + slack)) || glm::any(glm::greaterThan(lb, ua + slack)))
       throw InputError("the two files' meshes do not overlap at the rest pose (their bounding boxes are disjoint)");
-    report_.identity = same_vertices(a_, b_, slack);
+    report_.identity = diff_detail::same_vertices(a_, a_.rest, b_, b_.rest, slack);
     if (report_.identity) {
-      a_to_b_ = identity(a_), b_to_a_ = identity(b_);
+      a_to_b_ = diff_detail::identity(a_), b_to_a_ = diff_detail::identity(b_);
     } else {
-      a_to_b_ = closest_points(a_, b_, "B", threads_);
-      b_to_a_ = closest_points(b_, a_, "A", threads_);
+      a_to_b_ = diff_detail::closest_points(a_, a_.rest, b_, b_.rest, "B", threads_);
+      b_to_a_ = diff_detail::closest_points(b_, b_.rest, a_, a_.rest, "A", threads_);
     }
     for (uint32_t v : a_to_b_.vertices) a_to_b_.joint.push_back(joint_a_[a_.joint[v]]);
     for (uint32_t v : b_to_a_.vertices) b_to_a_.joint.push_back(joint_b_[b_.joint[v]]);
