@@ -19,10 +19,12 @@ set(geometry_diff_shared ${PROJECT_SOURCE_DIR}/../shared/testdata)
 set(geometry_diff_tests "")
 
 # geometry_diff_test(NAME EXPECTED A a.glb [SOURCE s.glb] [MAKE command options… | TOOL name TOOL_ARGS …]
-#                    [ARGS diff options…] [STDOUT regex] [STDERR regex] [ONE_LINE] [FAIL_LINE] [EXACT_JSON] [CONTROL])
+#                    [ARGS diff options…] [STDOUT regex] [STDERR regex] [ONE_LINE] [FAIL_LINE] [EXACT_JSON] [CONTROL]
+#                    [MAX_NORMAL_DEGREES d] [FACE_NORMALS])
 # The flags are geometry_diff_case.cmake's.
 function(geometry_diff_test name expected)
-  cmake_parse_arguments(T "ONE_LINE;FAIL_LINE;EXACT_JSON;CONTROL" "A;SOURCE;TOOL;STDOUT;STDERR;HEAT_MAP_SIZE"
+  cmake_parse_arguments(T "ONE_LINE;FAIL_LINE;EXACT_JSON;CONTROL;FACE_NORMALS"
+                        "A;SOURCE;TOOL;STDOUT;STDERR;HEAT_MAP_SIZE;MAX_NORMAL_DEGREES"
                         "MAKE;TOOL_ARGS;ARGS;OUT_FILES" ${ARGN})
   set(script_args -DDQSKIN=$<TARGET_FILE:dqskin_cli> -DPYTHON=${Python3_EXECUTABLE}
       -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/make_diff_cases.py -DWORK=${geometry_diff_scratch}/${name}
@@ -33,9 +35,11 @@ function(geometry_diff_test name expected)
       list(APPEND script_args "-D${list}=${value}")
     endif()
   endforeach()
-  if(DEFINED T_HEAT_MAP_SIZE)
-    list(APPEND script_args -DHEAT_MAP_SIZE=${T_HEAT_MAP_SIZE})
-  endif()
+  foreach(value HEAT_MAP_SIZE MAX_NORMAL_DEGREES)
+    if(DEFINED T_${value})
+      list(APPEND script_args -D${value}=${T_${value}})
+    endif()
+  endforeach()
   if(DEFINED T_SOURCE)
     list(APPEND script_args -DSOURCE=${T_SOURCE})
   endif()
@@ -48,7 +52,7 @@ function(geometry_diff_test name expected)
   if(DEFINED T_STDERR)
     list(APPEND script_args "-DSTDERR_REGEX=${T_STDERR}")
   endif()
-  foreach(flag ONE_LINE FAIL_LINE EXACT_JSON CONTROL)
+  foreach(flag ONE_LINE FAIL_LINE EXACT_JSON CONTROL FACE_NORMALS)
     if(T_${flag})
       list(APPEND script_args -D${flag}=ON)
     endif()
@@ -137,6 +141,9 @@ geometry_diff_test(unrelated_rigs 2 A ${arm} SOURCE ${PROJECT_SOURCE_DIR}/testda
   MAKE translate --by 1000 1000 1000 STDERR "^dqskin: " ONE_LINE CONTROL)
 geometry_diff_test(unrelated_cesium_man 2 A ${arm} SOURCE ${cesium}
   MAKE translate --by 1000 1000 1000 STDERR "^dqskin: " ONE_LINE CONTROL)
+
+# Characters shaped like real exports: a crumpled rest pose, unused vertices, flat shading.
+include(${CMAKE_CURRENT_LIST_DIR}/geometry_diff_exports.cmake)
 
 if(NOT DQSKIN_GEOMETRY_DIFF_TESTS)
   set_tests_properties(${geometry_diff_tests} PROPERTIES DISABLED ON)

@@ -7,11 +7,14 @@
 #         [-DMAKE=make_diff_cases.py command and its options | -DTOOL=gltfpack|gltf-transform -DTOOLS=node_modules/.bin
 #          "-DTOOL_ARGS=arguments, with <A> and <B> for the files"]
 #         "-DARGS=diff options" -DEXPECTED=status [-DSTDOUT_REGEX=...] [-DSTDERR_REGEX=...] [-DONE_LINE=ON]
-#         [-DFAIL_LINE=ON] [-DEXACT_JSON=ON] [-DCONTROL=ON] [-DTIMEOUT=s] -P geometry_diff_case.cmake
+#         [-DFAIL_LINE=ON] [-DEXACT_JSON=ON] [-DCONTROL=ON] [-DMAX_NORMAL_DEGREES=d] [-DFACE_NORMALS=ON]
+#         [-DTIMEOUT=s] -P geometry_diff_case.cmake
 #
 # FAIL_LINE: one line of stdout holds "clip <name>", "t = <seconds> s" and "at <joint>"; after `MAKE
 # rotate-key` they must be the clip, joint and key time (within 1e-3 s) that the script printed.
 # EXACT_JSON: stdout is one JSON document with status PASS and clips whose max_error is exactly 0.
+# MAX_NORMAL_DEGREES: stdout is the JSON report and every clip's max_normal_degrees is at most d.
+# FACE_NORMALS: stdout is the JSON report and correspondence.normals counts faces compared on both sides.
 # Prints "geometry_diff: SKIPPED: <why>" (CTest's SKIP_REGULAR_EXPRESSION) when SOURCE or the tool is missing.
 cmake_minimum_required(VERSION 3.25)
 if(NOT DEFINED TIMEOUT)
@@ -182,4 +185,27 @@ if(DEFINED OUT_FILES)
   if(NOT width GREATER HEAT_MAP_SIZE OR NOT height EQUAL HEAT_MAP_SIZE)
     report("${first} is ${width}x${height}, expected ${HEAT_MAP_SIZE} high and wider")
   endif()
+endif()
+
+if(DEFINED MAX_NORMAL_DEGREES)
+  string(JSON clips ERROR_VARIABLE problem LENGTH "${out}" clips)
+  if(problem OR clips LESS 1)
+    report("stdout is not a JSON report with clips ${problem}")
+  endif()
+  math(EXPR last "${clips} - 1")
+  foreach(i RANGE ${last})
+    string(JSON degrees ERROR_VARIABLE problem GET "${out}" clips ${i} max_normal_degrees)
+    if(problem OR degrees GREATER MAX_NORMAL_DEGREES)  # if() compares numbers as doubles
+      report("clip ${i}: max_normal_degrees is '${degrees}', more than ${MAX_NORMAL_DEGREES} ${problem}")
+    endif()
+  endforeach()
+endif()
+
+if(FACE_NORMALS)
+  foreach(side a b)
+    string(JSON faces ERROR_VARIABLE problem GET "${out}" correspondence normals faces_${side})
+    if(problem OR NOT faces GREATER 0)
+      report("correspondence.normals.faces_${side} is '${faces}', expected faces compared ${problem}")
+    endif()
+  endforeach()
 endif()

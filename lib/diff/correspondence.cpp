@@ -11,9 +11,10 @@
 
 namespace dqskin::diff_detail {
 
-Box bounding_box(const PosedSurface& surface) {
+Box bounding_box(const DiffSide& side, const PosedSurface& surface) {
   Box box{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
-  for (const glm::dvec3& p : surface.positions) box.low = glm::min(box.low, p), box.high = glm::max(box.high, p);
+  for (size_t v = 0; v < side.vertices; ++v)
+    if (side.on_surface[v]) box.low = glm::min(box.low, surface.positions[v]), box.high = glm::max(box.high, surface.positions[v]);
   return box;
 }
 

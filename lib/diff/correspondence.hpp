@@ -23,8 +23,8 @@ struct Correspondence {
 struct Box {
   glm::dvec3 low, high;
 };
-// The bounding box of a surface's vertices.
-Box bounding_box(const PosedSurface& surface);
+// The bounding box of `side`'s compared vertices (on_surface) at a pose.
+Box bounding_box(const DiffSide& side, const PosedSurface& surface);
 
 // True when the files have the same primitives with the same vertex counts and every vertex of one is
 // within `tolerance` of the other's at the pose: a re-export that kept the order is then compared vertex by

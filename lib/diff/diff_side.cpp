@@ -114,8 +114,13 @@ DiffSide make_diff_side(Asset asset, BlendMode mode) {
       side.file_normals.push_back(!primitive.normals.empty() && !primitive.normals_generated);
       side.vertices += primitive.vertex_count();
       const std::vector<uint32_t> triangles = triangle_list(primitive);
-      for (uint32_t i : triangles) side.triangles.push_back(uint32_t(first + i));
-      side.on_surface.resize(side.vertices, triangles.empty() ? 0 : 1);
+      // Only the vertices a triangle uses are compared: an optimizer drops the others (gltfpack does), and
+      // a primitive that shares its vertex buffer with others uses only its part of it.
+      side.on_surface.resize(side.vertices, 0);
+      for (uint32_t i : triangles) {
+        side.triangles.push_back(uint32_t(first + i));
+        side.on_surface[first + i] = 1;
+      }
       for (size_t v = 0; v < primitive.vertex_count(); ++v)
         side.joint.push_back(joint_of_vertex(side, instance, primitive, v, names, side.joint_names));
     }

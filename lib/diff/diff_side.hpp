@@ -33,7 +33,7 @@ struct DiffSide {
   std::vector<uint8_t> file_normals;
   size_t vertices = 0;
   std::vector<uint32_t> triangles;     // of triangle primitives, three vertex numbers each
-  std::vector<uint8_t> on_surface;     // per vertex: on a triangle primitive, so compared
+  std::vector<uint8_t> on_surface;     // per vertex: used by a triangle of its primitive, so compared
   std::vector<uint32_t> joint;         // per vertex: index into joint_names of the joint it mostly follows
   std::vector<std::string> joint_names;
   PosedSurface rest;                   // at the rest pose (the CPU reference, double)

@@ -108,7 +108,7 @@ public:
 
   void correspond() {
     const auto start = Clock::now();
-    const diff_detail::Box box_a = diff_detail::bounding_box(a_.rest), box_b = diff_detail::bounding_box(b_.rest);
+    const diff_detail::Box box_a = diff_detail::bounding_box(a_, a_.rest), box_b = diff_detail::bounding_box(b_, b_.rest);
     const glm::dvec3 la = box_a.low, ua = box_a.high, lb = box_b.low, ub = box_b.high;
     const double diagonal = std::max(glm::length(ua - la), glm::length(ub - lb));
     const double slack = 1e-6 * diagonal;
@@ -228,11 +228,14 @@ private:
   double diagonal_of(const Clip* clip, const std::vector<double>& times) {
     glm::vec3 low(kInfF), high(-kInfF);
     deform_a_->run(clip, times, [&](const DeformedBatch& batch) {
-      for (const DeformedBatch::Primitive& p : batch.primitives)
+      for (size_t k = 0; k < batch.primitives.size(); ++k) {
+        const DeformedBatch::Primitive& p = batch.primitives[k];
         for (size_t i = 0; i + 2 < p.positions.size(); i += 3) {
+          if (!a_.on_surface[a_.first_vertex[k] + (i / 3) % p.vertices]) continue;  // frame-major: i / 3 counts frames too
           const glm::vec3 v(p.positions[i], p.positions[i + 1], p.positions[i + 2]);
           low = glm::min(low, v), high = glm::max(high, v);
         }
+      }
     });
     return glm::length(glm::dvec3(high - low));
   }
@@ -262,6 +265,7 @@ private:
     r.figures.worst_joint = side.joint_names[side.joint[r.worst_vertex]];
     if (!options_.relative)  // with --relative, diagonal_of measured the box before the samples
       for (size_t v = 0; v < a_.vertices; ++v) {
+        if (!a_.on_surface[v]) continue;
         const glm::vec3 p = at(fa.positions, v);
         r.low = glm::min(r.low, p), r.high = glm::max(r.high, p);
       }
@@ -354,6 +358,8 @@ GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, con
   DiffSide side_a = diff_detail::load_diff_side(a, options.load, options.mode);
   DiffSide side_b = diff_detail::load_diff_side(b, options.load, options.mode);
   report.vertices_a = side_a.vertices, report.vertices_b = side_b.vertices;
+  report.on_no_triangle_a = size_t(std::count(side_a.on_surface.begin(), side_a.on_surface.end(), 0));
+  report.on_no_triangle_b = size_t(std::count(side_b.on_surface.begin(), side_b.on_surface.end(), 0));
   const std::vector<size_t> selected =
       side_a.asset.clips.empty() ? std::vector<size_t>{} : select_clips(side_a.asset, options.clips);
   const std::string both = a + " vs " + b;

@@ -75,6 +75,10 @@ std::string geometry_text(const GeometryDiffReport& r) {
   t += r.identity ? "correspondence: the same vertices in the same order\n"
                   : "correspondence: closest surface points; at rest A to B max " +
                         length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
+  if (r.on_no_triangle_a || r.on_no_triangle_b)
+    t += "note: " + std::to_string(r.on_no_triangle_a) + " of A's " + std::to_string(r.vertices_a) + " vertices and " +
+         std::to_string(r.on_no_triangle_b) + " of B's " + std::to_string(r.vertices_b) +
+         " are on no triangle (unused, or of points and lines): not compared\n";
   for (const ClipGeometryDiff& c : r.clips) {
     t += clip_line(r, c);
     if (!c.joints.empty()) {
@@ -122,7 +126,10 @@ std::string geometry_json(const GeometryDiffReport& r) {
   doc["correspondence"] = {{"kind", r.identity ? "identity" : "closest-point"},
                            {"rest_a_to_b", r.rest_a_to_b},
                            {"rest_b_to_a", r.rest_b_to_a}};
-  doc["vertices"] = {{"a", r.vertices_a}, {"b", r.vertices_b}};
+  doc["vertices"] = {{"a", r.vertices_a},
+                     {"b", r.vertices_b},
+                     {"on_no_triangle_a", r.on_no_triangle_a},
+                     {"on_no_triangle_b", r.on_no_triangle_b}};
   Json findings = Json::array();
   for (const AnimationFinding& f : r.findings)
     findings.push_back({{"severity", f.severity == DiffStatus::kPass ? "note" : status_name(f.severity)},

@@ -101,6 +101,9 @@ struct GeometryDiffReport {
   double correspondence_seconds = 0;
   double rest_a_to_b = 0, rest_b_to_a = 0;  // largest distance to the other surface at the rest pose
   size_t vertices_a = 0, vertices_b = 0;
+  // Vertices used by no triangle of their primitive (unused ones, and those of points and lines): left out
+  // of both directions and of the bounding box, since an optimizer drops them.
+  size_t on_no_triangle_a = 0, on_no_triangle_b = 0;
   std::vector<AnimationFinding> findings;
   std::vector<ClipGeometryDiff> clips;
   std::string contact_sheet;     // relative to out_dir, or empty
