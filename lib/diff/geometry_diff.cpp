@@ -4,6 +4,7 @@
 
 #include "clip_matching.hpp"
 #include "correspondence.hpp"
+#include "correspondence_pose.hpp"
 #include "diff_numbers.hpp"
 #include "diff_side.hpp"
 #include "error_heat_map.hpp"
@@ -106,20 +107,46 @@ public:
     deform_b_ = make_deformer(context, b.asset, b.instances, d);
   }
 
-  void correspond() {
+  // Makes the correspondence at the pose choose_correspondence_pose picks: the rest pose, or when it is
+  // degenerate the first pair of clips both files have (of `pairs`) at its first compared time, or the
+  // bind pose.
+  void correspond(const std::vector<diff_detail::ClipPair>& pairs) {
     const auto start = Clock::now();
-    const diff_detail::Box box_a = diff_detail::bounding_box(a_, a_.rest), box_b = diff_detail::bounding_box(b_, b_.rest);
+    const Clip* clip_a = nullptr;
+    const Clip* clip_b = nullptr;
+    std::string label;
+    double time = 0;
+    for (const diff_detail::ClipPair& pair : pairs)
+      if (pair.a >= 0 && pair.b >= 0) {
+        clip_a = &a_.asset.clips[size_t(pair.a)], clip_b = &b_.asset.clips[size_t(pair.b)];
+        label = diff_detail::clip_label(a_.asset, pair.a);
+        const std::vector<double> times = clip_times(clip_a, clip_b);
+        if (!times.empty()) time = times.front();
+        break;
+      }
+    const diff_detail::CorrespondencePose pose =
+        diff_detail::choose_correspondence_pose(a_, b_, clip_a, clip_b, label, time, options_.mode);
+    const diff_detail::PosedSurface& pa = pose.of_a(a_);
+    const diff_detail::PosedSurface& pb = pose.of_b(b_);
+    report_.correspondence_pose = pose.kind == diff_detail::PoseKind::kRest   ? "rest"
+                                  : pose.kind == diff_detail::PoseKind::kClip ? "clip"
+                                                                               : "bind";
+    report_.correspondence_clip = pose.clip, report_.correspondence_time = pose.time;
+    report_.rest_distortion_a = pose.rest_a.share(), report_.rest_distortion_b = pose.rest_b.share();
+
+    const diff_detail::Box box_a = diff_detail::bounding_box(a_, pa), box_b = diff_detail::bounding_box(b_, pb);
     const glm::dvec3 la = box_a.low, ua = box_a.high, lb = box_b.low, ub = box_b.high;
     const double diagonal = std::max(glm::length(ua - la), glm::length(ub - lb));
     const double slack = 1e-6 * diagonal;
     if (glm::any(glm::greaterThan(la, ub + slack)) || glm::any(glm::greaterThan(lb, ua + slack)))
-      throw InputError("the two files' meshes do not overlap at the rest pose (their bounding boxes are disjoint)");
-    report_.identity = diff_detail::same_vertices(a_, a_.rest, b_, b_.rest, slack);
+      throw InputError("the two files' meshes do not overlap at " + pose_text(report_) +
+                       " (their bounding boxes are disjoint)");
+    report_.identity = diff_detail::same_vertices(a_, pa, b_, pb, slack);
     if (report_.identity) {
       a_to_b_ = diff_detail::identity(a_), b_to_a_ = diff_detail::identity(b_);
     } else {
-      a_to_b_ = diff_detail::closest_points(a_, a_.rest, b_, b_.rest, "B", threads_);
-      b_to_a_ = diff_detail::closest_points(b_, b_.rest, a_, a_.rest, "A", threads_);
+      a_to_b_ = diff_detail::closest_points(a_, pa, b_, pb, "B", threads_);
+      b_to_a_ = diff_detail::closest_points(b_, pb, a_, pa, "A", threads_);
     }
     for (uint32_t v : a_to_b_.vertices) a_to_b_.joint.push_back(joint_a_[a_.joint[v]]);
     for (uint32_t v : b_to_a_.vertices) b_to_a_.joint.push_back(joint_b_[b_.joint[v]]);
@@ -377,7 +404,7 @@ GeometryDiffReport diff_geometry(const std::string& a, const std::string& b, con
   std::optional<GeometryDiffer> differ;
   of_pair(both, [&] {
     differ.emplace(side_a, side_b, options, report);
-    differ->correspond();
+    differ->correspond(match.pairs);
   });
   for (const diff_detail::ClipPair& pair : match.pairs)
     report.clips.push_back(of_pair(both, [&] { return differ->compare(pair); }));

@@ -1,5 +1,6 @@
 // The reports of a GeometryDiffReport (include/dqskin/geometry_report.hpp). Formatting only.
 #include "dqskin/geometry_report.hpp"
+#include "correspondence_pose.hpp"
 #include "diff_numbers.hpp"
 #include "../io/xml_escape.hpp"
 
@@ -53,9 +54,21 @@ std::string clip_line(const GeometryDiffReport& r, const ClipGeometryDiff& c) {
   return line + "\n";
 }
 
+// A share as a percentage with 3 significant digits: "31.2%".
+std::string share(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g%%", 100.0 * value);
+  return text;
+}
+
 std::string threshold_unit(const GeometryDiffReport& r) { return r.relative ? " of the diagonal" : " scene units"; }
 
 }  // namespace
+
+std::string pose_text(const GeometryDiffReport& r) {
+  if (r.correspondence_pose == "clip") return "clip " + r.correspondence_clip + ", t = " + number(r.correspondence_time) + " s";
+  return "the " + r.correspondence_pose + " pose";
+}
 
 std::string geometry_text(const GeometryDiffReport& r) {
   if (r.bake) {
@@ -72,9 +85,18 @@ std::string geometry_text(const GeometryDiffReport& r) {
   }
   std::string t = "A " + r.a + " (" + std::to_string(r.vertices_a) + " vertices), B " + r.b + " (" +
                   std::to_string(r.vertices_b) + " vertices); " + to_string(r.mode) + " on " + r.deformer + "\n";
-  t += r.identity ? "correspondence: the same vertices in the same order\n"
-                  : "correspondence: closest surface points; at rest A to B max " +
-                        length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
+  if (r.correspondence_pose == "rest") {
+    t += r.identity ? "correspondence: the same vertices in the same order\n"
+                    : "correspondence: closest surface points; at rest A to B max " +
+                          length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
+  } else {
+    t += r.identity ? "correspondence: the same vertices in the same order at " + pose_text(r) + "\n"
+                    : "correspondence: closest surface points at " + pose_text(r) + "; there A to B max " +
+                          length(r.rest_a_to_b) + ", B to A max " + length(r.rest_b_to_a) + "\n";
+    t += "      the rest pose is degenerate: it distorts " + share(r.rest_distortion_a) + " of A's triangles and " +
+         share(r.rest_distortion_b) + " of B's against the bind pose (an edge over twice or under half its length, or "
+         "the triangle turned over; degenerate over " + share(diff_detail::kDegenerateShare) + ")\n";
+  }
   if (r.on_no_triangle_a || r.on_no_triangle_b)
     t += "note: " + std::to_string(r.on_no_triangle_a) + " of A's " + std::to_string(r.vertices_a) + " vertices and " +
          std::to_string(r.on_no_triangle_b) + " of B's " + std::to_string(r.vertices_b) +
@@ -123,9 +145,15 @@ std::string geometry_json(const GeometryDiffReport& r) {
                        {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
                        {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)},
                        {"relative", r.relative}};
-  doc["correspondence"] = {{"kind", r.identity ? "identity" : "closest-point"},
-                           {"rest_a_to_b", r.rest_a_to_b},
-                           {"rest_b_to_a", r.rest_b_to_a}};
+  // rest_a_to_b and rest_b_to_a: at the pose named by "pose" (the rest pose unless it is degenerate).
+  doc["correspondence"] = {
+      {"kind", r.identity ? "identity" : "closest-point"},
+      {"pose", r.correspondence_pose},
+      {"clip", r.correspondence_pose == "clip" ? Json(r.correspondence_clip) : Json(nullptr)},
+      {"time", r.correspondence_pose == "clip" ? Json(r.correspondence_time) : Json(nullptr)},
+      {"rest_distortion", {{"a", r.rest_distortion_a}, {"b", r.rest_distortion_b}, {"degenerate_over", diff_detail::kDegenerateShare}}},
+      {"rest_a_to_b", r.rest_a_to_b},
+      {"rest_b_to_a", r.rest_b_to_a}};
   doc["vertices"] = {{"a", r.vertices_a},
                      {"b", r.vertices_b},
                      {"on_no_triangle_a", r.on_no_triangle_a},

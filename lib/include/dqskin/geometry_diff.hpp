@@ -99,7 +99,17 @@ struct GeometryDiffReport {
   std::string deformer;          // describe(DeformPath) of what deformed
   bool identity = false;         // same vertices in the same order: compared vertex by vertex
   double correspondence_seconds = 0;
-  double rest_a_to_b = 0, rest_b_to_a = 0;  // largest distance to the other surface at the rest pose
+  // Where the correspondence was made: "rest" (the rest pose), "clip" (correspondence_clip at
+  // correspondence_time: the rest pose of A or B is degenerate) or "bind" (the bind pose POSITION stores:
+  // the rest pose is degenerate and so is the clip's, or no clip is compared).
+  std::string correspondence_pose = "rest";
+  std::string correspondence_clip;
+  double correspondence_time = 0;
+  // The share of each file's triangles that the rest pose distorts against the bind pose: an edge over
+  // twice or under half its length there (against its primitive's median ratio), or the triangle turned
+  // over. Over 5%: degenerate.
+  double rest_distortion_a = 0, rest_distortion_b = 0;
+  double rest_a_to_b = 0, rest_b_to_a = 0;  // largest distance to the other surface at that pose
   size_t vertices_a = 0, vertices_b = 0;
   // Vertices used by no triangle of their primitive (unused ones, and those of points and lines): left out
   // of both directions and of the bounding box, since an optimizer drops them.
@@ -112,6 +122,9 @@ struct GeometryDiffReport {
   // FAIL when a clip failed or a finding is a failure, else WARN likewise, else PASS.
   DiffStatus status() const;
 };
+
+// "the rest pose", "clip Walk, t = 0 s" or "the bind pose": where a report's correspondence was made.
+std::string pose_text(const GeometryDiffReport& report);
 
 // True when `path` names a glTF file (.gltf or .glb, any case): diff compares geometry then.
 bool is_gltf_name(const std::string& path);
