@@ -6,6 +6,8 @@
 #             still fails and is named.
 #   unused    vertices that no triangle uses, against the same character without them (what gltfpack makes
 #             of it, and gltfpack's own output): exit 0, and the note counts them.
+#   flat      flat shading, with split normals or without NORMAL, against its gltfpack output: a normal
+#             figure under 1°, faces compared (the JSON's correspondence.normals).
 # The shared driver is geometry_diff.cmake's geometry_diff_test (geometry_diff_case.cmake).
 set(_models ${CMAKE_CURRENT_BINARY_DIR}/geometry_diff_models)
 set(_generator ${PROJECT_SOURCE_DIR}/scripts/make_diff_models.py)
@@ -36,3 +38,9 @@ geometry_diff_test(unused_vertices 0 A ${_models}/unused.glb SOURCE ${_models}/u
   ${_strict} STDOUT "528 of A's 1056 vertices and 0 of B's 528 are on no triangle")
 geometry_diff_test(unused_vertices_gltfpack 0 A ${_models}/unused.glb ${_pack} ${_strict}
   STDOUT "528 of A's 1056 vertices and 0 of B's 528 are on no triangle")
+
+# -- flat shading -------------------------------------------------------------------------------------------
+foreach(_model flat flat_no_normals)
+  geometry_diff_test(${_model}_gltfpack 0 A ${_models}/${_model}.glb ${_pack} ${_strict} --json
+    MAX_NORMAL_DEGREES 1 FACE_NORMALS)
+endforeach()

@@ -18,6 +18,11 @@ struct Correspondence {
   std::vector<SurfacePoint> points;
   std::vector<uint32_t> joint;  // per compared vertex: the joint it mostly follows (the diff's joint table)
   double max_rest_distance = 0;  // the largest distance to the other surface where the correspondence was made
+  // How normals are compared (normal_comparison.hpp): per compared vertex, whether its normal is compared
+  // with the surface point's; and the triangles compared by face normal, three indices into `vertices`
+  // (and `points`) each.
+  std::vector<uint8_t> smooth;
+  std::vector<uint32_t> faces;
 };
 
 struct Box {

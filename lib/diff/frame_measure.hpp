@@ -31,7 +31,8 @@ struct FrameResult {
 // Vertex v of a frame's flat float array (3 per vertex).
 inline glm::vec3 at(const std::vector<float>& a, size_t v) { return {a[3 * v], a[3 * v + 1], a[3 * v + 2]}; }
 
-// One direction of one frame: `from`'s compared vertices against the surface points of `onto`. Errors go
+// One direction of one frame: `from`'s compared vertices against the surface points of `onto`, and the
+// normals as the correspondence says (its smooth vertices, then its faces). Errors go
 // to `largest`, which keeps the frame's largest errors (for its percentile). The normal angle is found through the
 // smallest cosine, then measured exactly once (atan2 of |m × n| and m · n: an acos of a rounded cosine
 // reads 1e-5 degrees for equal normals).

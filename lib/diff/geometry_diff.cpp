@@ -9,6 +9,7 @@
 #include "diff_side.hpp"
 #include "error_heat_map.hpp"
 #include "frame_measure.hpp"
+#include "normal_comparison.hpp"
 #include "largest_errors.hpp"
 #include "surface_correspondence.hpp"
 #include "../concurrency/parallel_for.hpp"
@@ -150,6 +151,12 @@ public:
     }
     for (uint32_t v : a_to_b_.vertices) a_to_b_.joint.push_back(joint_a_[a_.joint[v]]);
     for (uint32_t v : b_to_a_.vertices) b_to_a_.joint.push_back(joint_b_[b_.joint[v]]);
+    const std::vector<uint8_t> smooth_a = diff_detail::smooth_vertices(a_, pa), smooth_b = diff_detail::smooth_vertices(b_, pb);
+    diff_detail::plan_normal_comparison(a_, smooth_a, smooth_b, a_to_b_);
+    diff_detail::plan_normal_comparison(b_, smooth_b, smooth_a, b_to_a_);
+    report_.smooth_normals_a = size_t(std::count(a_to_b_.smooth.begin(), a_to_b_.smooth.end(), 1));
+    report_.smooth_normals_b = size_t(std::count(b_to_a_.smooth.begin(), b_to_a_.smooth.end(), 1));
+    report_.face_normals_a = a_to_b_.faces.size() / 3, report_.face_normals_b = b_to_a_.faces.size() / 3;
     report_.rest_a_to_b = a_to_b_.max_rest_distance;
     report_.rest_b_to_a = b_to_a_.max_rest_distance;
     report_.correspondence_seconds = seconds_since(start);
@@ -220,14 +227,14 @@ private:
   // Frames deformed and measured at once: up to 32, fewer when --max-memory leaves less beside what is
   // held now (both files, their sides, the correspondence, the deformers). Each frame takes both sides'
   // positions and normals as float, once gathered and once in the deformer's batch; each thread measuring
-  // a frame its distances and cosines; one more frame of each side for a heat map. Throws InputError
+  // a frame its distances, cosines and surface points; one more frame of each side for a heat map. Throws InputError
   // when not even one frame fits.
   size_t frames_at_once() const {
     using saturating::add;
     using saturating::mul;
     constexpr uint64_t kFrameBytesPerVertex = 2 * (12 + 12);
     const uint64_t per_frame = mul(kFrameBytesPerVertex, uint64_t(a_.vertices) + uint64_t(b_.vertices));
-    const uint64_t measuring = mul(uint64_t(threads_) * 8, std::max(a_to_b_.vertices.size(), b_to_a_.vertices.size()));
+    const uint64_t measuring = mul(uint64_t(threads_) * 20, std::max(a_to_b_.vertices.size(), b_to_a_.vertices.size()));
     const uint64_t fixed = add(measuring, per_frame);  // the heat map's frame
     const uint64_t left = diff_detail::memory_left(options_.load.max_memory);
     if (add(fixed, per_frame) > left)

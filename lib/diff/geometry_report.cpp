@@ -97,6 +97,10 @@ std::string geometry_text(const GeometryDiffReport& r) {
          share(r.rest_distortion_b) + " of B's against the bind pose (an edge over twice or under half its length, or "
          "the triangle turned over; degenerate over " + share(diff_detail::kDegenerateShare) + ")\n";
   }
+  t += "normals: vertex normals at " + std::to_string(r.smooth_normals_a) + " of A's and " +
+       std::to_string(r.smooth_normals_b) + " of B's vertices (one smooth normal in both files), face normals on " +
+       std::to_string(r.face_normals_a) + " of A's and " + std::to_string(r.face_normals_b) +
+       " of B's triangles (flat shading, split normals or no NORMAL)\n";
   if (r.on_no_triangle_a || r.on_no_triangle_b)
     t += "note: " + std::to_string(r.on_no_triangle_a) + " of A's " + std::to_string(r.vertices_a) + " vertices and " +
          std::to_string(r.on_no_triangle_b) + " of B's " + std::to_string(r.vertices_b) +
@@ -153,7 +157,9 @@ std::string geometry_json(const GeometryDiffReport& r) {
       {"time", r.correspondence_pose == "clip" ? Json(r.correspondence_time) : Json(nullptr)},
       {"rest_distortion", {{"a", r.rest_distortion_a}, {"b", r.rest_distortion_b}, {"degenerate_over", diff_detail::kDegenerateShare}}},
       {"rest_a_to_b", r.rest_a_to_b},
-      {"rest_b_to_a", r.rest_b_to_a}};
+      {"rest_b_to_a", r.rest_b_to_a},
+      {"normals",
+       {{"smooth_a", r.smooth_normals_a}, {"smooth_b", r.smooth_normals_b}, {"faces_a", r.face_normals_a}, {"faces_b", r.face_normals_b}}}};
   doc["vertices"] = {{"a", r.vertices_a},
                      {"b", r.vertices_b},
                      {"on_no_triangle_a", r.on_no_triangle_a},

@@ -44,7 +44,8 @@ struct GeometryDiffOptions {
 struct FrameDiff {
   double time = 0;
   double max_error = 0, p99_error = 0, mean_error = 0;  // scene units
-  double max_normal_degrees = 0;  // largest angle between corresponding normals (where both have normals)
+  double max_normal_degrees = 0;  // largest angle between corresponding normals (vertex or face normals:
+                                  // GeometryDiffReport::smooth_normals_a says where which)
   std::string worst_joint;        // the joint the worst vertex mostly follows
 };
 
@@ -110,6 +111,11 @@ struct GeometryDiffReport {
   // over. Over 5%: degenerate.
   double rest_distortion_a = 0, rest_distortion_b = 0;
   double rest_a_to_b = 0, rest_b_to_a = 0;  // largest distance to the other surface at that pose
+  // How normals are compared: vertex normals where both files define one smooth normal at corresponding
+  // points (A's vertices against B's surface, B's against A's), face normals elsewhere (flat shading,
+  // split normals, a primitive without NORMAL): the triangles of each file compared so.
+  size_t smooth_normals_a = 0, smooth_normals_b = 0;
+  size_t face_normals_a = 0, face_normals_b = 0;
   size_t vertices_a = 0, vertices_b = 0;
   // Vertices used by no triangle of their primitive (unused ones, and those of points and lines): left out
   // of both directions and of the bounding box, since an optimizer drops them.
