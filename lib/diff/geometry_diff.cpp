@@ -49,7 +49,6 @@ using diff_detail::SurfacePoint;
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr float kInfF = std::numeric_limits<float>::infinity();
 
 
