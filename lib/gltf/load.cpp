@@ -41,7 +41,10 @@ bool is_supported_extension(const std::string& name) {
       "KHR_materials_emissive_strength", "KHR_materials_unlit", "KHR_materials_pbrSpecularGlossiness",
       "KHR_materials_clearcoat", "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_transmission",
       "KHR_materials_volume", "KHR_materials_sheen", "KHR_materials_iridescence", "KHR_materials_variants",
-      "KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp", "KHR_lights_punctual"};
+      "KHR_texture_transform", "KHR_texture_basisu", "EXT_texture_webp", "KHR_lights_punctual",
+      // Channels that name their property by a JSON pointer: those on nodes and meshes are read as ordinary
+      // channels, the others (appearance, cameras) ignored with a warning (animations.cpp).
+      "KHR_animation_pointer"};
   return supported.count(name) > 0;
 }
 
@@ -236,7 +239,7 @@ Asset convert(tinygltf::Model& m, uint64_t json_bytes, const std::string& path, 
 }  // namespace
 
 Asset gltf::read_structure(tinygltf::Model& m, uint64_t json_bytes, const std::string& path,
-                           const LoadOptions& options) {
+                           const LoadOptions& options, AnimationOrigins* animations) {
   for (const std::string& ext : m.extensionsRequired)
     if (!is_supported_extension(ext)) fail("requires extension " + ext + ", which dqskin does not support");
   check_memory(m, json_bytes, options);
@@ -247,7 +250,8 @@ Asset gltf::read_structure(tinygltf::Model& m, uint64_t json_bytes, const std::s
   read_nodes(m, asset);
   read_scenes(m, asset);
   read_skins(m, reader, asset);
-  gltf::read_animations(m, reader, asset);
+  AnimationOrigins origins = gltf::read_animations(m, reader, asset);
+  if (animations) *animations = std::move(origins);
   return asset;
 }
 
