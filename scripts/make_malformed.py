@@ -836,6 +836,7 @@ def animation_channel_cases(cat, base):
     def f(a):
         a.gltf["nodes"][2] = {"name": "tip joint", "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1]}
         pointer(0, "/nodes/2/translation")(a)
+        pointer(1, "/nodes/2/rotation")(a)
     cat.gltf("pointer_animates_matrix_node", edit(base, f), r"animation 0 channel 0: animates node 2, which has a matrix")
 
     # A repeat with the same keys, as an ordinary channel and as a pointer: loaded, one warning.
@@ -857,6 +858,17 @@ def animation_channel_cases(cat, base):
     cat.warning("pointer_to_material", edit(base, f),
                 r"animation 0 'wave': 1 KHR_animation_pointer channel animating what dqskin does not deform is "
                 r"ignored: '/materials/0/pbrMetallicRoughness/baseColorFactor'")
+    # Seven such pointers, the first 200 bytes long: the warning quotes five, each cut at 80 bytes.
+    def f(a):
+        a.gltf["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]}}]
+        channels = a.gltf["animations"][0]["channels"]
+        for k in range(7):
+            channels.append(copy.deepcopy(channels[1]))
+            pointer(len(channels) - 1, "/extras/" + "x" * 192 if k == 0 else "/materials/0/extras/%d" % k)(a)
+    cat.warning("pointer_many_ignored", edit(base, f),
+                r"animation 0 'wave': 7 KHR_animation_pointer channels animating what dqskin does not deform are "
+                r"ignored: '/extras/x+[.][.][.]', '/materials/0/extras/1', '/materials/0/extras/2', "
+                r"'/materials/0/extras/3', '/materials/0/extras/4' and 2 more")
     # Both channels as pointers, the extension required: a file dqskin reads.
     def f(a):
         pointer(0, "/nodes/2/translation")(a)

@@ -65,7 +65,7 @@ struct Target {
 };
 
 // A KHR_animation_pointer channel's target, or nothing when its pointer names a property dqskin does not
-// animate (added to `ignored`). Pointers to nodes and meshes must name ones that exist.
+// animate (added to `ignored`, quoted). Pointers to nodes and meshes must name ones that exist.
 std::optional<Target> pointer_target(const tinygltf::AnimationChannel& ch, const tinygltf::Model& m,
                                      const Asset& asset, const std::string& what, std::vector<std::string>& ignored) {
   if (ch.target_node >= 0)
@@ -75,7 +75,7 @@ std::optional<Target> pointer_target(const tinygltf::AnimationChannel& ch, const
   const AnimationPointer p = parse_animation_pointer(*pointer);
   if (!p.problem.empty()) fail(what + ": pointer " + quoted(*pointer) + " " + p.problem);
   switch (p.property) {
-    case PointerProperty::kOther: ignored.push_back(*pointer); return std::nullopt;
+    case PointerProperty::kOther: ignored.push_back(quoted(*pointer)); return std::nullopt;
     case PointerProperty::kMeshWeights:
       if (p.index >= m.meshes.size())
         fail(what + ": pointer " + quoted(*pointer) + " names mesh " + std::to_string(p.index) + ", which does not exist");
@@ -170,10 +170,10 @@ std::string describe(const Target& t, const tinygltf::Model& m, const Asset& ass
   return named(t.mesh ? "mesh" : "node", size_t(t.index), name) + " " + path_name(t.path);
 }
 
-// The pointers of a list, at most 5, then how many more.
+// The quoted pointers of a list, at most 5, then how many more.
 std::string pointer_list(const std::vector<std::string>& pointers) {
   std::string out;
-  for (size_t i = 0; i < pointers.size() && i < 5; ++i) out += (i ? ", " : "") + quoted(pointers[i]);
+  for (size_t i = 0; i < pointers.size() && i < 5; ++i) out += (i ? ", " : "") + pointers[i];
   if (pointers.size() > 5) out += " and " + std::to_string(pointers.size() - 5) + " more";
   return out;
 }
@@ -195,7 +195,7 @@ AnimationOrigins read_animations(const tinygltf::Model& m, const AccessorReader&
     clip.name = anim.name.empty() ? "animation" + std::to_string(a) : anim.name;
     std::vector<ReadChannel> kept;
     std::map<Target, size_t> first_of;  // target → index into kept
-    std::vector<std::string> ignored;   // pointers to properties dqskin does not animate
+    std::vector<std::string> ignored;   // pointers to properties dqskin does not animate, quoted (cut short)
     size_t identical = 0;
     for (size_t c = 0; c < anim.channels.size(); ++c) {
       const tinygltf::AnimationChannel& ch = anim.channels[c];
