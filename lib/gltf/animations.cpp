@@ -12,6 +12,7 @@
 #include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 namespace dqskin::gltf {
 namespace {
@@ -188,6 +189,11 @@ struct ReadChannel {
 
 AnimationOrigins read_animations(const tinygltf::Model& m, const AccessorReader& reader, Asset& asset) {
   AnimationOrigins origins;
+  // The nodes that draw each mesh, in node order: a mesh's weights channel animates them (found once, so
+  // that many such channels in a file of many nodes take time in proportion to what they animate).
+  std::vector<std::vector<size_t>> drawn_by(m.meshes.size());
+  for (size_t n = 0; n < asset.nodes.size(); ++n)
+    if (asset.nodes[n].mesh >= 0) drawn_by[size_t(asset.nodes[n].mesh)].push_back(n);
   for (size_t a = 0; a < m.animations.size(); ++a) {
     const tinygltf::Animation& anim = m.animations[a];
     const std::string animation = named("animation", a, anim.name);
@@ -244,11 +250,8 @@ AnimationOrigins read_animations(const tinygltf::Model& m, const AccessorReader&
     // node's own weights does.
     for (const ReadChannel& r : kept) {
       if (!r.target.mesh) continue;
-      for (size_t n = 0; n < asset.nodes.size(); ++n) {
-        const Node& node = asset.nodes[n];
-        if (node.mesh != r.target.index || !node.weights.empty() ||
-            first_of.count(Target{false, int(n), TargetPath::kWeights}))
-          continue;
+      for (size_t n : drawn_by[size_t(r.target.index)]) {
+        if (!asset.nodes[n].weights.empty() || first_of.count(Target{false, int(n), TargetPath::kWeights})) continue;
         from.push_back({r.file_channel, size_t(anim.channels[r.file_channel].sampler)});
         clip.channels.push_back(r.channel);
         clip.channels.back().node = int(n);
