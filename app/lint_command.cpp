@@ -73,7 +73,8 @@ int run_lint(LintSettings& s) {
       const LintFixSummary fixed = lint_fix(s.inputs.front(), s.output, o);
       std::cerr << "dqskin: lint: wrote " << printable(s.output) << " (influences of " << fixed.primitives
                 << " primitives and keys of " << fixed.rotation_tracks << " rotation samplers rewritten, "
-                << fixed.skeletons << " skeleton properties removed); linted again:\n";
+                << fixed.skeletons << " skeleton properties and " << fixed.channels
+                << " duplicate animation channels removed); linted again:\n";
       results.push_back(lint_file(s.output, o));
     } catch (const JobCancelled&) {
       throw;

@@ -793,6 +793,91 @@ def draco_cases(cat, base):
 MARKER = ".written-by-make_malformed"
 
 
+def animation_channel_cases(cat, base):
+    """Channels that repeat a target, and KHR_animation_pointer channels (glTF 2.0 §3.11 and the extension's
+    README): a pointer must be a JSON pointer (RFC 6901) to a property the asset defines, its node or mesh
+    must exist, its output must have the type of the ordinary channel it stands for, and the channel must
+    not also name a node. Repeats with the same keys, and pointers to properties dqskin does not deform,
+    load with one warning per animation."""
+    def pointer(channel, value, sampler=None, keep_node=False):
+        def f(a):
+            ch = a.gltf["animations"][0]["channels"][channel]
+            if not keep_node:
+                ch["target"].pop("node", None)
+            ch["target"]["path"] = "pointer"
+            if value is not None:
+                ch["target"]["extensions"] = {"KHR_animation_pointer": {"pointer": value}}
+            if sampler is not None:
+                ch["sampler"] = sampler
+            a.gltf["extensionsUsed"] = ["KHR_animation_pointer"]
+        return f
+    for name, change, regex in [
+        ("pointer_node_missing", pointer(0, "/nodes/30/translation"),
+         r"animation 0 channel 0: pointer '/nodes/30/translation' names node 30, which does not exist$"),
+        ("pointer_mesh_missing", pointer(0, "/meshes/7/weights"),
+         r"animation 0 channel 0: pointer '/meshes/7/weights' names mesh 7, which does not exist$"),
+        ("pointer_not_a_json_pointer", pointer(0, "nodes/2/translation"),
+         r"animation 0 channel 0: pointer 'nodes/2/translation' does not start with '/'$"),
+        ("pointer_bad_escape", pointer(0, "/nodes/2/transl~ation"),
+         r"animation 0 channel 0: pointer '/nodes/2/transl~ation' has '~' not followed by 0 or 1$"),
+        ("pointer_index_leading_zero", pointer(0, "/nodes/02/translation"),
+         r"animation 0 channel 0: pointer '/nodes/02/translation' names node '02', which is not an array index$"),
+        ("pointer_without_extension", pointer(0, None),
+         r"animation 0 channel 0: path 'pointer' without a KHR_animation_pointer pointer string$"),
+        ("pointer_with_node", pointer(0, "/nodes/2/translation", keep_node=True),
+         r"animation 0 channel 0: has a target node and path 'pointer'"),
+        ("pointer_wrong_output_type", pointer(0, "/nodes/2/translation", sampler=1),
+         r"animation 0 sampler 1 output \(accessor 8\): has type VEC4, which is not allowed here$"),
+        ("pointer_mesh_weights_without_targets", pointer(0, "/meshes/0/weights"),
+         r"animation 0 channel 0: animates weights of a mesh without morph targets$"),
+    ]:
+        cat.gltf(name, edit(base, change), regex)
+
+    def f(a):
+        a.gltf["nodes"][2] = {"name": "tip joint", "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 1]}
+        pointer(0, "/nodes/2/translation")(a)
+        pointer(1, "/nodes/2/rotation")(a)
+    cat.gltf("pointer_animates_matrix_node", edit(base, f), r"animation 0 channel 0: animates node 2, which has a matrix")
+
+    # A repeat with the same keys, as an ordinary channel and as a pointer: loaded, one warning.
+    def f(a):
+        a.gltf["animations"][0]["channels"].append(copy.deepcopy(a.gltf["animations"][0]["channels"][0]))
+    cat.warning("two_channels_same_target", edit(base, f),
+                r"animation 0 'wave': 1 duplicate channel \(the same node, path and keys as an earlier channel\) is ignored")
+    def f(a):
+        a.gltf["animations"][0]["channels"].append(copy.deepcopy(a.gltf["animations"][0]["channels"][1]))
+        a.gltf["animations"][0]["channels"][2]["target"] = {"node": 2, "path": "rotation"}
+        pointer(2, "/nodes/2/rotation")(a)
+    cat.warning("pointer_repeats_channel", edit(base, f),
+                r"animation 0 'wave': 1 duplicate channel \(the same node, path and keys as an earlier channel\) is ignored")
+    # A pointer to a material's color: not deformation, so ignored with a warning that lists it.
+    def f(a):
+        a.gltf["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]}}]
+        a.gltf["animations"][0]["channels"].append(copy.deepcopy(a.gltf["animations"][0]["channels"][1]))
+        pointer(2, "/materials/0/pbrMetallicRoughness/baseColorFactor")(a)
+    cat.warning("pointer_to_material", edit(base, f),
+                r"animation 0 'wave': 1 KHR_animation_pointer channel animating what dqskin does not deform is "
+                r"ignored: '/materials/0/pbrMetallicRoughness/baseColorFactor'")
+    # Seven such pointers, the first 200 bytes long: the warning quotes five, each cut at 80 bytes.
+    def f(a):
+        a.gltf["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]}}]
+        channels = a.gltf["animations"][0]["channels"]
+        for k in range(7):
+            channels.append(copy.deepcopy(channels[1]))
+            pointer(len(channels) - 1, "/extras/" + "x" * 192 if k == 0 else "/materials/0/extras/%d" % k)(a)
+    cat.warning("pointer_many_ignored", edit(base, f),
+                r"animation 0 'wave': 7 KHR_animation_pointer channels animating what dqskin does not deform are "
+                r"ignored: '/extras/x+[.][.][.]', '/materials/0/extras/1', '/materials/0/extras/2', "
+                r"'/materials/0/extras/3', '/materials/0/extras/4' and 2 more")
+    # Both channels as pointers, the extension required: a file dqskin reads.
+    def f(a):
+        pointer(0, "/nodes/2/translation")(a)
+        pointer(1, "/nodes/2/rotation")(a)
+        a.gltf["extensionsRequired"] = ["KHR_animation_pointer"]
+    cat.write("valid_animation_pointer.gltf", edit(base, f).gltf_bytes())
+    cat.valid.append("valid_animation_pointer.gltf")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_malformed.py OUTDIR")
@@ -1135,10 +1220,6 @@ def main():
     cat.gltf("channel_animates_matrix_node", edit(base, f),
              r"animation 0 channel 0: animates node 2, which has a matrix")
 
-    def f(a):
-        a.gltf["animations"][0]["channels"].append(copy.deepcopy(a.gltf["animations"][0]["channels"][0]))
-    cat.gltf("two_channels_same_target", edit(base, f),
-             r"animation 0 channel 2: a second channel for the same node and path")
 
     def f(a):
         a.gltf["animations"][0]["channels"][0]["target"]["path"] = "weights"
@@ -1204,6 +1285,7 @@ def main():
     hostile_cases(cat, base, glb, outdir)
     meshopt_cases(cat, base)
     draco_cases(cat, base)
+    animation_channel_cases(cat, base)
 
     # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
     # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.

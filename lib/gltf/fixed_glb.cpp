@@ -144,6 +144,12 @@ std::string fixed_glb(const std::string& path, const LoadOptions& options, const
                       e.component != kComponentFloat, 0);
 
   for (size_t skin : edits.drop_skeleton) doc["skins"][skin].erase("skeleton");
+  // Last to first, so that the indices still to be removed stay valid. Their samplers and accessors stay
+  // (the validator lists them as unused, an info), so that no index elsewhere changes.
+  std::vector<std::pair<size_t, size_t>> channels = edits.drop_channels;
+  std::sort(channels.begin(), channels.end());
+  channels.erase(std::unique(channels.begin(), channels.end()), channels.end());
+  for (auto it = channels.rbegin(); it != channels.rend(); ++it) doc["animations"][it->first]["channels"].erase(it->second);
 
   std::vector<std::string> required;
   for (const std::string& e : m.extensionsRequired)

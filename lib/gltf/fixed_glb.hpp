@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dqskin::gltf {
@@ -33,10 +34,12 @@ struct KeyEdit {
 
 // Skins whose `skeleton` property is removed (it is optional; one that is not a common root of the joints
 // is wrong, and viewers that trust it misplace the skeleton).
+// Channels removed, as (animation, channel): the later ones of channels that share a target (§3.11).
 struct FileEdits {
   std::vector<InfluenceEdit> influences;
   std::vector<KeyEdit> keys;
   std::vector<size_t> drop_skeleton;
+  std::vector<std::pair<size_t, size_t>> drop_channels;
 };
 
 // The .glb bytes of `path` with the edits applied. Throws InputError for a file it cannot write back

@@ -2,6 +2,7 @@
 
 #include "dqskin/error.hpp"
 #include "../io/file_kind.hpp"
+#include "animation_pointer.hpp"
 #include "file_signature.hpp"
 #include "meshopt.hpp"
 #include "precheck.hpp"
@@ -150,6 +151,7 @@ ParsedModel parse_model(std::span<const uint8_t> bytes, const std::string& folde
     throw InputError(std::string("cannot be parsed (") + e.what() + ")");
   }
   if (!ok) throw InputError(err.empty() ? std::string("not a glTF file") : first_line(err));
+  restore_channels(out.model, checked.doc);  // KHR_animation_pointer's channels have no target.node
   // Compressed views (precheck counted what they decode to against max_memory).
   decode_meshopt(out.model, checked.doc, checked.dataless);
   for (size_t a : checked.unviewed_indices) out.model.accessors[a].bufferView = -1;  // decode_draco fills them

@@ -100,7 +100,8 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
   SkinData data;
   data.why_not = why_not_rewritable(m);
   data.rewritable = data.why_not.empty();
-  data.structure = read_structure(m, parsed.json_bytes, path, options);
+  AnimationOrigins origins;
+  data.structure = read_structure(m, parsed.json_bytes, path, options, &origins);
   const Asset& asset = data.structure;
   const AccessorReader reader{m, options.max_unbacked_elements};
   // What the raw sets may take besides what loading the structure took (primitives may share accessors,
@@ -141,19 +142,16 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
     }
   }
 
-  // read_structure skips channels without a target node (§3.11), so clip channels are matched to the
-  // file's channels by walking them the same way.
-  for (size_t a = 0; a < m.animations.size(); ++a) {
-    size_t c = 0;
-    for (const tinygltf::AnimationChannel& ch : m.animations[a].channels) {
-      if (ch.target_node < 0) continue;
-      if (ch.target_path == "rotation") {
-        const int output = m.animations[a].samplers[size_t(ch.sampler)].output;
-        data.rotations.push_back({a, c, a, size_t(ch.sampler), m.accessors[size_t(output)].componentType});
-      }
-      ++c;
+  // The rotation channels of the clips, with the sampler each reads in the file (channels without a node,
+  // pointers to other properties and duplicates are not in the clips).
+  for (size_t a = 0; a < origins.channels.size(); ++a)
+    for (size_t c = 0; c < origins.channels[a].size(); ++c) {
+      if (asset.clips[a].channels[c].path != TargetPath::kRotation) continue;
+      const ChannelOrigin& from = origins.channels[a][c];
+      const int output = m.animations[a].samplers[from.sampler].output;
+      data.rotations.push_back({a, c, a, from.sampler, m.accessors[size_t(output)].componentType});
     }
-  }
+  data.duplicate_channels = std::move(origins.duplicates);
   return data;
 }
 

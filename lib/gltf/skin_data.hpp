@@ -4,6 +4,7 @@
 // type each was stored in. No tinygltf type appears here.
 #pragma once
 
+#include "animation_origins.hpp"
 #include "dqskin/asset.hpp"
 #include "dqskin/load.hpp"
 
@@ -50,6 +51,7 @@ struct SkinData {
   Asset structure;
   std::vector<SkinnedPrimitive> primitives;  // every primitive with JOINTS_0, in mesh and primitive order
   std::vector<RotationSource> rotations;     // every rotation channel of structure.clips
+  std::vector<DuplicateChannel> duplicate_channels;  // channels that repeat a target (kept out of the clips)
   bool rewritable = true;                    // false when a fix cannot write the file back (see why_not)
   std::string why_not;
 };

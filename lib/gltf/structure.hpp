@@ -3,6 +3,7 @@
 // the mesh data themselves, more leniently (skin_data.cpp, which must see influences the loader refuses).
 #pragma once
 
+#include "animation_origins.hpp"
 #include "dqskin/asset.hpp"
 #include "dqskin/load.hpp"
 
@@ -15,8 +16,10 @@ namespace dqskin::gltf {
 
 // An Asset with nodes, scenes, skins and clips read and checked as load_asset reads them (required
 // extensions, the memory estimate against options.max_memory, Draco primitives decoded in `model`), and
-// no meshes, materials or warnings. `json_bytes`: what parsing the JSON took (ParsedModel). Throws
+// no meshes or materials. `json_bytes`: what parsing the JSON took (ParsedModel). `animations`, when given,
+// receives where each clip channel comes from and the duplicate channels (animations.hpp). Throws
 // InputError.
-Asset read_structure(tinygltf::Model& model, uint64_t json_bytes, const std::string& path, const LoadOptions& options);
+Asset read_structure(tinygltf::Model& model, uint64_t json_bytes, const std::string& path, const LoadOptions& options,
+                     AnimationOrigins* animations = nullptr);
 
 }  // namespace dqskin::gltf

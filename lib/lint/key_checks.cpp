@@ -1,7 +1,7 @@
 // The rotation-key checks of `dqskin lint`. glTF 2.0 §3.11 asks for unit quaternions as rotation keys;
 // and a runtime that interpolates LINEAR or CUBICSPLINE keys component-wise, without the shortest-path sign
 // check of Appendix C's slerp, turns the long way round between neighbours q_k, q_k+1 with
-// dot(q_k, q_k+1) < 0.
+// dot(q_k, q_k+1) < 0. And §3.11 allows one channel per node and path in an animation.
 #include "lint_checks.hpp"
 
 #include "dqskin/job.hpp"
@@ -65,6 +65,18 @@ void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options,
       previous = q;
       previous_length = length;
     }
+  }
+}
+
+void check_channels(const gltf::SkinData& data, const LintOptions& options, Findings& out) {
+  for (const gltf::DuplicateChannel& d : data.duplicate_channels) {
+    check_cancelled(options.cancel);
+    LintExample e;
+    e.where = "animation '" + data.structure.clips[d.animation].name + "' channel " + std::to_string(d.second);
+    e.value = double(d.first);  // the channel it repeats
+    out[d.identical ? "repeated-channel" : "duplicate-channel"].add(0, e, [&] {
+      return d.message + "; --fix keeps channel " + std::to_string(d.first);
+    });
   }
 }
 

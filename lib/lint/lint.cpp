@@ -54,6 +54,14 @@ const std::vector<LintCheckInfo>& lint_checks() {
        "of its channel, or the node's rest rotation)",
        true},
       {"hemisphere-flip", S::kWarning, "neighbouring rotation keys in opposite hemispheres (dot < 0)", true},
+      {"duplicate-channel", S::kError,
+       "two channels of one animation animate the same node and path with different keys (the commands that "
+       "deform refuse the file; --fix keeps the first)",
+       true},
+      {"repeated-channel", S::kWarning,
+       "a channel repeats an earlier one of its animation (the same node, path and keys): glTF 2.0 forbids it "
+       "and the Khronos validator fails the file, though viewers play it (--fix removes it)",
+       true},
   };
   return checks;
 }
@@ -83,6 +91,7 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
     lint::check_influences(data, options, found);
     lint::check_skeletons(data, options, found);
     lint::check_rotation_keys(data, options, found);
+    lint::check_channels(data, options, found);
     for (const LintCheckInfo& check : lint_checks()) {
       const auto it = found.find(check.id);
       if (it == found.end()) continue;

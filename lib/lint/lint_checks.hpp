@@ -43,6 +43,10 @@ void check_skeletons(const gltf::SkinData& data, const LintOptions& options, Fin
 // Rotation keys that are not unit quaternions, and neighbours in opposite hemispheres (key_checks.cpp).
 void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options, Findings& out);
 
+// Channels of one animation that repeat a target: with different keys (an error: the file cannot be
+// deformed), and with the same keys (key_checks.cpp).
+void check_channels(const gltf::SkinData& data, const LintOptions& options, Findings& out);
+
 // "mesh 0 primitive 1"
 std::string primitive_name(const gltf::SkinnedPrimitive& p);
 

@@ -9,6 +9,7 @@
 // (already fixed) key is negative, CUBICSPLINE tangents with it (q and −q are the same rotation, so the
 // animation is unchanged for a runtime that takes the shortest path, and becomes right for one that does
 // not). A skin's `skeleton` that is not a common root of its joints is removed (the property is optional).
+// Of channels of one animation that share a target (§3.11), the first is kept and the others removed.
 #include "dqskin/lint.hpp"
 
 #include "../gltf/fixed_glb.hpp"
@@ -320,6 +321,7 @@ gltf::FileEdits plan_edits(const std::string& input, const LintOptions& options)
                                            [&](int joint) { return tree.is_ancestor_or_self(skin.skeleton, joint); }))
       edits.drop_skeleton.push_back(s);
   }
+  for (const gltf::DuplicateChannel& d : data.duplicate_channels) edits.drop_channels.push_back({d.animation, d.second});
   return edits;
 }
 
@@ -339,7 +341,7 @@ LintFixSummary lint_fix(const std::string& input, const std::string& output, con
   sync_to_disk(file.hand_over(), output);
   check_cancelled(options.cancel);
   file.commit(Overwrite::kReplace);
-  return {edits.influences.size(), edits.keys.size(), edits.drop_skeleton.size()};
+  return {edits.influences.size(), edits.keys.size(), edits.drop_skeleton.size(), edits.drop_channels.size()};
 }
 
 }  // namespace dqskin

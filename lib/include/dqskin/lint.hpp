@@ -80,6 +80,7 @@ struct LintFixSummary {
   size_t primitives = 0;       // primitives whose influences were rewritten
   size_t rotation_tracks = 0;  // rotation samplers whose keys were rewritten
   size_t skeletons = 0;        // skins whose wrong `skeleton` property was removed
+  size_t channels = 0;         // animation channels removed (the later ones of channels sharing a target)
 };
 
 // Writes a corrected copy of `input` to `output` (.glb, atomically): influences merged per joint, negative
@@ -87,7 +88,8 @@ struct LintFixSummary {
 // kept), sorted by weight and cut to options.max_influences (at most 8), a vertex without weight bound to
 // the joint nearest to it in bind space, renormalized in the original
 // component type (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
-// hemisphere-consistent; a `skeleton` that is not the joints' common root removed. What it cannot fix
+// hemisphere-consistent; a `skeleton` that is not the joints' common root removed; of channels of one
+// animation with the same target, all but the first removed. What it cannot fix
 // (joints without a common root, inverse bind matrices, joint scale) stays. Throws InputError for an input
 // it cannot read or rewrite faithfully (compressed data) or whose rewrite would take more than
 // options.load.max_memory, OutputError when the output cannot be written, JobCancelled when
