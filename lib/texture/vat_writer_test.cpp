@@ -340,7 +340,7 @@ TEST_F(VatWriterTest, HandMadeFramesLandWhereTheyBelong) {
   VatClipInfo info;
   info.clip = "hand";
   info.times = {0.0, 0.75};
-  info.sources = {{0, 0, 0, 3, "a", "m"}, {1, 1, 0, 2, "b", "n"}};
+  info.sources = {{0, 0, 0, 3, "a", "m", {}}, {1, 1, 0, 2, "b", "n", {}}};
   VatMeasure measure(e);
   measure.add(frame_view(d.frames, 0), 0, 2);
   measure.add(frame_view(d.frames, 1), 1, 2);
