@@ -203,7 +203,9 @@ Command add_bake_command(CLI::App& app) {
                        "oct8 or oct16 (dqskin: octahedral in a PNG). Default: the profile's")
       ->type_name("MODE");
   bake_cmd->add_option("--max-size", bake.textures.max_size,
-                       "Largest side of a texture, in texels (4096 fits every WebGL2 device, 8192 many, 16384 desktops)")
+                       "Largest side of a texture, in texels (default 8192: desktop and recent mobile GPUs; 4096 fits "
+                       "every WebGL2 device, 16384 mostly desktops). Layouts wrap rows and pages to fit; one that "
+                       "cannot fit is refused with the size that would")
       ->type_name("TEXELS")
       ->check(CLI::Range(size_t(1), size_t(1) << 20));
   bake_cmd->add_flag("--pot", bake.textures.pot, "Pad textures to power-of-two sizes");

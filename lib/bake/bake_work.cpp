@@ -6,6 +6,8 @@
 #include "dqskin/texture_output.hpp"
 #include "../io/file_kind.hpp"
 #include "../io/saturating.hpp"
+#include "../texture/bone_profiles.hpp"
+#include "dqskin/error.hpp"
 
 #include <sys/stat.h>
 #include <sys/statvfs.h>
@@ -86,6 +88,13 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
       else if (file.find("/bones_skin") != std::string::npos) {
         const size_t skin = std::stoul(file.substr(file.rfind("bones_skin") + 10));
         const uint64_t joints = asset.skins[skin].joints.size();
+        // Refused before anything is written: the smallest image the profile packs (dq's rigid joints take
+        // 2 texels, bones_bake checks the packed one) already past --max-size.
+        BoneProfile profile{};
+        if (ends_with(file, ".exr") && parse_bone_profile(options.textures.bones_profile, profile))
+          if (const std::string why = bone_size_problem(profile, bone_image_size(profile, joints, frames), options.textures.max_size);
+              !why.empty())
+            throw InputError("clip " + clip.name + ": skin " + std::to_string(skin) + ": " + why);
         size = ends_with(file, ".exr") ? exr_bytes(mul(joints, 5), frames) : add(1024, add(mul(joints, 48), mul(frames, 24)));
       }
       work.bytes = add(work.bytes, add(size, 160));  // and its line in the manifest

@@ -134,8 +134,11 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
     std::vector<JointTransforms> frames;
     for (const Pose& pose : poses) frames.push_back(joint_transforms(asset.skins[size_t(skin)], pose));
     const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
+    BoneImage image = pack_bones(profile, frames);
+    if (const std::string why = bone_size_problem(profile, {image.width, image.height}, o.max_size); !why.empty())
+      throw InputError("clip " + clip.name + ": skin " + std::to_string(skin) + ": " + why);
     writers.push_back(std::make_unique<texture::BoneTextureWriter>(
-        options.out_dir + "/" + base + ".exr", options.out_dir + "/" + base + ".json", pack_bones(profile, frames),
+        options.out_dir + "/" + base + ".exr", options.out_dir + "/" + base + ".json", std::move(image),
         bone_texel_type(o), asset, skin, clip.times, clip.fps, o.exr_compression));
     bases.push_back(base);
   }

@@ -85,12 +85,9 @@ std::string morph_file(const ClipPlan& clip) { return clip.folder + "/animation.
 
 uint64_t planned_morph_bytes(const InputPlan& input, const ClipPlan& clip) {
   const Asset& asset = *input.asset;
-  uint64_t vertices = 0, indices = 0, images = 0;
+  uint64_t vertices = shared_vertex_layout(asset, input.instances).vertices, indices = 0, images = 0;
   for (const MeshInstance& inst : input.instances)
-    for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) {
-      vertices += p.vertex_count();
-      indices += p.indices.size();
-    }
+    for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) indices += p.indices.size();
   for (const EncodedImage& image : asset.images) images += image.bytes.size();
   const uint64_t frames = clip.times.size();
   // Per vertex: the mesh and up to four texture coordinate or colour sets; per vertex and frame a float
@@ -101,10 +98,13 @@ uint64_t planned_morph_bytes(const InputPlan& input, const ClipPlan& clip) {
 }
 
 MorphClipBake::MorphClipBake(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
-    : input_(input), clip_(clip), options_(options), what_("clip " + clip.name) {
+    : input_(input), clip_(clip), options_(options), what_("clip " + clip.name),
+      sharing_(shared_vertex_layout(*input.asset, input.instances)) {
   const Asset& asset = *input.asset;
+  size_t flat = 0;
   for (const MeshInstance& inst : input.instances)
     for (const Primitive& p : asset.meshes[size_t(inst.mesh)].primitives) {
+      if (!sharing_.writes(flat++)) continue;  // its vertices are an earlier primitive's (vertex_sharing.hpp)
       first_.push_back(vertices_);
       with_normals_.push_back(!p.normals_generated && !p.normals.empty());
       vertices_ += p.vertex_count();
@@ -119,7 +119,8 @@ MorphClipBake::MorphClipBake(const InputPlan& input, const ClipPlan& clip, const
   normals_.reserve(clip.times.size());
 }
 
-void MorphClipBake::append(const FrameView& frame) {
+void MorphClipBake::append(const FrameView& all) {
+  const FrameView frame = distinct_vertices(all, sharing_);
   std::vector<float> positions(3 * vertices_), normals(3 * vertices_, 0.0f);
   for (size_t p = 0; p < frame.primitives.size() && p < first_.size(); ++p) {
     const PrimitiveView& view = frame.primitives[p];

@@ -8,6 +8,7 @@
 #include "../io/glb_appearance.hpp"
 
 #include "dqskin/frame_view.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <string>
 #include <utility>
@@ -54,8 +55,9 @@ private:
   const BakeOptions& options_;
   std::string what_;  // "clip <name>" for messages
   size_t vertices_ = 0;
-  std::vector<size_t> first_;        // per primitive: its first vertex
-  std::vector<bool> with_normals_;   // per primitive: NORMAL written (the source has normals)
+  SharedVertexLayout sharing_;       // the keys hold each distinct vertex once (vertex_sharing.hpp)
+  std::vector<size_t> first_;        // per primitive that writes vertices: its first vertex
+  std::vector<bool> with_normals_;   // per primitive that writes vertices: NORMAL written (the source has normals)
   std::vector<std::vector<float>> positions_, normals_;  // per frame: 3 per vertex, every primitive
 };
 

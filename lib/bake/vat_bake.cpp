@@ -7,6 +7,7 @@
 #include "vat_planner.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/texture_output.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -102,7 +103,8 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
 }
 
 VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
-    : clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times) {
+    : clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times),
+      sharing_(shared_vertex_layout(*input.asset, input.instances)) {
   const TextureOptions& o = options.textures;
   VatEncoding e;
   e.compression = o.exr_compression;
@@ -118,7 +120,7 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
   if (format.profile != VatProfile::kHoudini) {
     const double zero = 0;
     deformer.run(nullptr, std::span(&zero, 1), [&](const DeformedBatch& batch) { rest = copy_frame(batch, 0); });
-    if (format.profile == VatProfile::kOpenVat) e.rest = all_positions(frame_view(rest, 0));
+    if (format.profile == VatProfile::kOpenVat) e.rest = all_positions(distinct_vertices(frame_view(rest, 0), sharing_));
   }
 
   // With a budget, the planner chooses the texel type and the frames.
@@ -146,7 +148,7 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
   deformer.run(clip.clip, times_, [&](const DeformedBatch& batch) {
     for (size_t k = 0; k < batch.frame_count; ++k) {
       if (batch.first_frame + k == 0 && format.profile == VatProfile::kHoudini) rest = copy_frame(batch, k);
-      measure.add(frame_view(batch, k), batch.first_frame + k, times_.size());
+      measure.add(distinct_vertices(frame_view(batch, k), sharing_), batch.first_frame + k, times_.size());
     }
   });
   measure.finish(info, what_);
@@ -161,13 +163,13 @@ bool VatClipBake::uses_bake_frames() const { return times_ == clip_.times; }
 
 void VatClipBake::encode_own_frames(Deformer& deformer) {
   deformer.run(clip_.clip, times_, [&](const DeformedBatch& batch) {
-    for (size_t k = 0; k < batch.frame_count; ++k) writer_->append(frame_view(batch, k));
+    for (size_t k = 0; k < batch.frame_count; ++k) writer_->append(distinct_vertices(frame_view(batch, k), sharing_));
   });
 }
 
 VatClipBake::~VatClipBake() = default;
 
-void VatClipBake::append(const FrameView& frame) { writer_->append(frame); }
+void VatClipBake::append(const FrameView& frame) { writer_->append(distinct_vertices(frame, sharing_)); }
 
 void VatClipBake::complete_images() {
   if (complete_) return;
@@ -185,8 +187,9 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
     deformer.run(clip_.clip, times, [&](const DeformedBatch& batch) {
       for (size_t k = 0; k < batch.frame_count; ++k) {
         const size_t i = batch.first_frame + k;
-        if (i % 2 == 0) checker.baked_frame(i / 2, frame_view(batch, k));
-        else checker.midpoint(i / 2, frame_view(batch, k));
+        const FrameView frame = distinct_vertices(frame_view(batch, k), sharing_);
+        if (i % 2 == 0) checker.baked_frame(i / 2, frame);
+        else checker.midpoint(i / 2, frame);
       }
     });
     check_ = checker.result();

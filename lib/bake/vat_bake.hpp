@@ -11,6 +11,7 @@
 #include "../texture/vat_writer.hpp"
 
 #include "dqskin/deformer.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <memory>
 #include <optional>
@@ -58,6 +59,7 @@ private:
   const BakeOptions& options_;
   std::string what_;  // "clip <name>" for messages
   std::vector<double> times_;  // the texture's frames
+  SharedVertexLayout sharing_;  // the texture holds each distinct vertex once (vertex_sharing.hpp)
   std::unique_ptr<texture::VatWriter> writer_;
   std::optional<texture::DecodeCheck> check_;
   bool complete_ = false;

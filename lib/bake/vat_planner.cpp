@@ -8,6 +8,7 @@
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/texture_output.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -112,6 +113,7 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
                  const std::vector<float>& rest) {
   const VatFormat base = vat_format(o);
   const std::string what = "clip " + clip.name;
+  const SharedVertexLayout sharing = shared_vertex_layout(*input.asset, input.instances);
   std::vector<TexelType> types;
   if (!o.encoding.empty()) {
     types.push_back(base.type);
@@ -150,7 +152,7 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
   deformer.run(clip.clip, times, [&](const DeformedBatch& batch) {
     for (size_t k = 0; k < batch.frame_count; ++k) {
       const size_t j = batch.first_frame + k;
-      std::vector<float> positions = all_positions(frame_view(batch, k));
+      std::vector<float> positions = all_positions(distinct_vertices(frame_view(batch, k), sharing));
       if (j >= regular) {  // a pose past the end
         for (size_t s : past_end_at->second) interpolation.add_past_end(s, 2 * past_end_at->first, positions);
         ++past_end_at;
@@ -252,7 +254,9 @@ std::vector<std::string> dry_run_plans(const InputPlan& input, const BakeOptions
   std::vector<float> rest;
   if (vat_format(options.textures).profile == VatProfile::kOpenVat) {
     const double zero = 0;
-    deformer->run(nullptr, std::span(&zero, 1), [&](const DeformedBatch& batch) { rest = all_positions(frame_view(batch, 0)); });
+    const SharedVertexLayout sharing = shared_vertex_layout(*input.asset, input.instances);
+    deformer->run(nullptr, std::span(&zero, 1),
+                  [&](const DeformedBatch& batch) { rest = all_positions(distinct_vertices(frame_view(batch, 0), sharing)); });
   }
   std::vector<std::string> lines;
   for (const ClipPlan& clip : input.clips) {

@@ -70,6 +70,9 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
   const int position = find_attribute(p.attributes, "POSITION");
   if (position < 0) fail(what + ": has no POSITION");
   prim.position_accessor = position;
+  for (const auto& [name, accessor] : p.attributes) prim.vertex_accessors.emplace_back(name, accessor);
+  for (size_t t = 0; t < p.targets.size(); ++t)
+    for (const auto& [name, accessor] : p.targets[t]) prim.vertex_accessors.emplace_back(std::to_string(t) + "/" + name, accessor);
   prim.positions = to_vectors<glm::vec3>(reader.floats(position, shape.position, what + " POSITION"));
   const size_t n = prim.positions.size();
   auto same_count = [&](int accessor, const std::string& name) {

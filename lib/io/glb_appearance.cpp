@@ -7,6 +7,7 @@
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/version.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -142,12 +143,18 @@ std::vector<FixedPrimitive> fixed_primitives(const Asset& asset, const std::vect
                                              const json& src_mesh, size_t m, size_t materials, BinWriter& bin) {
   std::vector<FixedPrimitive> out;
   const json src_prims = member(src_mesh, "primitives");
+  const std::vector<size_t> owners = vertex_data_owners(asset.meshes[m]);
   for (size_t p = 0; p < asset.meshes[m].primitives.size(); ++p) {
     const Primitive& prim = asset.meshes[m].primitives[p];
     if (!source.at(p).error.empty()) throw InputError(source[p].error);
     FixedPrimitive fixed;
-    for (const SourceAttribute& a : source[p].attributes)
-      fixed.attributes[a.name] = bin.floats(a.values, a.count, a.components == 2 ? "VEC2" : a.components == 3 ? "VEC3" : "VEC4");
+    if (owners[p] != p) {
+      fixed.attributes = out[owners[p]].attributes;  // the same accessors in the source: written once
+    } else {
+      for (const SourceAttribute& a : source[p].attributes)
+        fixed.attributes[a.name] =
+            bin.floats(a.values, a.count, a.components == 2 ? "VEC2" : a.components == 3 ? "VEC3" : "VEC4");
+    }
     if (!prim.indices.empty()) fixed.indices = bin.indices(prim.indices);
     if (prim.material >= 0 && size_t(prim.material) < materials) fixed.material = prim.material;
     const json src_prim = src_prims.is_array() && p < src_prims.size() ? src_prims[p] : json();

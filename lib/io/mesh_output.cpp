@@ -1,5 +1,6 @@
 #include "dqskin/mesh_output.hpp"
 #include "dqskin/triangles.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include "dqskin/version.hpp"
 
@@ -71,11 +72,18 @@ void put_obj_faces(std::string& out, const MergedMesh& mesh, const Asset& asset,
 
 MergedMesh merge_topology(const Asset& asset, const std::vector<MeshInstance>& instances) {
   MergedMesh out;
+  const SharedVertexLayout layout = shared_vertex_layout(asset, instances);
+  size_t flat = 0;
   for (const MeshInstance& inst : instances) {
     for (const Primitive& prim : asset.meshes[size_t(inst.mesh)].primitives) {
-      const uint32_t base = uint32_t(out.uv0.size());
-      if (prim.uv0.empty()) out.uv0.resize(out.uv0.size() + prim.vertex_count(), glm::vec2(0));
-      else out.uv0.insert(out.uv0.end(), prim.uv0.begin(), prim.uv0.end());
+      const uint32_t base = uint32_t(layout.first_vertex[flat]);
+      if (!layout.writes(flat++)) {
+        // Shares an earlier primitive's vertices (vertex_sharing.hpp): adds faces only.
+      } else if (prim.uv0.empty()) {
+        out.uv0.resize(out.uv0.size() + prim.vertex_count(), glm::vec2(0));
+      } else {
+        out.uv0.insert(out.uv0.end(), prim.uv0.begin(), prim.uv0.end());
+      }
       MergedMesh::Group group{asset.nodes[size_t(inst.node)].name, prim.material, out.triangles.size() / 3, 0};
       for (uint32_t i : triangle_list(prim)) out.triangles.push_back(base + i);
       group.triangle_count = out.triangles.size() / 3 - group.first_triangle;
@@ -89,7 +97,7 @@ MergedMesh merge_frame(const Asset& asset, const std::vector<MeshInstance>& inst
   MergedMesh out = merge_topology(asset, instances);
   out.positions.reserve(out.uv0.size());
   out.normals.reserve(out.uv0.size());
-  for (const PrimitiveView& d : frame.primitives) {
+  for (const PrimitiveView& d : distinct_vertices(frame, shared_vertex_layout(asset, instances)).primitives) {
     for (size_t v = 0; v < d.vertices; ++v) {
       out.positions.emplace_back(d.positions[3 * v], d.positions[3 * v + 1], d.positions[3 * v + 2]);
       out.normals.push_back(d.normals.empty() ? glm::vec3(0)
@@ -156,7 +164,7 @@ std::string encode_obj(const MergedMesh& mesh, const Asset& asset, const std::st
 
 MeshFrameEncoder::MeshFrameEncoder(const Asset& asset, const std::vector<MeshInstance>& instances,
                                    const std::string& mtl_file)
-    : shared_(merge_topology(asset, instances)) {
+    : shared_(merge_topology(asset, instances)), layout_(shared_vertex_layout(asset, instances)) {
   vertices_ = shared_.uv0.size();
   ply_header_ = ply_header(vertices_, shared_.triangles.size() / 3);
   put_ply_faces(ply_faces_, shared_);
@@ -173,7 +181,7 @@ void MeshFrameEncoder::encode_ply(const FrameView& frame, std::string& out) cons
   char* at = out.data() + ply_header_.size();
   const float zero[3] = {0, 0, 0};
   const glm::vec2* uv = shared_.uv0.data();
-  for (const PrimitiveView& d : frame.primitives) {
+  for (const PrimitiveView& d : distinct_vertices(frame, layout_).primitives) {
     for (size_t v = 0; v < d.vertices; ++v, at += kPlyVertexBytes, ++uv) {
       std::memcpy(at, &d.positions[3 * v], 12);
       std::memcpy(at + 12, d.normals.empty() ? zero : &d.normals[3 * v], 12);
@@ -186,10 +194,11 @@ void MeshFrameEncoder::encode_ply(const FrameView& frame, std::string& out) cons
 void MeshFrameEncoder::encode_obj(const FrameView& frame, std::string& out) const {
   out.assign(obj_header_);
   const float zero[3] = {0, 0, 0};
-  for (const PrimitiveView& d : frame.primitives)
+  const FrameView distinct = distinct_vertices(frame, layout_);
+  for (const PrimitiveView& d : distinct.primitives)
     for (size_t v = 0; v < d.vertices; ++v) put_vector(out, "v", &d.positions[3 * v], 3);
   out += obj_texcoords_;
-  for (const PrimitiveView& d : frame.primitives)
+  for (const PrimitiveView& d : distinct.primitives)
     for (size_t v = 0; v < d.vertices; ++v) put_vector(out, "vn", d.normals.empty() ? zero : &d.normals[3 * v], 3);
   out += obj_faces_;
 }

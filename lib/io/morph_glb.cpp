@@ -2,6 +2,8 @@
 // sparse accessors, §3.6.2.4 data alignment, §3.11 animations; KHR_mesh_quantization for the integer types.
 #include "morph_glb.hpp"
 
+#include "dqskin/vertex_sharing.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -230,19 +232,27 @@ GlbParts encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& i
                     keys * keys * sizeof(float) + 64);
   bin = appearance.bin;
   json primitives = json::array();
-  size_t first = 0, p = 0;
+  // A primitive that shares an earlier one's vertex data names that one's accessors, as the source does.
+  const SharedVertexLayout sharing = shared_vertex_layout(asset, instances);
+  std::vector<json> written_attributes(sharing.owner.size()), written_targets(sharing.owner.size());
+  size_t p = 0, writer = 0;
   for (const MeshInstance& inst : instances) {
     const std::vector<FixedPrimitive>& fixed = appearance.meshes.at(size_t(inst.mesh));
     for (size_t i = 0; i < fixed.size(); ++i, ++p) {
       const Primitive& source = asset.meshes[size_t(inst.mesh)].primitives[i];
       const FixedPrimitive& f = fixed[i];
-      const size_t n = source.vertex_count();
+      const size_t n = source.vertex_count(), first = sharing.first_vertex[p];
       if (3 * (first + n) > a.positions[0].size())
         throw std::invalid_argument("encode_morph_glb: the keys hold fewer vertices than the instances draw");
-      json targets = json::array();
-      json attributes = f.attributes;
-      attributes.update(primitive_attributes(a, first, n, a.with_normals.at(p), targets, bin, stats));
-      json out = {{"attributes", std::move(attributes)}};
+      if (sharing.writes(p)) {
+        json targets = json::array();
+        json attributes = f.attributes;
+        attributes.update(primitive_attributes(a, first, n, a.with_normals.at(writer++), targets, bin, stats));
+        written_attributes[p] = std::move(attributes);
+        written_targets[p] = std::move(targets);
+      }
+      json targets = written_targets[sharing.owner[p]];
+      json out = {{"attributes", written_attributes[sharing.owner[p]]}};
       if (!targets.empty()) out["targets"] = std::move(targets);
       if (f.indices >= 0) out["indices"] = f.indices;
       if (source.mode != PrimitiveMode::kTriangles) out["mode"] = int(source.mode);  // the default (§5.24)
@@ -250,7 +260,6 @@ GlbParts encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& i
       if (!f.extras.is_null()) out["extras"] = f.extras;
       if (!f.extensions.is_null()) out["extensions"] = f.extensions;
       primitives.push_back(std::move(out));
-      first += n;
     }
   }
   if (stats) stats->targets = keys - 1;

@@ -53,9 +53,10 @@ struct MorphAnimation {
   MorphGrid grid;
   std::vector<double> times;                      // per key, strictly increasing as floats
   std::vector<std::string> target_names;          // per key but the first (mesh.extras.targetNames)
-  std::vector<std::span<const float>> positions;  // per key: 3 per vertex, every primitive in order, world space
+  // per key: 3 per vertex, world space, in shared_vertex_layout's order (each distinct vertex once)
+  std::vector<std::span<const float>> positions;
   std::vector<std::span<const float>> normals;    // per key, the same layout, unit
-  std::vector<bool> with_normals;                 // per primitive: whether it has NORMAL (else flat shading)
+  std::vector<bool> with_normals;                 // per primitive that writes vertices: whether it has NORMAL
 };
 
 // What the file holds, for reports and tests.

@@ -4,6 +4,7 @@
 #include "../texture/bone_writer.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <cassert>
 #include <filesystem>
@@ -14,9 +15,16 @@ std::vector<VatSource> vat_sources(const Asset& asset, const std::vector<MeshIns
   std::vector<VatSource> sources;
   for (const MeshInstance& inst : instances) {
     const Mesh& mesh = asset.meshes[size_t(inst.mesh)];
+    const std::vector<size_t> owners = vertex_data_owners(mesh);
+    std::vector<size_t> source_of(owners.size());
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      if (owners[p] != p) {
+        sources[source_of[owners[p]]].shared_by.push_back(int(p));
+        continue;
+      }
+      source_of[p] = sources.size();
       sources.push_back({inst.node, inst.mesh, int(p), mesh.primitives[p].vertex_count(),
-                         asset.nodes[size_t(inst.node)].name, mesh.name});
+                         asset.nodes[size_t(inst.node)].name, mesh.name, {}});
     }
   }
   return sources;

@@ -302,6 +302,32 @@ const char* implied_blend(BoneProfile profile) {
   return "?";
 }
 
+BoneImageSize bone_image_size(BoneProfile profile, size_t joints, size_t frames, int dq_texels_per_joint) {
+  if (joints == 0 || frames == 0) return {};
+  switch (profile) {
+    case BoneProfile::kDq: return {size_t(dq_texels_per_joint) * joints, frames};
+    case BoneProfile::kDqCocos: {
+      const size_t side = cocos_side(3 * joints * frames);
+      return {side, side};
+    }
+    case BoneProfile::kMat3x4: return {3 * joints, frames};
+    case BoneProfile::kMat4: return {4 * (joints + 1), frames};
+  }
+  return {};
+}
+
+std::string bone_size_problem(BoneProfile profile, BoneImageSize size, size_t max_size) {
+  if (max_size == 0 || (size.width <= max_size && size.height <= max_size)) return {};
+  const size_t needed = std::max(size.width, size.height);
+  std::string out = "the " + std::string(to_string(profile)) + " bone texture needs " + std::to_string(size.width) +
+                    " × " + std::to_string(size.height) + " texels, over --max-size " + std::to_string(max_size);
+  out += profile == BoneProfile::kDqCocos ? " (Cocos reads one square texture)"
+                                          : " (its runtime reads one row per frame and does not wrap)";
+  out += "; --max-size " + std::to_string(needed) + " would fit";
+  if (profile != BoneProfile::kDqCocos && size.height > max_size) out += ", as would fewer frames (--fps)";
+  return out;
+}
+
 BoneImage pack_bones(BoneProfile profile, std::span<const JointTransforms> frames) {
   BoneImage image;
   image.profile = profile;

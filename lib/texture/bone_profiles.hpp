@@ -48,6 +48,20 @@ struct BoneImage {
 // No frames or no joints give an empty image (width = height = 0).
 BoneImage pack_bones(BoneProfile profile, std::span<const JointTransforms> frames);
 
+// The width and height pack_bones gives `joints` joints over `frames` frames (dq: with
+// `dq_texels_per_joint`, 2 for rigid joints or 5; the other profiles' are fixed).
+struct BoneImageSize {
+  size_t width = 0, height = 0;
+};
+BoneImageSize bone_image_size(BoneProfile profile, size_t joints, size_t frames, int dq_texels_per_joint = 2);
+
+// Why an image of `size` in `profile`'s layout cannot be written within `max_size` texels a side (0: no
+// bound), as the end of a one-line error: what it needs and the --max-size that would fit it; empty when it
+// fits. No profile wraps: each runtime addresses a joint by (texel, frame) in one image (dq: skin.comp;
+// mat3x4: a row per frame; Babylon.js: row = frame, column = 4 · joint + k; Cocos: a square whose side it
+// derives from the texel count), so a larger image or fewer frames is the only way.
+std::string bone_size_problem(BoneProfile profile, BoneImageSize size, size_t max_size);
+
 // The joint's transform at `frame`, read from the texels as the profile's shader reads them, as an
 // affine matrix (for the DQ profiles the matrix the normalized dual quaternion and scale stand for).
 // joint < image.joints and frame < image.frames.

@@ -2,6 +2,8 @@
 
 #include "single_mesh_glb.hpp"
 
+#include "dqskin/vertex_sharing.hpp"
+
 #include <cassert>
 
 namespace dqskin::texture {
@@ -12,12 +14,22 @@ std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>&
                             const VatLayout& layout, const std::string& name) {
   glb::BinWriter bin;
   json primitives = json::array();
-  size_t first = 0, p = 0;
+  const SharedVertexLayout sharing = shared_vertex_layout(asset, instances);
+  std::vector<json> written(sharing.owner.size());  // each primitive's attributes, for those that share them
+  size_t p = 0;
   for (const MeshInstance& instance : instances) {
     for (const Primitive& source : asset.meshes[size_t(instance.mesh)].primitives) {
       assert(p < rest.primitives.size());
-      const PrimitiveView& view = rest.primitives[p++];
-      const size_t n = view.vertices;
+      const size_t me = p++;
+      if (!sharing.writes(me)) {
+        // The vertices of an earlier primitive (vertex_sharing.hpp): its accessors, as the source shares them.
+        json primitive = {{"attributes", written[sharing.owner[me]]}};
+        add_topology(source, bin, primitive);
+        primitives.push_back(std::move(primitive));
+        continue;
+      }
+      const PrimitiveView& view = rest.primitives[me];
+      const size_t n = view.vertices, first = sharing.first_vertex[me];
       json attributes;
       attributes["POSITION"] = bin.positions(view.positions.first(3 * n));
       if (!view.normals.empty()) attributes["NORMAL"] = bin.floats(view.normals, n, "VEC3");
@@ -34,10 +46,10 @@ std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>&
         attributes["TEXCOORD_0"] = bin.floats(lookup, n, "VEC2");
         attributes["TEXCOORD_1"] = attributes["TEXCOORD_0"];
       }
+      written[me] = attributes;
       json primitive = {{"attributes", std::move(attributes)}};
       add_topology(source, bin, primitive);
       primitives.push_back(std::move(primitive));
-      first += n;
     }
   }
   return single_mesh_glb(std::move(primitives), std::move(bin), name);

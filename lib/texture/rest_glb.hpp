@@ -15,7 +15,9 @@
 namespace dqskin::texture {
 
 // The .glb bytes: one node `name` with no transform drawing one mesh whose primitives are those of
-// `instances` (in the VAT's vertex order), positions and normals from `rest`, the source's TEXCOORD_0 (or,
+// `instances` (in the VAT's vertex order; a primitive that shares an earlier one's vertex data names that
+// one's accessors, as in the source: vertex_sharing.hpp), positions and normals from `rest` (every
+// primitive, as frame_view gives them), the source's TEXCOORD_0 (or,
 // where a primitive has none, a copy of TEXCOORD_1, since glTF numbers texture coordinate sets from 0)
 // and TEXCOORD_1 from `layout`. No material: a viewer draws its default. Deterministic.
 std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& rest,

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cassert>
 #include <climits>
+#include <optional>
 
 namespace dqskin::texture {
 
@@ -148,19 +149,17 @@ int VatLayout::position_channels() const {
   return 3;
 }
 
-VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frames, size_t max_size, bool pot,
-                          const std::string& what) {
-  assert(vertices > 0 && frames > 0);
+namespace {
+
+// The layout within `max_size` (0: none), or nullopt with `why` saying what does not fit.
+std::optional<VatLayout> fit_layout(const VatFormat& format, size_t vertices, size_t frames, size_t max_size, bool pot,
+                                    std::string& why) {
   VatLayout l;
   l.format = format;
   l.vertices = vertices;
   l.frames = frames;
   const size_t limit = max_size ? max_size : size_t(INT_MAX);
   const bool packed = format.profile == VatProfile::kOpenVat && format.normals == NormalMode::kPacked;
-  auto too_large = [&](const std::string& why) {
-    return InputError(what + ": " + std::to_string(vertices) + " vertices × " + std::to_string(frames) +
-                      " frames do not fit " + why);
-  };
   if (format.profile == VatProfile::kOpenVat) {
     const size_t single_height = pad(packed ? 2 * frames : frames, pot);
     if (max_size == 0 || (vertices <= limit && single_height <= limit && pad(vertices, pot) <= limit)) {
@@ -170,7 +169,10 @@ VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frame
       l.height = single_height;
     } else {
       openvat_wrapped(l, limit, packed);
-      if (l.wrap == 0) throw too_large("OpenVAT's layout within " + std::to_string(max_size) + " texels a side");
+      if (l.wrap == 0) {
+        why = "OpenVAT's layout within " + std::to_string(max_size) + " texels a side";
+        return std::nullopt;
+      }
     }
     l.used_width = l.wrap;
     l.used_height = l.frames * l.wraps;
@@ -184,21 +186,52 @@ VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frame
     size_t fit = l.wraps > limit ? 0 : limit / l.wraps;
     if (pot)
       while (fit > 0 && pad(fit * l.wraps, true) > limit) --fit;
-    if (fit == 0 || l.width > limit)
-      throw too_large("an image within " + std::to_string(limit) + " texels a side: one frame takes " +
-                      std::to_string(l.wraps) + " rows of " + std::to_string(l.width) + " texels");
-    if (fit < frames && format.profile != VatProfile::kDqskin)
-      throw too_large("an image " + std::to_string(limit) + " texels high (at most " + std::to_string(fit) +
-                      " frames do); lower --fps, or use the dqskin profile, which splits frames over pages");
+    if (fit == 0 || l.width > limit) {
+      why = "an image within " + std::to_string(limit) + " texels a side: one frame takes " + std::to_string(l.wraps) +
+            " rows of " + std::to_string(l.width) + " texels";
+      return std::nullopt;
+    }
+    if (fit < frames && format.profile != VatProfile::kDqskin) {
+      why = "an image " + std::to_string(limit) + " texels high (at most " + std::to_string(fit) +
+            " frames do); lower --fps, or use the dqskin profile, which splits frames over pages";
+      return std::nullopt;
+    }
     l.frames_per_page = std::min(frames, fit);
     l.pages = ceil_div(frames, l.frames_per_page);
     l.used_height = l.frames_per_page * l.wraps;
     l.height = pad(l.used_height, pot);
   }
   if (l.frames_per_page == 0) l.frames_per_page = frames;
-  if (l.height > size_t(INT_MAX) || l.width > size_t(INT_MAX) / 16)
-    throw too_large("an image file (" + std::to_string(l.width) + " × " + std::to_string(l.height) + " texels)");
+  if (l.height > size_t(INT_MAX) || l.width > size_t(INT_MAX) / 16) {
+    why = "an image file (" + std::to_string(l.width) + " × " + std::to_string(l.height) + " texels)";
+    return std::nullopt;
+  }
   return l;
+}
+
+}  // namespace
+
+VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frames, size_t max_size, bool pot,
+                          const std::string& what) {
+  assert(vertices > 0 && frames > 0);
+  std::string why;
+  if (std::optional<VatLayout> l = fit_layout(format, vertices, frames, max_size, pot, why)) return *l;
+  std::string message = what + ": " + std::to_string(vertices) + " vertices × " + std::to_string(frames) +
+                        " frames do not fit " + why;
+  // The nearest size that fits: the smallest larger --max-size with a layout. Every profile's layout only
+  // gains room as the limit grows (wider rows, more rows, more candidate widths), so a bisection finds it.
+  std::string ignored;
+  if (max_size > 0 && max_size < kLargestMaxSize && fit_layout(format, vertices, frames, kLargestMaxSize, pot, ignored)) {
+    size_t lo = max_size, hi = kLargestMaxSize;  // lo does not fit, hi does
+    while (hi - lo > 1) {
+      const size_t mid = lo + (hi - lo) / 2;
+      (fit_layout(format, vertices, frames, mid, pot, ignored) ? hi : lo) = mid;
+    }
+    const VatLayout l = *fit_layout(format, vertices, frames, hi, pot, ignored);
+    message += "; it needs " + std::to_string(l.width) + " × " + std::to_string(l.height) + " texels: --max-size " +
+               std::to_string(hi) + " would fit";
+  }
+  throw InputError(message);
 }
 
 std::string page_file_name(const std::string& name, size_t page, size_t pages) {

@@ -97,11 +97,16 @@ struct VatLayout {
   int position_channels() const;
 };
 
-// Chooses the layout. `max_size` bounds both sides of the image (0: the profile's default, which for
-// dqskin and houdini wraps rows at 8192 texels and leaves the height free, and for openvat keeps one row
-// per vertex, its `use_single_row`); dqskin splits frames over pages rather than exceed it. `pot` pads
-// both sides to powers of two. Throws InputError (naming `what`) when the vertices or frames cannot fit,
-// saying what would.
+// The largest --max-size the command line takes (2^20 texels a side).
+inline constexpr size_t kLargestMaxSize = size_t(1) << 20;
+
+// Chooses the layout. `max_size` bounds both sides of the image (0: no bound, which for dqskin and houdini
+// wraps rows at 8192 texels and leaves the height free, and for openvat keeps one row per vertex, its
+// `use_single_row`). Within a bound every profile wraps a frame's vertices over several rows (openvat as
+// its add-on's calculate_optimal_vat_resolution does) and dqskin splits frames over pages; houdini and
+// openvat, whose runtimes read one image, do not page. `pot` pads both sides to powers of two. Throws
+// InputError (naming `what`) when the vertices or frames cannot fit, with the size they need and the
+// smallest --max-size that would fit it.
 VatLayout plan_vat_layout(const VatFormat& format, size_t vertices, size_t frames, size_t max_size, bool pot,
                           const std::string& what);
 

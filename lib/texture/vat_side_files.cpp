@@ -244,12 +244,15 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
   Json frames = Json::array();
   for (const Box& b : info.frame_bounds) frames.push_back(box_json(b));
   doc["frame_bounds"] = std::move(frames);
-  doc["vertex_order"] = "the sources' vertices in order; the rest mesh's TEXCOORD_1 holds each vertex's lookup";
+  doc["vertex_order"] =
+      "the sources' vertices in order, each source one primitive's vertices in accessor order; primitives that "
+      "share a source's vertex accessors (its shared_by) add none; the rest mesh's TEXCOORD_1 holds each vertex's lookup";
   Json sources = Json::array();
   size_t first = 0;
   for (const VatSource& s : info.sources) {
     sources.push_back({{"node", s.node}, {"node_name", s.node_name}, {"mesh", s.mesh}, {"mesh_name", s.mesh_name},
-                       {"primitive", s.primitive}, {"first_vertex", first}, {"vertex_count", s.vertices}});
+                       {"primitive", s.primitive}, {"shared_by", s.shared_by}, {"first_vertex", first},
+                       {"vertex_count", s.vertices}});
     first += s.vertices;
   }
   doc["sources"] = std::move(sources);

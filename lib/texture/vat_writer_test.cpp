@@ -255,7 +255,8 @@ TEST_F(VatWriterTest, LayoutWrapsAtTheDefaultWidthAndHonoursMaxSize) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               "clip 0: 34159 vertices × 1047 frames do not fit an image 4096 texels high (at most 455 frames do); "
-              "lower --fps, or use the dqskin profile, which splits frames over pages");
+              "lower --fps, or use the dqskin profile, which splits frames over pages; it needs 6282 × 6282 "
+              "texels: --max-size 6282 would fit");
   }
   EXPECT_THROW(plan_vat_layout(kDqskin, 5000, 3, 2, false, "t"), InputError) << "one frame is taller than the limit";
 }
@@ -340,7 +341,7 @@ TEST_F(VatWriterTest, HandMadeFramesLandWhereTheyBelong) {
   VatClipInfo info;
   info.clip = "hand";
   info.times = {0.0, 0.75};
-  info.sources = {{0, 0, 0, 3, "a", "m"}, {1, 1, 0, 2, "b", "n"}};
+  info.sources = {{0, 0, 0, 3, "a", "m", {}}, {1, 1, 0, 2, "b", "n", {}}};
   VatMeasure measure(e);
   measure.add(frame_view(d.frames, 0), 0, 2);
   measure.add(frame_view(d.frames, 1), 1, 2);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dqskin {
@@ -28,6 +29,10 @@ struct Primitive {
   PrimitiveMode mode = PrimitiveMode::kTriangles;
   int material = -1;                 // index into the file's materials, or -1
   int position_accessor = -1;        // the file's POSITION accessor (primitives may share one)
+  // Every attribute and morph target attribute with the file's accessor for it ("NORMAL", "1/POSITION" for
+  // target 1), in name order: primitives whose lists are equal share their vertices (vertex_sharing.hpp).
+  // Empty for primitives that are not read from a file.
+  std::vector<std::pair<std::string, int>> vertex_accessors;
   std::vector<glm::vec3> positions;  // POSITION; its size is the vertex count
   std::vector<glm::vec3> normals;    // NORMAL, or generated (see normals_generated); empty for non-triangles without
   std::vector<glm::vec4> tangents;   // TANGENT (xyz, w = handedness ±1), or empty

@@ -31,7 +31,9 @@ struct TextureOptions {
   std::string encoding;                // float, half, png16, png8; empty: the profile's default
   std::string normals;                 // none, separate, packed, oct8, oct16; empty: the profile's default
   std::string exr_compression;         // zip, piz, rle, zips, none; empty: zip
-  size_t max_size = 0;                 // largest side of an image in texels; 0: the profile's default
+  // Largest side of an image in texels; 0: no bound. 8192: the GL_MAX_TEXTURE_SIZE of desktop GPUs and of
+  // recent mobile ones (16384 is mostly desktop), so a texture baked by default loads on both.
+  size_t max_size = 8192;
   bool pot = false;                    // pad images to powers of two
   double max_error = 0;                // largest decoded error allowed, scene units; 0: no limit (also the
                                        // morph format's keyframe budget, at every baked frame)

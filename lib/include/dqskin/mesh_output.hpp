@@ -1,9 +1,12 @@
 // One frame's deformed meshes as one mesh, and its PLY and OBJ files (shared/DESIGN.md "write"): every
-// primitive of every instance merged in scene order, vertices in glTF accessor order, faces from the
-// triangle-mode primitives (strips and fans are turned into lists; points and lines have no faces).
+// primitive of every instance merged in scene order, vertices in glTF accessor order, each distinct vertex
+// once per instance (primitives that share vertex data add faces only: vertex_sharing.hpp gives the
+// order), faces from the triangle-mode primitives (strips and fans are turned into lists; points and lines
+// have no faces).
 #pragma once
 
 #include "dqskin/frame_view.hpp"
+#include "dqskin/vertex_sharing.hpp"
 
 #include <cstdint>
 #include <string>
@@ -55,6 +58,7 @@ public:
 private:
   static constexpr size_t kPlyVertexBytes = 32;  // x y z nx ny nz s t
   MergedMesh shared_;  // merge_topology(): its texture coordinates (its faces are kept encoded below)
+  SharedVertexLayout layout_;  // which primitives of a frame write vertices
   size_t vertices_ = 0;
   std::string ply_header_, ply_faces_;
   std::string obj_header_, obj_texcoords_, obj_faces_;

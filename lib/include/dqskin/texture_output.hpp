@@ -21,10 +21,12 @@ struct VatSource {
   int primitive = -1;  // index in the mesh's primitives
   size_t vertices = 0;
   std::string node_name, mesh_name;
+  std::vector<int> shared_by;  // later primitives of the mesh drawing these same vertices (vertex_sharing.hpp)
 };
 
-// The primitives of `instances` in the order deform_frame and frame_view give them: instances in order,
-// each instance's primitives in mesh order.
+// The primitives of `instances` that write vertices, in the order deform_frame and frame_view give them:
+// instances in order, each instance's primitives in mesh order, less those that share an earlier
+// primitive's vertex data (listed in its shared_by).
 std::vector<VatSource> vat_sources(const Asset& asset, const std::vector<MeshInstance>& instances);
 
 // Writes the BoneTexture of skin `skin` exactly as the shader reads it: an RGBA32F EXR of joints·T × frames
