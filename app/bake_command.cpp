@@ -108,7 +108,7 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
                                 {"failures", failures}})
               << std::endl;
   }
-  print_input_messages(r.inputs, s.quiet);
+  print_input_messages(r.inputs, s.quiet, s.verbose);
   const bool all_failed = std::all_of(r.inputs.begin(), r.inputs.end(), [](const InputResult& in) { return !in.error.empty(); });
   if (s.quiet || s.json_progress || all_failed) return;  // then the errors above are the whole story
   const BakeStageTimes& t = r.times;
@@ -144,7 +144,7 @@ int run_bake(const BakeSettings& given) {
       for (const BakeOutput& o : report.outputs) std::cout << printable(options.out_dir + '/' + o.path) << '\n';
       if (!settings.quiet)
         for (const std::string& line : report.plans) std::fprintf(stderr, "%s\n", printable(line).c_str());
-      print_input_messages(report.inputs, settings.quiet);
+      print_input_messages(report.inputs, settings.quiet, settings.verbose);
       const bool any_planned = std::any_of(report.inputs.begin(), report.inputs.end(),
                                            [](const InputResult& in) { return in.error.empty(); });
       if (!settings.quiet && any_planned)
@@ -249,7 +249,9 @@ Command add_bake_command(CLI::App& app) {
                      "Print progress and the final summary as JSON lines on standard output");
   bake_cmd->add_flag("-f,--force", bake.force,
                      "Overwrite existing outputs that differ (without it they are an error; equal ones are kept)");
-  bake_cmd->add_flag("-v,--verbose", bake.verbose, "Also print the OpenGL backend and renderer");
+  bake_cmd->add_flag("-v,--verbose", bake.verbose,
+                     "Also print the OpenGL backend and renderer, and the inputs' notices (a skinned mesh node's "
+                     "transform, which glTF ignores)");
   bake_cmd->footer(
       "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{glb,ply,obj} (frame numbers zero-padded, so name order is\n"
       "frame order), materials.mtl, vat_positions.exr, vat_normals.exr, vat.json, bones_skinK.{exr,json},\n"

@@ -30,14 +30,20 @@ void print_warning(std::string_view file, std::string_view message) {
   print_line("dqskin: " + printable(file) + ": warning: " + printable(message) + "\n");
 }
 
-void print_input_messages(const std::vector<InputResult>& inputs, bool quiet) {
+void print_note(std::string_view file, std::string_view message) {
+  print_line("dqskin: " + printable(file) + ": note: " + printable(message) + "\n");
+}
+
+void print_input_messages(const std::vector<InputResult>& inputs, bool quiet, bool verbose) {
   for (const InputResult& in : inputs) {
     if (!in.error.empty()) {
       print_error(in.path, in.error);
       continue;
     }
-    if (!quiet)
-      for (const std::string& w : in.warnings) print_warning(in.path, w);
+    if (quiet) continue;
+    for (const std::string& w : in.warnings) print_warning(in.path, w);
+    if (verbose)
+      for (const std::string& n : in.notices) print_note(in.path, n);
   }
 }
 

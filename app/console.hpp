@@ -19,9 +19,14 @@ void print_error(std::string_view file, std::string_view message);
 // "dqskin: FILE: warning: MESSAGE"
 void print_warning(std::string_view file, std::string_view message);
 
+// "dqskin: FILE: note: MESSAGE"
+void print_note(std::string_view file, std::string_view message);
+
 // One line per failed input ("dqskin: FILE: problem"), and unless `quiet`, one per loader warning of the
-// others ("dqskin: FILE: warning: ..."): parts of the file that were dropped or corrected.
-void print_input_messages(const std::vector<InputResult>& inputs, bool quiet);
+// others ("dqskin: FILE: warning: ..."): parts of the file that were dropped or corrected; with `verbose`
+// (and not `quiet`) also one per loader notice ("dqskin: FILE: note: ..."): what glTF defines and dqskin
+// follows, such as a skinned mesh node's transform being ignored.
+void print_input_messages(const std::vector<InputResult>& inputs, bool quiet, bool verbose = false);
 
 // How many inputs failed.
 size_t failed_inputs(const std::vector<InputResult>& inputs);

@@ -143,11 +143,14 @@ Command add_lint_command(CLI::App& app) {
       ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--bind-tolerance", o.bind_tolerance,
-                  "Largest entry of world · inverseBind − I at rest (translations relative to the skeleton's size)")
+                  "A joint bound this share of the skeleton's size (bind positions' bounding-box diagonal) from where "
+                  "its parent's bind and its rest offset put it is a warning; a rest pose this far from the bind "
+                  "pose is noted")
       ->type_name("X")
       ->capture_default_str();
   cmd->add_option("--scale-tolerance", o.scale_tolerance,
-                  "Scale or shear in joint and inverse bind matrices: entries of S − I beyond this")
+                  "Scale or shear of joint matrices, relative to the skin's placement: entries of S − I beyond this "
+                  "(a smallest scale below it is a zero scale)")
       ->type_name("X")
       ->capture_default_str();
   cmd->add_option("--unit-tolerance", o.unit_tolerance,

@@ -47,7 +47,7 @@ struct RenderSettings {
   std::string format = "png";
   bool sheet = false, gif = false;
   int sheet_cell = 256;
-  bool quiet = false, json_progress = false, force = false;
+  bool quiet = false, json_progress = false, force = false, verbose = false;
 };
 
 // "WxH", each side 1 to 16384.
@@ -144,7 +144,7 @@ int run_render(const RenderSettings& given) {
     const RenderReport report =
         render(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
-    print_input_messages(report.inputs, settings.quiet);
+    print_input_messages(report.inputs, settings.quiet, settings.verbose);
     const size_t failed = failed_inputs(report.inputs);
     if (failed < report.inputs.size()) out_folder.keep();
     // mode-diff: what the heat map's top color stands for, per animation.
@@ -245,6 +245,8 @@ Command add_render_command(CLI::App& app) {
   render_cmd->add_flag("--gif", render.gif,
                        "Also write an animated GIF per animation: OUTDIR/<input name>/<animation>/animation.gif");
   render_cmd->add_flag("-q,--quiet", render.quiet, "Print nothing but errors");
+  render_cmd->add_flag("-v,--verbose", render.verbose,
+                       "Also print the inputs' notices (a skinned mesh node's transform, which glTF ignores)");
   render_cmd->add_flag("--json-progress", render.json_progress,
                        "Print progress and the final summary as JSON lines on standard output");
   render_cmd->add_flag("-f,--force", render.force,

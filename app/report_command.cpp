@@ -33,7 +33,7 @@ struct ReportSettings {
   double twist = 150, candy_wrapper = 0.3, bulge = 0.1;
   int worst_frames = 3, image_size = 320;
   bool fast_cpu = false;
-  bool quiet = false, json_progress = false;
+  bool quiet = false, json_progress = false, verbose = false;
 };
 
 // --tolerance: a length in scene units, or a percentage of the rest pose's bounding-box diagonal (as
@@ -75,7 +75,7 @@ int run_report(const ReportSettings& given) {
     out_folder.make_folders(options.out_dir);
     const ReportResult result = report(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
-    print_input_messages(result.inputs, settings.quiet);
+    print_input_messages(result.inputs, settings.quiet, settings.verbose);
     const size_t failed = failed_inputs(result.inputs);
     if (failed < result.inputs.size()) out_folder.keep();
     if (settings.json_progress) {
@@ -142,6 +142,8 @@ Command add_report_command(CLI::App& app) {
                 "Deform lbs and dqs on the fast float CPU deformer instead of the double-precision reference "
                 "(dib always runs there): faster, figures move by float rounding");
   cmd->add_flag("-q,--quiet", s.quiet, "Print nothing but errors");
+  cmd->add_flag("-v,--verbose", s.verbose,
+                "Also print the inputs' notices (a skinned mesh node's transform, which glTF ignores)");
   cmd->add_flag("--json-progress", s.json_progress, "Print progress and the final summary as JSON lines on standard output");
   cmd->footer(
       "Outputs: OUTDIR/<input name>/report.json and worst_<animation>.png (README \"dqskin report\" defines every\n"

@@ -111,19 +111,20 @@ set_tests_properties(limits.diff_interrupted_writes_nothing_half PROPERTIES LABE
 # it reads the file four times (lint, the fix's data, the fixed .glb's JSON, lint of the fixed file):
 # 7.5 s alone, 16 s beside two other tests on two cores, hence its 60 s.
 file(MAKE_DIRECTORY ${limits_scratch}/lint)
-dqskin_limit_test(lint_200k_joint_chain 1 TIMEOUT 30
+# (Information only: its tip joint rests away from its bind pose, which its animated translation may reach.)
+dqskin_limit_test(lint_200k_joint_chain 0 TIMEOUT 30
   ARGS lint lint/chain_200k.gltf --max-memory 1G MAX_RSS_MB 1024
-  STDOUT "^lint/chain_200k.gltf: warning\n  info    unused-joint \\(200000\\)")
-dqskin_limit_test(lint_fix_200k_joint_chain 1 TIMEOUT 60
+  STDOUT "^lint/chain_200k.gltf: info\n  info    unused-joint \\(200000\\)")
+dqskin_limit_test(lint_fix_200k_joint_chain 0 TIMEOUT 60
   ARGS lint --fix lint/chain_200k.gltf -o ${limits_scratch}/lint/chain_200k.fixed.glb --max-memory 1G MAX_RSS_MB 1024
   STDERR "^dqskin: lint: wrote [^\n]*/chain_200k.fixed.glb "
-  STDOUT "\n[^\n]*chain_200k.fixed.glb: warning\n  info    unused-joint \\(200000\\)")
+  STDOUT "\n[^\n]*chain_200k.fixed.glb: info\n  info    unused-joint \\(200000\\)")
 # 1,000,000 vertices without weight and 50,000 joints: --fix compared each vertex with every joint for the
 # nearest one (over a minute); a k-d tree answers each in about log(joints).
-dqskin_limit_test(lint_fix_unweighted_vertices_50k_joints 1 TIMEOUT 30
+dqskin_limit_test(lint_fix_unweighted_vertices_50k_joints 0 TIMEOUT 30
   ARGS lint --fix lint/unweighted_50k.gltf -o ${limits_scratch}/lint/unweighted_50k.fixed.glb --max-memory 1G
   MAX_RSS_MB 1024 STDERR "^dqskin: lint: wrote [^\n]*/unweighted_50k.fixed.glb "
-  STDOUT "\n[^\n]*unweighted_50k.fixed.glb: warning\n")
+  STDOUT "\n[^\n]*unweighted_50k.fixed.glb: info\n")
 # 4,000,000 vertices without weight in a 3 KB file: lint fits in 640 MiB, --fix did not, and the
 # ceiling's refusal escaped as "dqskin: needs more memory ..." without the file (at the default 2 GiB
 # too, for 16,000,000 vertices). --fix now estimates what it will hold before it starts and refuses in one

@@ -4,7 +4,7 @@
 # status; with VALIDATE, runs the Khronos glTF-Validator on the fixed file (0 errors), or says that it was
 # skipped and why when Node.js or the validator is missing.
 #
-#   cmake -DDQSKIN=dqskin -DFILE=in.gltf -DEXPECTED=status "-DCHECKS=id;id" [-DWORK=folder -DFIX=ON
+#   cmake -DDQSKIN=dqskin -DFILE=in.gltf -DEXPECTED=status "-DCHECKS=id;id" (or id,id) [-DWORK=folder -DFIX=ON
 #         -DFIXABLE=ON|OFF -DFIXED_EXPECTED=status [-DVALIDATE=ON -DNODE=node -DVALIDATOR=dir -DSCRIPT=validate_gltf.mjs]]
 #         -P lint_case.cmake
 cmake_minimum_required(VERSION 3.25)
@@ -23,6 +23,7 @@ function(checks_of json index out)
   set(${out} "${ids}" PARENT_SCOPE)
 endfunction()
 
+string(REPLACE "," ";" CHECKS "${CHECKS}")  # ids may also come comma-separated (no escaping through add_test)
 execute_process(COMMAND "${DQSKIN}" lint --json "${FILE}" RESULT_VARIABLE status OUTPUT_VARIABLE out
                 ERROR_VARIABLE err TIMEOUT 120)
 if(NOT status STREQUAL "${EXPECTED}")

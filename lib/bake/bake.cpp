@@ -409,7 +409,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
           plan.error = e.what();
         }
       }
-      report.inputs.push_back({plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}});
+      report.inputs.push_back({plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{},
+                               plan.asset ? plan.asset->notices : std::vector<std::string>{}});
       for (const ClipPlan& clip : plan.clips)
         for (std::string& file : planned_files(plan, clip, options)) report.outputs.push_back({std::move(file), 0, {}, false});
     }

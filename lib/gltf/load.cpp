@@ -11,6 +11,7 @@
 #include "memory_estimate.hpp"
 #include "mesh.hpp"
 #include "model_io.hpp"
+#include "skinned_node_transform.hpp"
 #include "structure.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -177,24 +178,18 @@ void read_skins(const tinygltf::Model& m, const AccessorReader& reader, Asset& a
 }
 
 // Things that are valid, or that dqskin corrects, but that a user may want to know (the Khronos
-// validator reports the same situations).
+// validator reports the same situations): warnings, and the notices only some commands print.
 void add_warnings(const tinygltf::Model& m, Asset& asset) {
   for (size_t i = 0; i < m.nodes.size(); ++i) {
     const std::vector<double>& r = m.nodes[i].rotation;
     if (r.size() == 4 && std::abs(std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]) - 1) > 1e-5)
       asset.warnings.push_back(at("node", i) + ": rotation is not a unit quaternion; it is normalized");
   }
-  for (size_t i = 0; i < asset.nodes.size(); ++i) {
-    const Node& node = asset.nodes[i];
-    if (node.skin < 0) continue;
-    // §3.7.3.1: the skinned mesh node's transform does not apply, nor do its parents'.
-    bool moved = false;
-    for (int n = int(i); n >= 0 && !moved; n = asset.nodes[size_t(n)].parent)
-      moved = asset.nodes[size_t(n)].local.to_matrix() != Mat4<double>(1.0);
-    if (moved)
-      asset.warnings.push_back(at("node", i) + ": is skinned but has a transform of its own or of a parent; as " +
-                               "glTF says, it is ignored");
-  }
+  // §3.7.3.1: the skinned mesh node's transform does not apply, nor do its parents'. Exporters write one
+  // on purpose (an armature's scale, a Z-up turn), so it is a notice, once per file, not a warning per node.
+  const std::string notice =
+      gltf::skinned_node_transform_notice(asset.nodes, gltf::skinned_nodes_with_transform(asset.nodes));
+  if (!notice.empty()) asset.notices.push_back(notice);
   for (const std::string& ext : m.extensionsUsed)
     if (!is_supported_extension(ext) &&
         std::find(m.extensionsRequired.begin(), m.extensionsRequired.end(), ext) == m.extensionsRequired.end())

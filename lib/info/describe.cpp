@@ -106,6 +106,8 @@ AssetFacts describe(const Asset& asset) {
   }
 
   f.warnings = asset.warnings;
+  // `info` describes everything, so the notices (what glTF defines and dqskin follows) are among its warnings.
+  f.warnings.insert(f.warnings.end(), asset.notices.begin(), asset.notices.end());
   const std::vector<std::string> w = weight_warnings(asset);
   f.warnings.insert(f.warnings.end(), w.begin(), w.end());
   return f;

@@ -22,7 +22,8 @@ std::vector<InputResult> for_each_input(const std::vector<InputPlan>& plans, con
                                         const ForgetInput& forget) {
   std::vector<InputResult> results;
   for (const InputPlan& plan : plans) {
-    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{}};
+    InputResult result{plan.path, plan.error, 0, plan.asset ? plan.asset->warnings : std::vector<std::string>{},
+                       plan.asset ? plan.asset->notices : std::vector<std::string>{}};
     if (plan.error.empty()) {
       OutputJournal journal;  // what this input wrote, taken back when it fails
       try {

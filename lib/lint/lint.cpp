@@ -42,13 +42,23 @@ const std::vector<LintCheckInfo>& lint_checks() {
       {"no-common-root", S::kError, "the skin's joints hang under different root nodes", false},
       {"skeleton-not-root", S::kError,
        "the skin's skeleton node is not an ancestor of every joint (--fix removes the property)", true},
+      {"joint-not-in-scene", S::kError,
+       "a joint is not in a scene that draws its skin (runtimes pose only the scene's nodes)", false},
+      {"ibm-not-affine", S::kError, "an inverse bind matrix's fourth row is not (0, 0, 0, 1)", false},
+      {"ibm-not-invertible", S::kError, "an inverse bind matrix cannot be inverted (or is not finite)", false},
       {"inverse-bind-mismatch", S::kWarning,
-       "an inverse bind matrix is not the inverse of the joint's rest world matrix", false},
-      {"ibm-not-orthonormal", S::kWarning, "an inverse bind matrix has scale or shear", false},
-      {"joint-uniform-scale", S::kInfo, "a joint matrix has uniform scale at rest or at a key (DQS two-phase keeps it)",
+       "the inverse bind matrices match no pose of the skeleton: a joint bound away from where its parent's bind "
+       "and its unanimated offset put it (the mesh tears there)",
        false},
-      {"joint-nonuniform-scale", S::kWarning, "a joint matrix has non-uniform scale or shear at rest or at a key",
+      {"rest-differs-from-bind", S::kInfo, "a joint is posed at rest unlike its bind pose (legal)", false},
+      {"joint-zero-scale", S::kWarning, "a joint matrix scales to zero at rest or at a key (its normals are undefined)",
        false},
+      {"joint-mirrored", S::kWarning,
+       "a joint matrix mirrors at rest or at a key (its triangles turn inside out; DQS cannot represent it)", false},
+      {"joint-uniform-scale", S::kInfo,
+       "a joint matrix has uniform scale, beyond the skin's own, at rest or at a key (DQS two-phase keeps it)", false},
+      {"joint-nonuniform-scale", S::kWarning,
+       "a joint matrix has non-uniform scale or shear at rest or at a key (three.js shades its normals wrong)", false},
       {"rotation-not-unit", S::kError,
        "a rotation key is not a unit quaternion (--fix normalizes it; a key of length 0 takes the nearest valid key "
        "of its channel, or the node's rest rotation)",
@@ -62,6 +72,8 @@ const std::vector<LintCheckInfo>& lint_checks() {
        "a channel repeats an earlier one of its animation (the same node, path and keys): glTF 2.0 forbids it "
        "and the Khronos validator fails the file, though viewers play it (--fix removes it)",
        true},
+      {"skinned-node-transform", S::kInfo,
+       "skinned mesh nodes have a transform (their own or a parent's), which glTF ignores (§3.7.3.1)", false},
   };
   return checks;
 }

@@ -3,12 +3,16 @@
 #pragma once
 
 #include "../gltf/skin_data.hpp"
+#include "dqskin/animation.hpp"
 #include "dqskin/lint.hpp"
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace dqskin::lint {
+
+class NodeTree;
 
 // One check's running count and worst example.
 struct Tally {
@@ -36,9 +40,37 @@ using Findings = std::map<std::string, Tally>;  // by check id
 // influence counts, joints that influence nothing (influence_checks.cpp).
 void check_influences(const gltf::SkinData& data, const LintOptions& options, Findings& out);
 
-// Common roots and the skeleton property, inverse bind matrices against the rest pose and their
-// orthonormality, scale and shear of joint matrices at rest and at every key time (skeleton_checks.cpp).
+// Common roots and the skeleton property, joints outside the scene that draws their skin, skinned mesh
+// nodes whose transform glTF ignores, inverse bind matrices, and the scale, shear and mirroring of joint
+// matrices at rest and at every key time (skeleton_checks.cpp, with the parts below).
 void check_skeletons(const gltf::SkinData& data, const LintOptions& options, Findings& out);
+
+// What the checks of one skin measure against (bind_checks.cpp).
+struct SkinFrame {
+  std::vector<int> parent;         // per joint: the skin's joint nearest above it, or -1 (a top joint)
+  std::vector<bool> offset_moves;  // per joint: a clip animates its translation or a node between it and parent
+  std::vector<bool> bind_usable;   // per joint: its inverse bind matrix is finite, affine and invertible
+  // Bounding-box diagonal of the joints' bind positions, in bind space (the units of POSITION); 1 when
+  // every joint is bound at one point. Tolerances in scene units are this times the relative tolerance.
+  double size = 1;
+  int reference = -1;            // the first top joint with a usable inverse bind matrix, or -1
+  Mat4<double> placement{1.0};   // its joint matrix world · inverseBind at rest: bind space placed in the world
+  double scale = 1;              // placement's uniform scale, ∛|det|, or 1 when it has none (a 0.01 armature: 0.01)
+};
+
+// One SkinFrame per skin of `rig`, from the rest pose `rest`.
+std::vector<SkinFrame> skin_frames(const Asset& rig, const Pose& rest);
+
+// Inverse bind matrices that are not affine or not invertible, that match no pose of the skeleton, and
+// joints posed at rest unlike their bind pose (bind_checks.cpp).
+void check_inverse_binds(const Asset& rig, const Pose& rest, const std::vector<SkinFrame>& frames,
+                         const LintOptions& options, Findings& out);
+
+// Joints outside the scene that draws their skin, and skinned mesh nodes with a transform (scene_checks.cpp).
+void check_scenes(const Asset& rig, const NodeTree& tree, Findings& out);
+
+// "node 3 'Hips'"
+std::string node_name(const Asset& asset, int node);
 
 // Rotation keys that are not unit quaternions, and neighbours in opposite hemispheres (key_checks.cpp).
 void check_rotation_keys(const gltf::SkinData& data, const LintOptions& options, Findings& out);

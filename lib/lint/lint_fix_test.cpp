@@ -49,7 +49,6 @@ const FixCase kFixCases[] = {
     {"unused_joint.gltf", "unused-joint", false},
     {"no_common_root.gltf", "no-common-root", false},
     {"wrong_inverse_bind.gltf", "inverse-bind-mismatch", false},
-    {"non_orthonormal_ibm.gltf", "ibm-not-orthonormal", false},
     {"nonuniform_scaled_joint.gltf", "joint-nonuniform-scale", false},
 };
 

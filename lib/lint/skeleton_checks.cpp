@@ -1,8 +1,9 @@
 // The per-joint checks of `dqskin lint`: the joints' hierarchy (glTF 2.0 §3.7.3.1 and the skin schema:
-// joints share a common root, and `skeleton` is that root or one of its ancestors), inverse bind matrices
-// against the rest pose, and the scale and shear of joint matrices world · inverseBind (DESIGN.md
-// "Non-rigid joints": uniform scale survives DQS with the two-phase rule; shear and non-uniform scale need
-// it, and plain DQS runtimes distort them).
+// joints share a common root, and `skeleton` is that root or one of its ancestors), and the joint matrices
+// world · inverseBind at rest and at every key: scaled to zero, mirrored, and scaled (DESIGN.md "Non-rigid
+// joints": uniform scale survives DQS with the two-phase rule; shear and non-uniform scale need it, and plain
+// DQS runtimes distort them). Scale is measured against the skin's placement (SkinFrame::scale), so an
+// armature at 0.01 scale is not a scaled joint. Inverse bind matrices: bind_checks.cpp.
 #include "lint_checks.hpp"
 #include "node_tree.hpp"
 
@@ -16,13 +17,14 @@
 #include <set>
 
 namespace dqskin::lint {
-namespace {
 
 std::string node_name(const Asset& a, int node) {
   std::string s = "node " + std::to_string(node);
   if (!a.nodes[size_t(node)].name.empty()) s += " '" + a.nodes[size_t(node)].name + "'";
   return s;
 }
+
+namespace {
 
 std::string skin_name(size_t s) { return "skin " + std::to_string(s); }
 
@@ -69,63 +71,13 @@ ScaleMeasure measure(const Mat3<double>& S) {
   return m;
 }
 
-// The size of the skeleton at rest: diagonal of its joints' positions, at least 1 unit, so that a
-// translation error of a centimetre model and of a kilometre one are judged alike.
-double skeleton_size(const Skin& skin, const Pose& rest) {
-  Vec3<double> lo(0.0), hi(0.0);
-  for (size_t j = 0; j < skin.joints.size(); ++j) {
-    const Vec3<double> p(rest.world[size_t(skin.joints[j])][3]);
-    lo = j == 0 ? p : glm::min(lo, p);
-    hi = j == 0 ? p : glm::max(hi, p);
-  }
-  return std::max(1.0, glm::length(hi - lo));
-}
-
-// Each skin's bind space placed in the world at rest: the world matrix of the first node that draws a mesh
-// with the skin, or the identity when none does. At the bind pose every joint matrix world · inverseBind
-// equals it (the mesh then appears where it was bound: exporters put the armature's own transform, such as
-// a Z-up to Y-up turn, into both), so a joint whose matrix differs was bound elsewhere than the file's rest
-// pose puts it. One pass over the nodes for every skin (a pass per skin is skins × nodes).
-std::vector<Mat4<double>> bind_placements(const Asset& a, const Pose& rest) {
-  std::vector<Mat4<double>> placement(a.skins.size(), Mat4<double>(1.0));
-  std::vector<bool> placed(a.skins.size(), false);
-  for (size_t n = 0; n < a.nodes.size(); ++n) {
-    const int s = a.nodes[n].skin;
-    if (s < 0 || placed[size_t(s)]) continue;
-    placement[size_t(s)] = rest.world[n];
-    placed[size_t(s)] = true;
-  }
-  return placement;
-}
-
-void check_inverse_binds(const Asset& a, size_t s, const Pose& rest, const Mat4<double>& placement,
-                         const LintOptions& o, Findings& out) {
-  const Skin& skin = a.skins[s];
-  const double size = skeleton_size(skin, rest);
-  const Mat4<double> unplace = glm::inverse(placement);
-  for (size_t j = 0; j < skin.joints.size(); ++j) {
-    const Mat4<double>& ibm = skin.inverse_bind[j];
-    const Mat4<double> m = unplace * rest.world[size_t(skin.joints[j])] * ibm;
-    double deviation = 0;
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r) deviation = std::max(deviation, std::abs(m[c][r] - (c == r ? 1.0 : 0.0)));
-    for (int r = 0; r < 3; ++r) deviation = std::max(deviation, std::abs(m[3][r]) / size);
-    if (deviation > o.bind_tolerance)
-      out["inverse-bind-mismatch"].add(deviation, joint_example(skin_name(s), j, deviation), [&] {
-        return "inverse bind matrix of joint " + std::to_string(j) + " (" + node_name(a, skin.joints[j]) + ", " +
-               skin_name(s) + ") is not the inverse of its rest world matrix: world · inverseBind differs from the " +
-               "skinned mesh node's placement by " + number(deviation) +
-               " (largest entry, translation relative to the skeleton's size " + number(size) + ")";
-      });
-    const JointSplit<double> split = split_joint_matrix(ibm, o.scale_tolerance);
-    if (!split.is_rigid) {
-      const double d = measure(split.scale).off_identity;
-      out["ibm-not-orthonormal"].add(d, joint_example(skin_name(s), j, d), [&] {
-        return "inverse bind matrix of joint " + std::to_string(j) + " (" + node_name(a, skin.joints[j]) + ", " +
-               skin_name(s) + ") has scale or shear (|S − I| up to " + number(d) + ")";
-      });
-    }
-  }
+// The smallest scale of a 3×3 A, within a factor √3: |det A| / |adj A| (Frobenius), since A⁻¹ = adj A / det A
+// and 1 / |A⁻¹|_F ≤ σ_min ≤ √3 / |A⁻¹|_F. 0 for a singular A. Cheap, and needs no eigenvalues.
+double smallest_scale(const Mat3<double>& a) {
+  // The rows of adj A are the columns' cross products.
+  const Vec3<double> rows[3] = {glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1])};
+  const double norm = glm::dot(rows[0], rows[0]) + glm::dot(rows[1], rows[1]) + glm::dot(rows[2], rows[2]);
+  return norm > 0 ? std::abs(glm::determinant(a)) / std::sqrt(norm) : 0.0;
 }
 
 // Worst case per joint over every pose, so that a joint is counted once however many keys show it.
@@ -135,33 +87,68 @@ struct JointWorst {
   std::string message;
 };
 
-void check_joint_scale(const Asset& rig, const LintOptions& o, Findings& out) {
-  std::map<std::pair<size_t, size_t>, JointWorst> uniform, nonuniform;
+void check_joint_scale(const Asset& rig, const Pose& rest, const std::vector<SkinFrame>& frames, const LintOptions& o,
+                       Findings& out) {
+  std::map<std::pair<size_t, size_t>, JointWorst> zero, mirrored, uniform, nonuniform;
+  auto keep = [](JointWorst& w, double score, auto make_example, auto make_message) {
+    if (score <= w.score) return;
+    w.score = score;
+    w.example = make_example();
+    w.message = make_message();
+  };
   auto visit = [&](const Pose& pose, const std::string& when) {
     for (size_t s = 0; s < rig.skins.size(); ++s) {
       const Skin& skin = rig.skins[s];
+      const SkinFrame& f = frames[s];
       for (size_t j = 0; j < skin.joints.size(); ++j) {
-        const Mat4<double> m = pose.world[size_t(skin.joints[j])] * skin.inverse_bind[j];
+        if (!f.bind_usable[j]) continue;  // ibm-not-affine or ibm-not-invertible says why
+        // Scale relative to the skin's placement: an armature at 0.01 scales every joint alike, which is
+        // where the mesh is placed, not how it deforms.
+        Mat4<double> m = pose.world[size_t(skin.joints[j])] * skin.inverse_bind[j];
+        for (int c = 0; c < 3; ++c) m[c] /= f.scale;
+        const Mat3<double> a(m);
+        // Built only for a new worst case: a pose visits every joint of every skin.
+        const auto joint = [&] {
+          return "joint matrix of joint " + std::to_string(j) + " (" + node_name(rig, skin.joints[j]) + ", " +
+                 skin_name(s) + ") " + when;
+        };
+        const auto example = [&](double value) { return joint_example(skin_name(s) + " " + when, j, value); };
+        const double smallest = smallest_scale(a);
+        if (!(smallest >= o.scale_tolerance)) {
+          keep(zero[{s, j}], o.scale_tolerance - smallest, [&] { return example(smallest); }, [&] {
+            return joint() + " scales to zero (smallest scale about " + number(smallest) + " of the skin's " +
+                   number(f.scale) + "): its vertices collapse and their normals are undefined (three.js normalizes a "
+                   "zero vector; DQS has no rotation to blend)";
+          });
+          continue;
+        }
+        const double det = glm::determinant(a);
+        if (det < 0) {
+          keep(mirrored[{s, j}], -det, [&] { return example(det); }, [&] {
+            return joint() + " mirrors (determinant " + number(det) + "): its triangles turn inside out, and runtimes " +
+                   "pick the front face from the mesh node's matrix, not the joint's (three.js), so single-sided " +
+                   "materials show their back faces; DQS cannot represent a reflection";
+          });
+          continue;
+        }
         const JointSplit<double> split = split_joint_matrix(m, o.scale_tolerance);
         if (split.is_rigid) continue;
         const ScaleMeasure d = measure(split.scale);
         const bool is_uniform = d.off_uniform <= o.scale_tolerance;
-        JointWorst& w = (is_uniform ? uniform : nonuniform)[{s, j}];
         const double score = is_uniform ? d.off_identity : d.off_uniform;
-        if (score <= w.score) continue;
-        w.score = score;
-        w.example = joint_example(skin_name(s) + " " + when, j, score);
-        w.message =
-            "joint matrix of joint " + std::to_string(j) + " (" + node_name(rig, skin.joints[j]) + ", " + skin_name(s) +
-            ") " + when + " has " +
-            (is_uniform
-                 ? "uniform scale " + number((split.scale[0][0] + split.scale[1][1] + split.scale[2][2]) / 3) +
-                       " (DQS with the two-phase rule keeps it)"
-                 : "non-uniform scale or shear (|S − sI| up to " + number(score) + "; DQS needs the two-phase path)");
+        keep((is_uniform ? uniform : nonuniform)[{s, j}], score, [&] { return example(score); }, [&] {
+          return joint() + " has " +
+                 (is_uniform ? "uniform scale " + number((split.scale[0][0] + split.scale[1][1] + split.scale[2][2]) / 3) +
+                                   " of the skin's " + number(f.scale) + " (DQS with the two-phase rule keeps it)"
+                             : "non-uniform scale or shear (|S − sI| up to " + number(score) + " of the skin's scale " +
+                                   number(f.scale) +
+                                   "): three.js turns normals by the blended joint matrix, not its inverse transpose, "
+                                   "so lit shading is off there; DQS needs the two-phase path");
+        });
       }
     }
   };
-  visit(sample_pose(rig, nullptr, 0), "at rest");
+  visit(rest, "at rest");
   for (size_t c = 0; c < rig.clips.size(); ++c) {
     const Clip& clip = rig.clips[c];
     std::set<float> key_times;
@@ -185,7 +172,8 @@ void check_joint_scale(const Asset& rig, const LintOptions& o, Findings& out) {
     }
   }
   for (const auto& [check, joints] :
-       {std::pair{"joint-uniform-scale", &uniform}, std::pair{"joint-nonuniform-scale", &nonuniform}})
+       {std::pair{"joint-zero-scale", &zero}, std::pair{"joint-mirrored", &mirrored},
+        std::pair{"joint-uniform-scale", &uniform}, std::pair{"joint-nonuniform-scale", &nonuniform}})
     for (const auto& entry : *joints) {
       const JointWorst& w = entry.second;
       out[check].add(w.score, w.example, [&] { return w.message; });
@@ -201,15 +189,17 @@ void check_skeletons(const gltf::SkinData& data, const LintOptions& options, Fin
   for (Node& n : rig.nodes) n.mesh = -1;
   rig.skins = data.structure.skins;
   rig.clips = data.structure.clips;
+  rig.scenes = data.structure.scenes;
   const Pose rest = sample_pose(rig, nullptr, 0);
   const NodeTree tree(rig.nodes);
-  const std::vector<Mat4<double>> placements = bind_placements(rig, rest);
   for (size_t s = 0; s < rig.skins.size(); ++s) {
     check_cancelled(options.cancel);
     check_roots(rig, tree, s, out);
-    check_inverse_binds(rig, s, rest, placements[s], options, out);
   }
-  check_joint_scale(rig, options, out);
+  check_scenes(rig, tree, out);
+  const std::vector<SkinFrame> frames = skin_frames(rig, rest);
+  check_inverse_binds(rig, rest, frames, options, out);
+  check_joint_scale(rig, rest, frames, options, out);
 }
 
 }  // namespace dqskin::lint

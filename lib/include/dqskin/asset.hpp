@@ -203,6 +203,10 @@ struct Asset {
   std::vector<SceneCamera> cameras;
   int default_scene = -1;
   std::vector<std::string> warnings;  // things that are allowed but worth telling the user
+  // What the file does that glTF defines and dqskin follows as it says, worth telling only when asked (a
+  // skinned mesh node's transform, which glTF ignores): `info` and `lint` print them, the other commands
+  // with --verbose. One line each, once per file.
+  std::vector<std::string> notices;
   // Why the file, though it is read, cannot be deformed (two different channels for one node and path,
   // say): one line each, naming the objects and the rule. Empty for every file the deforming commands
   // accept. Only loads with LoadOptions::refuse_undeformable off can see it non-empty (info, lint).

@@ -18,6 +18,7 @@ struct InputResult {
   std::string error;  // empty when the input succeeded
   size_t frames = 0;  // frames this process deformed (bake) or rendered (render)
   std::vector<std::string> warnings;  // the loader's (Asset::warnings): what it dropped or corrected
+  std::vector<std::string> notices;   // the loader's (Asset::notices): printed only with --verbose
 };
 
 // Where a job is: called as frames finish.

@@ -22,11 +22,15 @@ struct LintOptions {
   // More nonzero weights per vertex than this is a warning (and what --fix keeps); more than 8, the most
   // dqskin deforms, is an error.
   int max_influences = 4;
-  // Inverse bind matrices against the inverse of the joints' rest world matrices: largest entry of
-  // world · inverseBind − I, translations as fractions of the skeleton's size (at least 1 unit).
+  // As a share of the skeleton's size (the bounding-box diagonal of the joints' bind positions, in bind
+  // space): how far a joint may be bound from where its parent's bind transform and its rest offset put it
+  // (inverse-bind-mismatch), and how far the rest pose may be from the bind pose before it is noted
+  // (rest-differs-from-bind: largest entry of placement⁻¹ · world · inverseBind − I, translations over the
+  // size).
   double bind_tolerance = 1e-3;
-  // Scale or shear in joint and inverse bind matrices: entries of S − I (A = R S) beyond this. Looser than
-  // DESIGN.md's 1e-5: float matrices composed down a chain of joints carry about 1e-5 of rounding.
+  // Scale or shear of joint matrices relative to the skin's placement scale: entries of S − I or S − sI
+  // (A = R S) beyond this; a smallest scale below it is a zero scale. Looser than DESIGN.md's 1e-5: float
+  // matrices composed down a chain of joints carry about 1e-5 of rounding.
   double scale_tolerance = 1e-4;
   // Rotation keys whose length differs from 1 by more than this.
   double unit_tolerance = 1e-3;
