@@ -239,8 +239,12 @@ public:
   }
 
 private:
-  // Whole-animation files that need no deformation: the OBJ material library and the bone textures.
+  // Whole-animation files that need no deformation: the glb frames' shared images, the OBJ material library
+  // and the bone textures.
   void write_clip_files(const ClipPlan& clip) {
+    if (glb_)
+      for (const GlbImageFile& image : glb_->image_files())
+        ledger_.write(clip.folder + "/" + image.name, image.bytes, journal_);
     if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
       ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
     if (!has(options_.formats, BakeFormat::kBones) || input_.skins.empty()) return;
@@ -376,7 +380,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     if (!plan.error.empty()) continue;
     try {
       if (has(options.formats, BakeFormat::kGlb))
-        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene);
+        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene, options.glb_images);
       if (has(options.formats, BakeFormat::kMorph))
         appearances[i] = std::make_unique<glb::Appearance>(glb::read_appearance(*plan.asset, plan.instances, plan.scene));
       plan.asset->source.reset();  // the writers have copied what they need: the JSON is not kept through the bake
