@@ -63,3 +63,29 @@ set_tests_properties(cli.glb_images_shared_frame_drawn_textured PROPERTIES ENVIR
 dqskin_cli_test(cli.glb_images_unknown_mode 2 ARGS bake ${textured} -o ${glb_images_scratch}/bad --glb-images inline
   STDERR "^dqskin: --glb-images 'inline' is not one of embed, shared, none\n$")
 
+# ---- the meshes beside textures keep the source's look ---------------------------------------------------
+# Each is baked from the textured cylinder, then drawn (no animation: its rest pose) against the source at
+# time 0 (the clip starts at the rest pose): the checker and the colour gradient must show, not the
+# untextured rig's plain surface. Every .glb of the bake must be validator-clean.
+set(look_scratch ${CMAKE_CURRENT_BINARY_DIR}/mesh_look)
+foreach(case vat:dqskin:rest.glb vat:openvat:textured_cylinder.glb vat:houdini:textured_cylinder_mesh.glb
+             bones:dq:bones_mesh.glb)
+  string(REPLACE ":" ";" case "${case}")
+  list(GET case 0 format)
+  list(GET case 1 profile)
+  list(GET case 2 file)
+  set(name ${format}_${profile})
+  dqskin_cli_test(cli.mesh_look_bake_${name} 0 ARGS bake ${textured} -o ${look_scratch}/${name} --format ${format}
+    --${format}-profile ${profile} --fps 4 --force --quiet ENVIRONMENT ${bake_test_environment} LABELS gpu)
+  set_tests_properties(cli.mesh_look_bake_${name} PROPERTIES FIXTURES_SETUP mesh_look_${name})
+  add_test(NAME cli.mesh_look_drawn_${name} COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli>
+    -DCASE=${look_scratch}/${name}/textured_cylinder/twist/${file} -DREFERENCE=${textured} -DUNLIKE=${untextured}
+    -DOUT=${texture_scratch}/look_${name} -DTIME=0 -P ${PROJECT_SOURCE_DIR}/app/tests/texture_render_case.cmake)
+  set_tests_properties(cli.mesh_look_drawn_${name} PROPERTIES ENVIRONMENT "${bake_test_environment}" LABELS gpu
+    FIXTURES_REQUIRED mesh_look_${name})
+  if(DQSKIN_NODE)
+    add_test(NAME cli.mesh_look_validator_${name} COMMAND ${DQSKIN_NODE} ${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs
+      --validator ${glb_validator} ${look_scratch}/${name})
+    set_tests_properties(cli.mesh_look_validator_${name} PROPERTIES FIXTURES_REQUIRED mesh_look_${name})
+  endif()
+endforeach()

@@ -294,6 +294,15 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
   return out;
 }
 
+Appearance read_look(const Asset& asset) {
+  Appearance all = read_appearance(asset, {}, -1, GlbImages::kEmbed);
+  Appearance look;
+  for (const char* key : {"materials", "textures", "samplers", "images"}) look.doc[key] = std::move(all.doc[key]);
+  look.bin = std::move(all.bin);
+  look.source_extensions_required = std::move(all.source_extensions_required);
+  return look;
+}
+
 namespace {
 
 void put_u32(std::string& out, size_t value) {

@@ -108,6 +108,11 @@ struct Appearance {
 Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
                            GlbImages images = GlbImages::kEmbed);
 
+// The source's look for a .glb that draws the source's primitives under materials of the same indices (the
+// meshes beside textures, lib/texture): read_appearance's materials, textures, samplers and images (embedded
+// in `bin`) and the source's required extensions; no nodes, meshes, cameras or root extensions.
+Appearance read_look(const Asset& asset);
+
 // The file name under which GlbImages::kShared writes image `index` of the asset: "image_<index>.<ext>"
 // (png, jpg, webp, ktx2 by the bytes' signature, else by the mime type the file states; bin when neither
 // names one of them), or empty when the image is not copied (no bytes, or no format known at all).
