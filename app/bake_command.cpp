@@ -46,6 +46,7 @@ struct BakeSettings {
   std::string max_bytes;  // "64M"
   bool no_check = false;
   bool morph_quantize = false;
+  std::string glb_images = "shared";
 };
 
 // --max-error: a length in scene units, or a percentage of the clip's bounding-box diagonal.
@@ -75,6 +76,7 @@ BakeOptions to_options(const BakeSettings& s) {
   o.textures = s.textures;
   o.textures.check = !s.no_check;
   o.morph.quantize = s.morph_quantize;
+  o.glb_images = parse_glb_images(s.glb_images);
   parse_max_error(s.max_error, o.textures);
   if (!s.max_bytes.empty()) o.textures.max_bytes = parse_byte_size(s.max_bytes, "--max-bytes");
   return o;
@@ -179,6 +181,12 @@ Command add_bake_command(CLI::App& app) {
       ->capture_default_str();
   bake_cmd->add_option("--format", bake.formats, "Outputs, any of glb,ply,obj,vat,bones,morph (comma-separated)")
       ->type_name("LIST")
+      ->capture_default_str();
+  bake_cmd->add_option("--glb-images", bake.glb_images,
+                       "glb: where the frames' images go: shared (written once into each animation's folder, "
+                       "referenced by every frame), embed (in every frame: each file stands alone) or none "
+                       "(materials keep their factors)")
+      ->type_name("embed|shared|none")
       ->capture_default_str();
   bake_cmd->add_option("--vat-profile", bake.textures.vat_profile,
                        "Vertex-animation texture layout: dqskin (absolute positions, DESIGN.md), openvat (OpenVAT's "

@@ -876,6 +876,30 @@ def animation_channel_cases(cat, base):
         a.gltf["extensionsRequired"] = ["KHR_animation_pointer"]
     cat.write("valid_animation_pointer.gltf", edit(base, f).gltf_bytes())
     cat.valid.append("valid_animation_pointer.gltf")
+def texture_extension_cases(cat, base):
+    """Textures whose image an extension holds (README "dqskin render"): they load, with one warning when
+    the extension's image cannot be drawn."""
+    def with_textures(textures, used, required=()):
+        a = base.copy()
+        a.gltf.update(copy.deepcopy({
+            "textures": textures,
+            "images": [{"uri": "data:image/png;base64,iVBORw0KGgo=", "mimeType": "image/png"},
+                       {"uri": "data:application/octet-stream;base64,q0tUWCAyMLsNChoK", "mimeType": "image/ktx2"}],
+        }))
+        a.gltf["extensionsUsed"] = list(used)
+        if required:
+            a.gltf["extensionsRequired"] = list(required)
+        return a
+    # EXT_texture_webp naming an image that does not exist: the core source is drawn.
+    cat.warning("texture_webp_image_missing",
+                with_textures([{"source": 0, "extensions": {"EXT_texture_webp": {"source": 5}}}], ["EXT_texture_webp"]),
+                regex_escape("texture 0: EXT_texture_webp source 5 does not exist") + ". its core source is used")
+    # KHR_texture_basisu without a PNG or JPEG fallback (so required): drawn with the material's factors.
+    basisu = ["KHR_texture_basisu"]
+    cat.warning("texture_basisu_without_fallback",
+                with_textures([{"extensions": {"KHR_texture_basisu": {"source": 1}}}], basisu, basisu),
+                regex_escape("texture 0 has only a KTX2 image (KHR_texture_basisu), which dqskin does not decode, "
+                             "and no PNG or JPEG fallback") + ". materials using it are drawn with their factors")
 
 
 def main():
@@ -1286,6 +1310,7 @@ def main():
     meshopt_cases(cat, base)
     draco_cases(cat, base)
     animation_channel_cases(cat, base)
+    texture_extension_cases(cat, base)
 
     # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
     # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.

@@ -4,7 +4,8 @@
 //
 // DIR is the installed npm package (PREFIX/node_modules/gltf-validator, see scripts/install-node-tools.sh),
 // or else $GLTF_VALIDATOR. Folders are searched for .glb files, recursively; a .gltf is validated when it is
-// named, with its external files (buffers, images) read from its folder. Prints one line per file
+// named, with its external files (buffers, images) read from its folder; a .glb may reference files beside it
+// only (a baked animation's shared images), and they are validated with it. Prints one line per file
 // with its error/warning/info/hint counts and its first messages. Exit status: 0 when no file has an error,
 // 1 when one has (or no .glb was found), 2 for a usage problem or a missing validator.
 import fs from 'node:fs';
@@ -56,8 +57,14 @@ for (const file of files) {
   const options = {
     uri: path.basename(file),
     maxIssues: 0,
-    // A .glb frame is self-contained: any external reference is itself a defect.
-    externalResourceFunction: (uri) => Promise.reject(new Error(`external resource ${uri} refused`)),
+    // A .glb may reference only a file in its own folder (the images that `bake --glb-images shared` writes
+    // once beside the frames); any other external reference is itself a defect.
+    externalResourceFunction: (uri) => {
+      const name = decodeURIComponent(uri);
+      if (/[\/\\:]/.test(name) || name === '.' || name === '..')
+        return Promise.reject(new Error(`external resource ${uri} refused: not a file beside the .glb`));
+      return fs.promises.readFile(path.join(path.dirname(file), name)).then((data) => new Uint8Array(data));
+    },
   };
   if (file.endsWith('.gltf')) {
     options.externalResourceFunction = (uri) => fs.promises.readFile(

@@ -42,11 +42,16 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
 
 bool has(unsigned formats, BakeFormat f) { return formats & unsigned(f); }
 
+// Whether the bake writes meshes beside textures (rest.glb and the profiles' meshes, bones_mesh.glb), which
+// keep the source's materials and images.
+bool has_look(unsigned formats) { return has(formats, BakeFormat::kVat) || has(formats, BakeFormat::kBones); }
+
 // The planner's view of a bake: which inputs, clips, frames and shard.
 PlanOptions plan_options(const BakeOptions& options) {
   PlanOptions plan{options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
-  // What the glb writer and the morph animation copy from the file.
-  plan.load.keep_source = has(options.formats, BakeFormat::kGlb) || has(options.formats, BakeFormat::kMorph);
+  // What the glb writer, the morph animation and the meshes beside textures copy from the file.
+  plan.load.keep_source = has(options.formats, BakeFormat::kGlb) || has(options.formats, BakeFormat::kMorph) ||
+                          has_look(options.formats);
   return plan;
 }
 
@@ -148,13 +153,14 @@ private:
 class InputBaker {
 public:
   // `glb`: the input's glb writer when glb is asked for; `appearance`: what the morph animation copies from
-  // the file when morph is asked for (both made while planning the work). Warnings go to `warnings`.
+  // the file when morph is asked for; `look`: the source's materials and images for the meshes beside
+  // textures when vat or bones is asked for (all made while planning the work). Warnings go to `warnings`.
   InputBaker(const InputPlan& input, const BakeOptions& options, GpuContext* context, Ledger& ledger,
              OutputJournal& journal, std::unique_ptr<GlbWriter> glb, std::unique_ptr<glb::Appearance> appearance,
-             std::vector<std::string>& warnings)
+             std::unique_ptr<glb::Appearance> look, std::vector<std::string>& warnings)
       : input_(input), asset_(*input.asset), options_(options), ledger_(ledger), journal_(journal),
         jobs_(options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency())), glb_(std::move(glb)),
-        appearance_(std::move(appearance)), warnings_(warnings) {
+        appearance_(std::move(appearance)), look_(std::move(look)), warnings_(warnings) {
     if (has(options.formats, BakeFormat::kPly) || has(options.formats, BakeFormat::kObj))
       mesh_ = std::make_unique<MeshFrameEncoder>(asset_, input.instances, asset_.materials.empty() ? "" : "materials.mtl");
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
@@ -194,7 +200,7 @@ public:
     std::unique_ptr<VatClipBake> vat;
     if (clip.clip_mine && has(options_.formats, BakeFormat::kVat)) {
       const Clock::time_point start = Clock::now();  // the texture's own passes: rest, planner, measuring
-      vat = std::make_unique<VatClipBake>(*deformer_, input_, clip, options_);
+      vat = std::make_unique<VatClipBake>(*deformer_, input_, clip, options_, look_.get());
       ledger_.add_time(&BakeStageTimes::check, since(start));
     }
     // A texture of other frames than the bake's (the planner decimated them) deforms its own; the bake's
@@ -239,14 +245,18 @@ public:
   }
 
 private:
-  // Whole-animation files that need no deformation: the OBJ material library and the bone textures.
+  // Whole-animation files that need no deformation: the glb frames' shared images, the OBJ material library
+  // and the bone textures.
   void write_clip_files(const ClipPlan& clip) {
+    if (glb_)
+      for (const GlbImageFile& image : glb_->image_files())
+        ledger_.write(clip.folder + "/" + image.name, image.bytes, journal_);
     if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
       ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
     if (!has(options_.formats, BakeFormat::kBones) || input_.skins.empty()) return;
     const Clock::time_point start = Clock::now();
     BonesClipResult bones =
-        bake_bones_clip(deformer_.get(), input_, clip, options_, {options_.overwrite, &journal_}, jobs_);
+        bake_bones_clip(deformer_.get(), input_, clip, options_, {options_.overwrite, &journal_}, jobs_, look_.get());
     std::vector<std::string> names;
     std::vector<Committed> committed;
     for (auto& [name, c] : bones.files) {
@@ -314,6 +324,7 @@ private:
   const unsigned jobs_;
   std::unique_ptr<GlbWriter> glb_;
   std::unique_ptr<glb::Appearance> appearance_;  // when morph is asked for
+  std::unique_ptr<glb::Appearance> look_;        // when vat or bones is asked for
   std::vector<std::string>& warnings_;
   std::unique_ptr<MeshFrameEncoder> mesh_;  // when PLY or OBJ is asked for
   BufferPool buffers_;
@@ -370,15 +381,17 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   // size) are the ones that bake.
   std::vector<std::unique_ptr<GlbWriter>> glb_writers(plans.size());
   std::vector<std::unique_ptr<glb::Appearance>> appearances(plans.size());
+  std::vector<std::unique_ptr<glb::Appearance>> looks(plans.size());
   BakeWork work;
   for (size_t i = 0; i < plans.size(); ++i) {
     InputPlan& plan = plans[i];
     if (!plan.error.empty()) continue;
     try {
       if (has(options.formats, BakeFormat::kGlb))
-        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene);
+        glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene, options.glb_images);
       if (has(options.formats, BakeFormat::kMorph))
         appearances[i] = std::make_unique<glb::Appearance>(glb::read_appearance(*plan.asset, plan.instances, plan.scene));
+      if (has_look(options.formats)) looks[i] = std::make_unique<glb::Appearance>(glb::read_look(*plan.asset));
       plan.asset->source.reset();  // the writers have copied what they need: the JSON is not kept through the bake
       work += estimate_work(plan, options, glb_writers[i].get());
     } catch (const std::bad_alloc&) {
@@ -427,7 +440,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& result) {
         const size_t i = size_t(&plan - plans.data());
         InputBaker baker(plan, options, context.for_deforming(options.mode), ledger, journal, std::move(glb_writers[i]),
-                         std::move(appearances[i]), result.warnings);
+                         std::move(appearances[i]), std::move(looks[i]), result.warnings);
         for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
       },
       [&](const InputPlan& plan) { ledger.forget(plan); });

@@ -1,6 +1,7 @@
 #include "bake_plan.hpp"
 #include "morph_bake.hpp"
 #include "vat_bake.hpp"
+#include "../io/glb_appearance.hpp"
 
 namespace dqskin::bake_detail {
 
@@ -34,6 +35,10 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
       for (size_t f = 0; f < clip.times.size(); ++f)
         if (clip.frame_mine[f]) files.push_back(clip.frame_file(f, extension));
   if (!clip.clip_mine) return files;
+  if ((formats & unsigned(BakeFormat::kGlb)) && options.glb_images == GlbImages::kShared)
+    for (size_t i = 0; i < input.asset->images.size(); ++i)
+      if (std::string name = glb::shared_image_name(input.asset->images[i], i); !name.empty())
+        files.push_back(clip.folder + "/" + name);
   if ((formats & unsigned(BakeFormat::kObj)) && !input.asset->materials.empty())
     files.push_back(clip.folder + "/materials.mtl");
   if (formats & unsigned(BakeFormat::kVat))

@@ -5,6 +5,7 @@
 #include "dqskin/mesh_output.hpp"
 #include "dqskin/texture_output.hpp"
 #include "../io/file_kind.hpp"
+#include "../io/glb_appearance.hpp"
 #include "../io/saturating.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "dqskin/error.hpp"
@@ -70,6 +71,12 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
     }
   }
 
+  // The glb frames' shared images, by file name (bake_plan.cpp names them the same way).
+  std::vector<std::pair<std::string, uint64_t>> images;
+  for (size_t i = 0; i < asset.images.size(); ++i)
+    if (std::string name = glb::shared_image_name(asset.images[i], i); !name.empty())
+      images.emplace_back(std::move(name), asset.images[i].bytes.size());
+
   BakeWork work;
   for (const ClipPlan& clip : input.clips) {
     const uint64_t frames = clip.times.size();
@@ -79,7 +86,10 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
     for (const std::string& file : planned_files(input, clip, options)) {
       uint64_t size = 0;
       const auto in_vat = std::find_if(vat.begin(), vat.end(), [&](const auto& v) { return v.first == file; });
+      const auto image =
+          std::find_if(images.begin(), images.end(), [&](const auto& i) { return file == clip.folder + "/" + i.first; });
       if (file == morph_file(clip)) size = planned_morph_bytes(input, clip);
+      else if (image != images.end()) size = image->second;
       else if (ends_with(file, ".glb")) size = glb_frame;
       else if (ends_with(file, ".ply")) size = ply_frame;
       else if (ends_with(file, ".obj")) size = obj_frame;

@@ -118,7 +118,8 @@ void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t 
 }  // namespace
 
 BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, const ClipPlan& clip,
-                                const BakeOptions& options, const CommitOptions& commit, unsigned threads) {
+                                const BakeOptions& options, const CommitOptions& commit, unsigned threads,
+                                const glb::Appearance* look) {
   const Asset& asset = *input.asset;
   const TextureOptions& o = options.textures;
   BoneProfile profile{};
@@ -203,7 +204,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
   // The skinned mesh the textures deform, first: a reader that finds a texture finds its mesh.
   const std::string mesh_name = clip.folder + "/" + kBonesMeshFile;
   AtomicFile mesh(options.out_dir + "/" + mesh_name, false);
-  mesh.write(texture::encode_bones_mesh_glb(asset, input.instances, input.stem));
+  mesh.write(texture::encode_bones_mesh_glb(asset, input.instances, input.stem, look));
   if (commit.overwrite == Overwrite::kRefuseDifferent && mesh.conflicts())
     throw OutputError(mesh.path() + ": exists with different contents; not overwritten");
   result.files.emplace_back(mesh_name, mesh.commit(commit));

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "bake_plan.hpp"
+#include "../io/glb_appearance.hpp"
 
 #include "dqskin/deformer.hpp"
 
@@ -24,7 +25,9 @@ struct BonesClipResult {
 // Writes the clip's bones_mesh.glb and, per skin, writes and (with options.textures.check, using `deformer`, which may then not be null) checks the bone
 // textures of `clip`, then commits them. Throws InputError naming the clip and skin when a check fails
 // (--max-error, one pose for a moving clip, a texel that is not finite); nothing is then committed.
+// `look`: the source's materials and images for bones_mesh.glb (glb::read_look), or null.
 BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, const ClipPlan& clip,
-                                const BakeOptions& options, const CommitOptions& commit, unsigned threads);
+                                const BakeOptions& options, const CommitOptions& commit, unsigned threads,
+                                const glb::Appearance* look = nullptr);
 
 }  // namespace dqskin::bake_detail

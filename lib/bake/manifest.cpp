@@ -56,6 +56,8 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
       {"inputs", inputs},
       {"outputs", outputs},
   };
+  // Where the glb frames' images went, only where glb frames are written: other manifests stay as they were.
+  if (options.formats & unsigned(BakeFormat::kGlb)) manifest["glb_images"] = to_string(options.glb_images);
   // Texture settings only where textures are written: the manifests of mesh bakes stay as they were.
   if (options.formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones))) {
     const TextureOptions& t = options.textures;

@@ -96,13 +96,19 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
     if (const std::optional<TexelType> type = e.normal_image_type())
       files.emplace_back(folder + page_file_name(names.normals, page, l.pages), image(*type, normal_channels(e)));
   }
-  files.emplace_back(folder + names.rest_mesh, 4096 + uint64_t(vertices) * (12 + 12 + 8 + 8) + uint64_t(indices) * 4);
+  // The rest mesh: its attributes (a third texture coordinate set at most) and indices, and the source's
+  // images, which it embeds with the materials.
+  uint64_t images = 0;
+  for (const EncodedImage& i : input.asset->images) images += i.bytes.size() + 4;
+  files.emplace_back(folder + names.rest_mesh,
+                     4096 + uint64_t(vertices) * (12 + 12 + 8 + 8 + 8) + uint64_t(indices) * 4 + images);
   if (!names.profile_side_file.empty()) files.emplace_back(folder + names.profile_side_file, 4096);
   files.emplace_back(folder + names.dqskin_side_file, 8192 + uint64_t(clip.times.size()) * 200);
   return files;
 }
 
-VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options)
+VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options,
+                         const glb::Appearance* look)
     : clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times),
       sharing_(shared_vertex_layout(*input.asset, input.instances)) {
   const TextureOptions& o = options.textures;
@@ -155,7 +161,7 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
 
   const std::string folder = options.out_dir + "/" + clip.folder;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
-  std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem);
+  std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem, look);
   writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));
 }
 

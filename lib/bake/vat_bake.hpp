@@ -7,6 +7,7 @@
 #pragma once
 
 #include "bake_plan.hpp"
+#include "../io/glb_appearance.hpp"
 #include "../texture/vat_check.hpp"
 #include "../texture/vat_writer.hpp"
 
@@ -32,8 +33,10 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
 class VatClipBake {
 public:
   // Runs the rest and measuring passes with `deformer` and opens the files. Throws InputError when the
-  // profile cannot hold the clip (size, format), OutputError when a file cannot be created.
-  VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
+  // profile cannot hold the clip (size, format), OutputError when a file cannot be created. `look`: the
+  // source's materials and images for the rest mesh (glb::read_look), or null.
+  VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options,
+              const glb::Appearance* look = nullptr);
   ~VatClipBake();
 
   // Whether the texture holds the bake's own frames (the clip's times), so that the bake's pass feeds it

@@ -1,6 +1,8 @@
 #include "materials.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 #include <limits>
 
 namespace dqskin::gltf {
@@ -137,14 +139,46 @@ Sampler read_sampler(const tinygltf::Sampler& s) {
   return out;
 }
 
+// The image an extension puts in a texture (EXT_texture_webp, KHR_texture_basisu: `source` inside the
+// extension object), or -1 when the texture has no such extension. Throws Problem for an index that is not
+// an image (schema_values.cpp removed one that is not an index at all).
+int extension_image(const tinygltf::Texture& t, const char* name, size_t images, const std::string& what) {
+  const auto found = t.extensions.find(name);
+  if (found == t.extensions.end() || !found->second.IsObject() || !found->second.Has("source")) return -1;
+  const tinygltf::Value& source = found->second.Get("source");
+  if (!source.IsInt() || source.GetNumberAsInt() < 0) return -1;
+  if (size_t(source.GetNumberAsInt()) >= images)
+    drop(what + ": " + name + " source " + std::to_string(source.GetNumberAsInt()) + " does not exist");
+  return source.GetNumberAsInt();
+}
+
+// Which image a texture draws. EXT_texture_webp's image first: OpenImageIO decodes WebP, and the core
+// `source` is only the fallback for viewers without the extension. KHR_texture_basisu's KTX2 image is not
+// decoded (that needs a Basis Universal transcoder), so its core `source`, the PNG or JPEG fallback, is
+// drawn; without one the texture is left out and its materials are drawn with their factors, which one
+// warning for the whole file says (`basisu_only` collects the textures).
 void read_textures(const tinygltf::Model& m, Asset& asset) {
+  std::vector<size_t> basisu_only;
   for (size_t i = 0; i < m.textures.size(); ++i) {
     const tinygltf::Texture& t = m.textures[i];
     const std::string what = at("texture", i);
     Texture out;
+    int webp = -1;
+    or_warn(asset, "its core source is used",
+            [&] { webp = extension_image(t, "EXT_texture_webp", m.images.size(), what); });
+    int basisu = -1;
+    or_warn(asset, "it is ignored", [&] { basisu = extension_image(t, "KHR_texture_basisu", m.images.size(), what); });
     or_warn(asset, "textures using it are not drawn", [&] {
       if (t.source >= 0 && size_t(t.source) >= m.images.size()) drop(what + ": image " + std::to_string(t.source) + " does not exist");
-      // KHR_texture_basisu and EXT_texture_webp may leave out the core source (a PNG or JPEG fallback).
+      if (webp >= 0) {
+        out.image = webp;
+        return;
+      }
+      if (t.source < 0 && basisu >= 0) {
+        basisu_only.push_back(i);
+        return;
+      }
+      // An extension dqskin knows no image of may leave out the core source (a PNG or JPEG fallback).
       if (t.source < 0)
         drop(what + (t.extensions.empty() ? ": has no image"
                                           : ": has no PNG or JPEG source (only an extension's image, which dqskin does not read)"));
@@ -156,6 +190,14 @@ void read_textures(const tinygltf::Model& m, Asset& asset) {
       if (t.sampler >= 0) out.sampler = read_sampler(m.samplers[size_t(t.sampler)]);
     });
     asset.textures.push_back(out);
+  }
+  if (!basisu_only.empty()) {
+    std::string list;
+    for (size_t i : basisu_only) list += (list.empty() ? "" : ", ") + std::to_string(i);
+    asset.warnings.push_back((basisu_only.size() == 1 ? "texture " + list + " has" : "textures " + list + " have") +
+                             " only a KTX2 image (KHR_texture_basisu), which dqskin does not decode, and no PNG or JPEG "
+                             "fallback; materials using " + (basisu_only.size() == 1 ? "it" : "them") +
+                             " are drawn with their factors");
   }
   for (const tinygltf::Image& image : m.images) {
     EncodedImage out;

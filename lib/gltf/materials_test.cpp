@@ -1,5 +1,6 @@
 // Materials as the loader reads them (lib/gltf/materials.cpp): KHR_texture_transform on the base color
-// texture, its defaults, its texCoord override, and bad values dropped with a warning.
+// texture, its defaults, its texCoord override, and bad values dropped with a warning; which image a
+// texture draws under EXT_texture_webp and KHR_texture_basisu.
 #include "dqskin/load.hpp"
 
 #include <gtest/gtest.h>
@@ -149,6 +150,60 @@ TEST(TextureTransform, MatrixIsTranslationRotationScaleAsTheExtensionsExampleSay
   t.scale = {2, 1};
   EXPECT_TRUE(near(glm::vec2(t.matrix() * glm::vec3(1, 0, 1)), {0, -2}));
   EXPECT_TRUE(near(glm::vec2(t.matrix() * glm::vec3(0, 1, 1)), {1, 0}));
+}
+
+// A file with the textures `textures` over three images: 0 a PNG, 1 a WebP, 2 a KTX2 (signatures only: the
+// loader keeps the bytes, only the renderer decodes them), with `used` and `required` extensions.
+Asset load_with_textures(const json& textures, const json& used, const json& required = json::array()) {
+  json doc = {{"asset", {{"version", "2.0"}}},
+              {"textures", textures},
+              {"images", {{{"uri", "data:image/png;base64,iVBORw0KGgo="}},
+                          // tinygltf decodes data URIs of a few mime types only; mimeType says which
+                          {{"uri", "data:application/octet-stream;base64,UklGRgAAAABXRUJQ"}, {"mimeType", "image/webp"}},
+                          {{"uri", "data:application/octet-stream;base64,q0tUWCAyMLsNChoK"}, {"mimeType", "image/ktx2"}}}}};
+  if (!used.empty()) doc["extensionsUsed"] = used;
+  if (!required.empty()) doc["extensionsRequired"] = required;
+  const std::string text = doc.dump();
+  return load_asset_from_memory(std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()), "test", ".");
+}
+
+TEST(TextureSource, WebpExtensionImageIsDrawnBeforeTheCoreFallback) {
+  Asset asset = load_with_textures({{{"source", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 1}}}}}}},
+                                   {"EXT_texture_webp"});
+  ASSERT_EQ(asset.textures.size(), 1u);
+  EXPECT_EQ(asset.textures[0].image, 1) << "OpenImageIO decodes WebP: the fallback is for viewers that cannot";
+  EXPECT_TRUE(asset.warnings.empty()) << all_warnings(asset);
+
+  // Without a fallback the extension is required, and the file loads.
+  asset = load_with_textures({{{"extensions", {{"EXT_texture_webp", {{"source", 1}}}}}}}, {"EXT_texture_webp"},
+                             {"EXT_texture_webp"});
+  EXPECT_EQ(asset.textures[0].image, 1);
+  EXPECT_TRUE(asset.warnings.empty()) << all_warnings(asset);
+}
+
+TEST(TextureSource, WebpImageThatDoesNotExistFallsBackToTheCoreSource) {
+  const Asset asset = load_with_textures({{{"source", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 7}}}}}}},
+                                         {"EXT_texture_webp"});
+  EXPECT_EQ(asset.textures[0].image, 0);
+  ASSERT_EQ(asset.warnings.size(), 1u) << all_warnings(asset);
+  EXPECT_EQ(asset.warnings[0], "texture 0: EXT_texture_webp source 7 does not exist; its core source is used");
+}
+
+TEST(TextureSource, BasisuDrawsItsFallbackOrTheFactorsWithOneWarning) {
+  Asset asset = load_with_textures({{{"source", 0}, {"extensions", {{"KHR_texture_basisu", {{"source", 2}}}}}}},
+                                   {"KHR_texture_basisu"});
+  EXPECT_EQ(asset.textures[0].image, 0) << "the PNG fallback";
+  EXPECT_TRUE(asset.warnings.empty()) << all_warnings(asset);
+
+  // Two textures with only a KTX2 image: one warning names both.
+  const json only = {{"extensions", {{"KHR_texture_basisu", {{"source", 2}}}}}};
+  asset = load_with_textures({only, {{"source", 0}}, only}, {"KHR_texture_basisu"}, {"KHR_texture_basisu"});
+  EXPECT_EQ(asset.textures[0].image, -1);
+  EXPECT_EQ(asset.textures[1].image, 0);
+  EXPECT_EQ(asset.textures[2].image, -1);
+  ASSERT_EQ(asset.warnings.size(), 1u) << all_warnings(asset);
+  EXPECT_EQ(asset.warnings[0], "textures 0, 2 have only a KTX2 image (KHR_texture_basisu), which dqskin does not decode, "
+                               "and no PNG or JPEG fallback; materials using them are drawn with their factors");
 }
 
 }  // namespace

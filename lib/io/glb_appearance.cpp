@@ -59,22 +59,36 @@ std::string sniff_mime_type(const std::vector<uint8_t>& b) {
   return "";
 }
 
+// The image's format: its signature, else the mime type the file states; empty when neither says.
+std::string image_mime_type(const EncodedImage& image) {
+  const std::string sniffed = sniff_mime_type(image.bytes);
+  return sniffed.empty() ? image.mime_type : sniffed;
+}
+
 // Images: bytes from a bufferView, a data URI or an external file (the loader read them, from inside the
-// resource root only, into Asset::images) go into the BIN chunk, as a .glb has no folder
-// beside it and the validator discourages data URIs in a GLB (DATA_URI_GLB). An image that could not be read, or whose format is unknown, is dropped.
-std::vector<int> copy_images(const json& src, const std::vector<EncodedImage>& loaded, Appearance& out) {
+// resource root only, into Asset::images). Embedded, they go into the BIN chunk, as a .glb has no folder
+// beside it that it must be moved with, and the validator discourages data URIs in a GLB (DATA_URI_GLB);
+// shared, they become files (out.image_files) that the image references by a URI relative to the .glb
+// (§3.8.3; mimeType kept, as a reader may use it); with none, every image is left out. An image that
+// could not be read, or whose format is unknown, is dropped.
+std::vector<int> copy_images(const json& src, const std::vector<EncodedImage>& loaded, GlbImages mode, Appearance& out) {
   const json images = array_of(src, "images");
   std::vector<int> map(images.size(), -1);
   json copied = json::array();
-  for (size_t i = 0; i < images.size(); ++i) {
+  for (size_t i = 0; i < images.size() && mode != GlbImages::kNone; ++i) {
     json image = images[i].is_object() ? images[i] : json::object();
-    const std::vector<uint8_t> empty;
-    const std::vector<uint8_t>& bytes = i < loaded.size() ? loaded[i].bytes : empty;
-    std::string mime = sniff_mime_type(bytes);
-    if (mime.empty() && member(image, "mimeType").is_string()) mime = image["mimeType"].get<std::string>();
-    if (bytes.empty() || mime.empty()) continue;
+    const EncodedImage empty;
+    const EncodedImage& bytes = i < loaded.size() ? loaded[i] : empty;
+    const std::string mime = image_mime_type(bytes);
+    if (bytes.bytes.empty() || mime.empty()) continue;
     image.erase("uri");
-    image["bufferView"] = out.bin.view(bytes.data(), bytes.size(), 0);
+    image.erase("bufferView");
+    if (mode == GlbImages::kShared) {
+      image["uri"] = shared_image_name(bytes, i);
+      out.image_files.push_back({image["uri"].get<std::string>(), std::string(bytes.bytes.begin(), bytes.bytes.end())});
+    } else {
+      image["bufferView"] = out.bin.view(bytes.bytes.data(), bytes.bytes.size(), 0);
+    }
     image["mimeType"] = mime;  // required with a bufferView (§5.17)
     map[i] = int(copied.size());
     copied.push_back(std::move(image));
@@ -211,7 +225,18 @@ int BinWriter::indices(std::span<const uint32_t> indices) {
   return int(accessors.size()) - 1;
 }
 
-Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene) {
+std::string shared_image_name(const EncodedImage& image, size_t index) {
+  const std::string mime = image_mime_type(image);
+  if (image.bytes.empty() || mime.empty()) return {};
+  static const std::pair<const char*, const char*> extensions[] = {
+      {"image/png", "png"}, {"image/jpeg", "jpg"}, {"image/webp", "webp"}, {"image/ktx2", "ktx2"}};
+  const char* extension = "bin";
+  for (const auto& [type, ext] : extensions)
+    if (mime == type) extension = ext;
+  return "image_" + std::to_string(index) + "." + extension;
+}
+
+Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene, GlbImages images) {
   if (!asset.source) throw std::invalid_argument("GlbWriter: the asset was loaded without LoadOptions::keep_source");
   // The JSON as the loader checked it: appearance values it refused are gone here too.
   const json& src = asset.source->json;
@@ -224,10 +249,11 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
   out.doc["asset"] = asset_info;
   for (const char* key : {"extensions", "extras"})  // root extensions: KHR_lights_punctual lights, variants …
     if (!member(src, key).is_null()) out.doc[key] = src[key];
-  out.doc["samplers"] = array_of(src, "samplers");
+  // Without images no texture is left, nor a use for a sampler.
+  out.doc["samplers"] = images == GlbImages::kNone ? json::array() : array_of(src, "samplers");
   out.doc["cameras"] = array_of(src, "cameras");
 
-  const std::vector<int> image_map = copy_images(src, asset.images, out);
+  const std::vector<int> image_map = copy_images(src, asset.images, images, out);
   const std::vector<int> texture_map = copy_textures(src, image_map, out.doc["samplers"].size(), out);
   json materials = array_of(src, "materials");
   for (json& material : materials) {
@@ -273,6 +299,15 @@ Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& 
     out.mesh_extras[m] = member(src_mesh, "extras");
   }
   return out;
+}
+
+Appearance read_look(const Asset& asset) {
+  Appearance all = read_appearance(asset, {}, -1, GlbImages::kEmbed);
+  Appearance look;
+  for (const char* key : {"materials", "textures", "samplers", "images"}) look.doc[key] = std::move(all.doc[key]);
+  look.bin = std::move(all.bin);
+  look.source_extensions_required = std::move(all.source_extensions_required);
+  return look;
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "dqskin/asset.hpp"
+#include "dqskin/glb_output.hpp"
 #include "dqskin/skinning.hpp"
 
 #include <nlohmann/json.hpp>
@@ -92,7 +93,8 @@ struct FixedNode {
 
 struct Appearance {
   json doc;  // asset, materials, textures, samplers, images, cameras, root extensions and extras
-  BinWriter bin;  // images, then the fixed attributes (their accessors and views are in `bin`)
+  BinWriter bin;  // embedded images, then the fixed attributes (their accessors and views are in `bin`)
+  std::vector<GlbImageFile> image_files;  // GlbImages::kShared: the images the doc references by URI
   std::vector<std::vector<FixedPrimitive>> meshes;  // per source mesh; empty for meshes no instance draws
   std::vector<json> mesh_extras;                   // per source mesh (null when none)
   std::vector<FixedNode> nodes;                    // per source node
@@ -101,8 +103,19 @@ struct Appearance {
 };
 
 // Prepares what every frame shares for the meshes that `instances` draw, from the asset and what its loader
-// kept of the file (Asset::source; std::invalid_argument without it). Throws InputError when an attribute
-// the frames copy (TEXCOORD_n, COLOR_n) could not be decoded.
-Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene);
+// kept of the file (Asset::source; std::invalid_argument without it), its images placed as `images` says.
+// Throws InputError when an attribute the frames copy (TEXCOORD_n, COLOR_n) could not be decoded.
+Appearance read_appearance(const Asset& asset, const std::vector<MeshInstance>& instances, int scene,
+                           GlbImages images = GlbImages::kEmbed);
+
+// The source's look for a .glb that draws the source's primitives under materials of the same indices (the
+// meshes beside textures, lib/texture): read_appearance's materials, textures, samplers and images (embedded
+// in `bin`) and the source's required extensions; no nodes, meshes, cameras or root extensions.
+Appearance read_look(const Asset& asset);
+
+// The file name under which GlbImages::kShared writes image `index` of the asset: "image_<index>.<ext>"
+// (png, jpg, webp, ktx2 by the bytes' signature, else by the mime type the file states; bin when neither
+// names one of them), or empty when the image is not copied (no bytes, or no format known at all).
+std::string shared_image_name(const EncodedImage& image, size_t index);
 
 }  // namespace dqskin::glb

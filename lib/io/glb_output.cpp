@@ -185,12 +185,27 @@ std::vector<LocalTransform> local_transforms(const Asset& asset, const Clip* cli
 
 }  // namespace
 
-GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene) {
+GlbImages parse_glb_images(const std::string& name) {
+  for (GlbImages mode : {GlbImages::kEmbed, GlbImages::kShared, GlbImages::kNone})
+    if (name == to_string(mode)) return mode;
+  throw InputError("--glb-images '" + name + "' is not one of embed, shared, none");
+}
+
+const char* to_string(GlbImages images) {
+  switch (images) {
+    case GlbImages::kEmbed: return "embed";
+    case GlbImages::kShared: return "shared";
+    case GlbImages::kNone: break;
+  }
+  return "none";
+}
+
+GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, GlbImages images) {
   auto w = std::make_unique<Impl>();
   w->asset = &asset;
   w->instances = std::move(instances);
   if (scene >= int(asset.scenes.size())) throw std::invalid_argument("GlbWriter: scene does not exist");
-  w->fixed = glb::read_appearance(asset, w->instances, scene);
+  w->fixed = glb::read_appearance(asset, w->instances, scene, images);
 
   // The nodes the scene reaches (§3.5.3); with no scene, every tree.
   std::vector<int> roots;
@@ -222,6 +237,8 @@ GlbWriter::GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, in
 GlbWriter::~GlbWriter() = default;
 GlbWriter::GlbWriter(GlbWriter&&) noexcept = default;
 GlbWriter& GlbWriter::operator=(GlbWriter&&) noexcept = default;
+
+const std::vector<GlbImageFile>& GlbWriter::image_files() const { return impl_->fixed.image_files; }
 
 std::string GlbWriter::encode(const FrameView& frame, const Clip* clip, double time) const {
   const Impl& w = *impl_;

@@ -26,8 +26,8 @@ std::span<const float> flat(const std::vector<Vec>& values) {
 }  // namespace
 
 std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
-                                  const std::string& name) {
-  glb::BinWriter bin;
+                                  const std::string& name, const glb::Appearance* look) {
+  glb::BinWriter bin = has_materials(look) ? look->bin : glb::BinWriter{};
   json primitives = json::array();
   for (const MeshInstance& instance : instances) {
     if (instance.skin < 0) continue;
@@ -37,6 +37,9 @@ std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInst
       attributes["POSITION"] = bin.positions(flat(source.positions));
       if (source.normals.size() == n) attributes["NORMAL"] = bin.floats(flat(source.normals), n, "VEC3");
       if (source.uv0.size() == n) attributes["TEXCOORD_0"] = bin.floats(flat(source.uv0), n, "VEC2");
+      if (has_materials(look) && source.uv1.size() == n) attributes["TEXCOORD_1"] = bin.floats(flat(source.uv1), n, "VEC2");
+      // COLOR_0 multiplies the base color (§3.9.2), so it is part of the look.
+      if (has_materials(look) && source.colors.size() == n) attributes["COLOR_0"] = colors_accessor(source.colors, bin);
       // The loader's influences are vertex-major, `influences` (4 or 8) per vertex; glTF sets hold 4.
       const size_t per = size_t(source.influences);
       for (size_t set = 0; set * 4 < per; ++set) {
@@ -52,11 +55,12 @@ std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInst
       }
       json primitive = {{"attributes", std::move(attributes)},
                         {"extras", {{"skin", instance.skin}, {"bones", "bones_skin" + std::to_string(instance.skin)}}}};
+      add_material(source, look, primitive);
       add_topology(source, bin, primitive);
       primitives.push_back(std::move(primitive));
     }
   }
-  return single_mesh_glb(std::move(primitives), std::move(bin), name);
+  return single_mesh_glb(std::move(primitives), std::move(bin), name, look);
 }
 
 }  // namespace dqskin::texture

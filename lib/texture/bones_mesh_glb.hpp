@@ -4,6 +4,8 @@
 // its influences, and which texture each primitive reads.
 #pragma once
 
+#include "../io/glb_appearance.hpp"
+
 #include "dqskin/asset.hpp"
 #include "dqskin/skinning.hpp"
 
@@ -19,8 +21,10 @@ namespace dqskin::texture {
 // into the skin's `joints` as the texture orders them, and `extras` {"skin": K, "bones": "bones_skinK"}:
 // the texture's name without extension. Weights are as stored; the decode formulas normalize them. Plain
 // JOINTS_n and a glTF skin would make every viewer skin the mesh itself, with its own blending (glTF 2.0
-// §3.7.3.3), which is what the texture replaces. No material. Deterministic.
+// §3.7.3.3), which is what the texture replaces. With a `look` that has materials (glb::read_look of the
+// source), each primitive keeps its source material, TEXCOORD_1 and COLOR_0, the file the source's textures,
+// samplers and images; without, no material. Deterministic.
 std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
-                                  const std::string& name);
+                                  const std::string& name, const glb::Appearance* look = nullptr);
 
 }  // namespace dqskin::texture

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "vat_format.hpp"
+#include "../io/glb_appearance.hpp"
 
 #include "dqskin/frame_view.hpp"
 #include "dqskin/skinning.hpp"
@@ -19,8 +20,11 @@ namespace dqskin::texture {
 // one's accessors, as in the source: vertex_sharing.hpp), positions and normals from `rest` (every
 // primitive, as frame_view gives them), the source's TEXCOORD_0 (or,
 // where a primitive has none, a copy of TEXCOORD_1, since glTF numbers texture coordinate sets from 0)
-// and TEXCOORD_1 from `layout`. No material: a viewer draws its default. Deterministic.
+// and TEXCOORD_1 from `layout`. With a `look` that has materials (glb::read_look of the source), each
+// primitive keeps its source material and COLOR_0, the file the source's textures, samplers and images,
+// and the source's TEXCOORD_1 becomes TEXCOORD_2, which the materials' texCoord 1 then names; without, no material
+// (a viewer draws its default). Deterministic.
 std::string encode_rest_glb(const Asset& asset, const std::vector<MeshInstance>& instances, const FrameView& rest,
-                            const VatLayout& layout, const std::string& name);
+                            const VatLayout& layout, const std::string& name, const glb::Appearance* look = nullptr);
 
 }  // namespace dqskin::texture

@@ -156,7 +156,7 @@ struct Sampler {
 };
 
 struct Texture {
-  int image = -1;  // index into Asset::images; -1 when the only source is an extension's (KTX2, WebP)
+  int image = -1;  // index into Asset::images: EXT_texture_webp's image, else the core source; -1 when none is drawn (only a KTX2 image)
   Sampler sampler;
 };
 

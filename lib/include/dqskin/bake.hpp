@@ -5,6 +5,7 @@
 #include "dqskin/animation.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/deformer.hpp"
+#include "dqskin/glb_output.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/job.hpp"
 #include "dqskin/load.hpp"
@@ -55,6 +56,10 @@ struct BakeOptions {
   FrameSpec frames;
   BlendMode mode = BlendMode::kDqs;
   unsigned formats = unsigned(BakeFormat::kGlb);
+  // Where the glb frames' images go. Shared by default: a clip's frames are used together, from their
+  // folder, and one copy of the images beside them keeps the folder at the size of its geometry (README
+  // "--format glb").
+  GlbImages glb_images = GlbImages::kShared;
   TextureOptions textures;
   MorphOptions morph;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)

@@ -15,6 +15,25 @@
 
 namespace dqskin {
 
+// Where the images of .glb frames go (bake --glb-images, README "--format glb").
+enum class GlbImages {
+  kEmbed,   // in every frame's BIN chunk: each frame stands alone, and repeats every image
+  kShared,  // once, as files beside the frames (GlbWriter::image_files), which every frame references by a
+            // relative URI (glTF 2.0 §3.8.3: a .glb may reference external images)
+  kNone,    // left out, with the textures and samplers that use them: materials keep their factors
+};
+
+// "embed", "shared", "none" → the mode. Throws InputError naming the flag for another name.
+GlbImages parse_glb_images(const std::string& name);
+const char* to_string(GlbImages images);
+
+// An image written once beside the frames (GlbImages::kShared): `name` is the URI the frames use, relative
+// to their folder.
+struct GlbImageFile {
+  std::string name;
+  std::string bytes;
+};
+
 // Encodes frames of one asset as .glb bytes. What does not change from frame to frame (appearance, images,
 // texture coordinates, colours, indices) is prepared once by the constructor; encode() adds the frame's
 // node transforms and vertex positions, normals and tangents.
@@ -29,8 +48,9 @@ public:
   // appearance objects and attributes that the rest of the Asset does not keep; std::invalid_argument
   // without it). `instances` = mesh_instances(asset, scene), the order of the FrameView primitives;
   // `scene` = choose_scene(...), -1 when the file has no scenes (then one scene of every root node is
-  // written). Throws InputError when an attribute the frames copy (TEXCOORD_n, COLOR_n) is malformed.
-  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene);
+  // written). `images`: where the images go. Throws InputError when an attribute the frames copy
+  // (TEXCOORD_n, COLOR_n) is malformed.
+  GlbWriter(const Asset& asset, std::vector<MeshInstance> instances, int scene, GlbImages images = GlbImages::kEmbed);
   ~GlbWriter();
   GlbWriter(GlbWriter&&) noexcept;
   GlbWriter& operator=(GlbWriter&&) noexcept;
@@ -42,6 +62,10 @@ public:
   // that the file stays valid; a non-finite position throws std::invalid_argument, as does a frame whose
   // primitives do not match the instances.
   std::string encode(const FrameView& frame, const Clip* clip, double time) const;
+
+  // With GlbImages::kShared, the image files the frames reference, which the caller writes into the frames'
+  // folder; else none.
+  const std::vector<GlbImageFile>& image_files() const;
 
 private:
   struct Impl;
