@@ -211,14 +211,21 @@ void read_animations(const tinygltf::Model& m, const AccessorReader& reader, Ass
       else if (ch.target_path == "weights") {
         channel.path = TargetPath::kWeights;
         channel.components = morph_target_count(m, asset, ch.target_node);
-        if (channel.components == 0) fail(what + ": animates weights of a node without morph targets");
+        // Viewers ignore such a channel; what it would deform is unknown, so only the deforming commands
+        // refuse (its keys are still read and checked). It stays in the clip with no components, so that
+        // the clip's channels keep the file's order (skin_data.cpp matches them by position).
+        if (channel.components == 0)
+          asset.cannot_deform.push_back(what + ": animates weights of a node without morph targets");
       } else {
         fail(what + ": unknown target path '" + ch.target_path + "'");
       }
       if (!targets.insert({ch.target_node, int(channel.path)}).second)
         fail(what + ": a second channel for the same node and path");
+      // §3.11 forbids it, but three.js and Blender open such a file (the matrix wins or is decomposed): it
+      // is described, and only the deforming commands refuse it.
       if (channel.path != TargetPath::kWeights && asset.nodes[size_t(ch.target_node)].local.has_matrix)
-        fail(what + ": animates node " + std::to_string(ch.target_node) + ", which has a matrix (§3.11 forbids it)");
+        asset.cannot_deform.push_back(what + ": animates node " + std::to_string(ch.target_node) +
+                                      ", which has a matrix (§3.11 forbids it)");
 
       const tinygltf::AnimationSampler& s = anim.samplers[size_t(ch.sampler)];
       const std::string swhat = at("animation", a) + " sampler " + std::to_string(ch.sampler);
@@ -240,7 +247,8 @@ void read_animations(const tinygltf::Model& m, const AccessorReader& reader, Ass
                  : AccessorShape{{TINYGLTF_TYPE_VEC3}, {TINYGLTF_COMPONENT_TYPE_FLOAT}};
       channel.values = reader.floats(s.output, vshape, swhat + " output");
       const size_t per_key = size_t(channel.components) * (channel.interpolation == Interpolation::kCubicSpline ? 3 : 1);
-      if (channel.values.size() != channel.times.size() * per_key)
+      if (channel.components == 0) channel.values.clear();  // the weights of no morph target (cannot_deform)
+      else if (channel.values.size() != channel.times.size() * per_key)
         fail(swhat + ": output has " + std::to_string(channel.values.size()) + " values for " +
              std::to_string(channel.times.size()) + " keys (expected " +
              std::to_string(channel.times.size() * per_key) + ")");

@@ -105,6 +105,7 @@ AssetFacts describe(const Asset& asset) {
     if (targets) f.morph_targets.push_back({int(m), asset.meshes[m].name, targets});
   }
 
+  f.cannot_deform = asset.cannot_deform;
   f.warnings = asset.warnings;
   const std::vector<std::string> w = weight_warnings(asset);
   f.warnings.insert(f.warnings.end(), w.begin(), w.end());
