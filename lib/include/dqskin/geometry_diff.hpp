@@ -110,9 +110,6 @@ struct GeometryDiffReport {
   DiffStatus status() const;
 };
 
-// True when `path` names a glTF file (.gltf or .glb, any case): diff compares geometry then.
-bool is_gltf_name(const std::string& path);
-
 // True when `path` is a folder `dqskin bake` wrote (it holds a manifest.json).
 bool is_bake_folder(const std::string& path);
 
