@@ -71,7 +71,7 @@ int run_geometry_diff(const DiffSettings& s) {
   o.relative = s.relative;
   o.out_dir = s.out_dir;
   o.cancel = catch_interrupts("diff");
-  const GeometryDiffReport report = is_gltf_name(s.a) ? diff_geometry(s.a, s.b, o) : diff_bakes(s.a, s.b, o);
+  const GeometryDiffReport report = is_gltf_file(s.a) ? diff_geometry(s.a, s.b, o) : diff_bakes(s.a, s.b, o);
   std::cout << (s.json ? geometry_json(report) : geometry_text(report)) << std::flush;
   if (s.verbose)
     std::fprintf(stderr, "dqskin: diff: correspondence %.3g s, whole diff %.3g s\n", report.correspondence_seconds,
@@ -101,9 +101,9 @@ int run_diff(const DiffSettings& settings) {
   return guarded_run("diff", [&] {
     const std::string bad = check_thresholds(settings.thresholds);
     if (!bad.empty()) throw InputError(bad);
-    if (is_gltf_name(settings.a) != is_gltf_name(settings.b))
-      throw InputError("compare two glTF files (.gltf, .glb) or two images or folders of images, not one of each");
-    if (is_gltf_name(settings.a)) return run_geometry_diff(settings);
+    if (is_gltf_file(settings.a) != is_gltf_file(settings.b))
+      throw InputError("compare two glTF files (.gltf, .glb, .vrm) or two images or folders of images, not one of each");
+    if (is_gltf_file(settings.a)) return run_geometry_diff(settings);
     if (is_bake_folder(settings.a) && is_bake_folder(settings.b)) return run_geometry_diff(settings);
     DiffOptions options{settings.thresholds, settings.out_dir};
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");

@@ -70,6 +70,10 @@ void print_text(const std::string& path, const AssetFacts& f) {
     std::cout << "    mesh " << m.mesh << (m.name.empty() ? "" : " " + printable(m.name)) << ": " << m.targets << " targets\n";
   std::cout << "  warnings:" << (f.warnings.empty() ? " none" : "") << '\n';
   for (const std::string& w : f.warnings) std::cout << "    " << printable(w) << '\n';
+  // Only for a file the deforming commands refuse: what a user sees first when bake says no.
+  if (f.cannot_deform.empty()) return;
+  std::cout << "  cannot be deformed (bake, render, report and diff refuse it):\n";
+  for (const std::string& why : f.cannot_deform) std::cout << "    " << printable(why) << '\n';
 }
 
 nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
@@ -96,6 +100,7 @@ nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
   for (const MorphFacts& m : f.morph_targets)
     j["morph_targets"].push_back({{"mesh", m.mesh}, {"name", m.name}, {"targets", m.targets}});
   j["warnings"] = f.warnings;
+  j["cannot_deform"] = f.cannot_deform;
   return j;
 }
 
@@ -103,7 +108,9 @@ nlohmann::ordered_json to_json(const std::string& path, const AssetFacts& f) {
 int run_info(const InfoSettings& settings) {
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   size_t failed = 0;
-  const LoadOptions options = to_load_options(settings.load);
+  LoadOptions options = to_load_options(settings.load);
+  // info describes every file a viewer opens; what stops a deformation is listed, not refused.
+  options.refuse_undeformable = false;
   for (size_t i = 0; i < settings.inputs.size(); ++i) {
     const std::string& path = settings.inputs[i];
     std::string error;

@@ -59,6 +59,7 @@ int run_lint(LintSettings& s) {
   if (s.fix && s.output.size() < 4) throw InputError("-o must name a .glb file");
   if (s.fix && s.output.substr(s.output.size() - 4) != ".glb") throw InputError("-o must name a .glb file");
   o.load = to_load_options(s.load);
+  o.load.refuse_undeformable = false;  // lint reports what stops a deformation as an error (cannot-deform)
   // SIGINT and SIGTERM stop lint as they stop bake: one line, the process ends by the signal, and --fix
   // leaves neither its temporary nor a partial output (interrupt.hpp).
   o.cancel = catch_interrupts("lint");

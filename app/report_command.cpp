@@ -85,10 +85,12 @@ int run_report(const ReportSettings& given) {
                 << std::endl;
     } else if (!settings.quiet) {
       for (const std::string& v : result.verdicts) std::fprintf(stderr, "%s\n", printable(v).c_str());
+      // One verdict per input reported: an input without a skin is left out with a warning above.
+      const size_t reported = result.verdicts.size();
       if (failed < result.inputs.size())
         std::fprintf(stderr, "reported %zu frames (lbs, dqs and dib each) of %zu input%s in %.2f s into %s\n",
-                     result.frames_total, result.inputs.size() - failed, result.inputs.size() - failed == 1 ? "" : "s",
-                     result.wall_seconds, printable(options.out_dir).c_str());
+                     result.frames_total, reported, reported == 1 ? "" : "s", result.wall_seconds,
+                     printable(options.out_dir).c_str());
     }
     return job_exit_status(result.inputs, settings.quiet, "reported");
   }, [&] { progress.done(); }, &out_folder);

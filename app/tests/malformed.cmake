@@ -57,3 +57,22 @@ foreach(_list cases warnings)
     set_tests_properties(malformed.${_case} PROPERTIES TIMEOUT 20 LABELS malformed)
   endforeach()
 endforeach()
+
+# undeformable.txt: "<file name>\t<regex>" per line, files that parse as glTF but cannot be deformed: info
+# and lint describe them, bake refuses them in one line (expect_undeformable.cmake).
+file(STRINGS ${DQSKIN_MALFORMED_DIR}/undeformable.txt _cases)
+foreach(_line IN LISTS _cases)
+  string(FIND "${_line}" "\t" _tab)
+  if(_tab LESS 1)
+    message(FATAL_ERROR "malformed/undeformable.txt: bad line '${_line}'")
+  endif()
+  string(SUBSTRING "${_line}" 0 ${_tab} _file)
+  math(EXPR _start "${_tab} + 1")
+  string(SUBSTRING "${_line}" ${_start} -1 _regex)
+  string(REGEX REPLACE "\\.(gltf|glb)$" "" _case "${_file}")
+  add_test(NAME malformed.${_case}
+    COMMAND ${CMAKE_COMMAND} -DCOMMAND=$<TARGET_FILE:dqskin_cli> -DFILE=${DQSKIN_MALFORMED_DIR}/${_file}
+            "-DREGEX=${_regex}" -DSCRATCH=${DQSKIN_MALFORMED_DIR}/undeformable_out/${_case}
+            -DWORKING_DIRECTORY=${DQSKIN_MALFORMED_DIR}/cwd -P ${CMAKE_CURRENT_LIST_DIR}/expect_undeformable.cmake)
+  set_tests_properties(malformed.${_case} PROPERTIES TIMEOUT 60 LABELS malformed)
+endforeach()

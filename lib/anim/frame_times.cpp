@@ -72,13 +72,7 @@ std::vector<size_t> select_clips(const Asset& asset, const std::string& which) {
   fail("no animation '" + which + "' (the file has " + (names.empty() ? std::string("none") : names) + ")");
 }
 
-std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec) {
-  if (!spec.times.empty()) return spec.times;
-  if (spec.keys) {
-    std::set<float> keys;
-    for (const Channel& ch : clip.channels) keys.insert(ch.times.begin(), ch.times.end());
-    return std::vector<double>(keys.begin(), keys.end());
-  }
+int grid_frame_count(const Clip& clip, const FrameSpec& spec) {
   if (!(spec.fps > 0) || !std::isfinite(spec.fps)) fail("--fps must be a positive number");
   const double start = spec.from_first_key ? clip.first_key : 0.0;
   // Frames whose time start + i/fps is at most the last key; the 1e-9 absorbs rounding of durations
@@ -92,7 +86,18 @@ std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec) {
                   spec.fps, kMaxFrames);
     fail(text);
   }
-  const int count = int(frames);
+  return int(frames);
+}
+
+std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec) {
+  if (!spec.times.empty()) return spec.times;
+  if (spec.keys) {
+    std::set<float> keys;
+    for (const Channel& ch : clip.channels) keys.insert(ch.times.begin(), ch.times.end());
+    return std::vector<double>(keys.begin(), keys.end());
+  }
+  const int count = grid_frame_count(clip, spec);
+  const double start = spec.from_first_key ? clip.first_key : 0.0;
   const int first = spec.first.value_or(0);
   const int last = spec.last.value_or(count - 1);
   if (first >= count || last >= count)

@@ -63,6 +63,17 @@ TEST(FrameTimes, RangeBeyondTheClipIsAnError) {
   EXPECT_THROW(frame_times(clip_with_keys({0, 2}), spec), InputError);
 }
 
+TEST(FrameTimes, GridFrameCountIsTheGridsLengthWhateverTheRange) {
+  FrameSpec spec;
+  parse_frame_range("0:59", spec);  // first, last and step do not change the grid
+  EXPECT_EQ(grid_frame_count(clip_with_keys({0, 0.4f}), spec), 13);  // 0.4 s at 30 fps: frames 0..12
+  EXPECT_EQ(grid_frame_count(clip_with_keys({0, 2}), spec), 61);
+  spec.from_first_key = true;
+  EXPECT_EQ(grid_frame_count(clip_with_keys({1, 2}), spec), 31);
+  spec.fps = 0;
+  EXPECT_THROW(grid_frame_count(clip_with_keys({0, 2}), spec), InputError);
+}
+
 TEST(FrameTimes, KeysGivesEveryDistinctKeyTimeInOrder) {
   Clip clip = clip_with_keys({0, 1, 2});
   Channel other = clip.channels[0];

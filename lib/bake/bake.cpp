@@ -386,6 +386,10 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   for (size_t i = 0; i < plans.size(); ++i) {
     InputPlan& plan = plans[i];
     if (!plan.error.empty()) continue;
+    // As an unskinned file's other formats are its rest pose or node animation, its bone textures are none:
+    // a batch goes on, and the user is told why the folder has no bones_skinK files.
+    if (has(options.formats, BakeFormat::kBones) && plan.skins.empty())
+      plan.asset->warnings.push_back("the scene has no skinned mesh, so --format bones writes no bone texture for it");
     try {
       if (has(options.formats, BakeFormat::kGlb))
         glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene, options.glb_images);

@@ -366,12 +366,6 @@ auto of_pair(const std::string& pair, Step&& step) {
 
 }  // namespace
 
-bool is_gltf_name(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-  return ext == ".gltf" || ext == ".glb";
-}
-
 DiffStatus GeometryDiffReport::status() const {
   DiffStatus worst = DiffStatus::kPass;
   auto take = [&](DiffStatus s) { worst = std::max(worst, s); };

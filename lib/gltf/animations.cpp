@@ -114,7 +114,7 @@ std::optional<Target> channel_target(const tinygltf::AnimationChannel& ch, const
 
 // The channel's keys, checked against its target. Channel::node is the target's node (-1 for a mesh's
 // weights: the caller gives it one per node that draws the mesh).
-Channel read_channel(const tinygltf::Model& m, const AccessorReader& reader, const Asset& asset, size_t a,
+Channel read_channel(const tinygltf::Model& m, const AccessorReader& reader, Asset& asset, size_t a,
                      const tinygltf::AnimationChannel& ch, const Target& target, const std::string& what) {
   const tinygltf::Animation& anim = m.animations[a];
   if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size())
@@ -125,10 +125,17 @@ Channel read_channel(const tinygltf::Model& m, const AccessorReader& reader, con
   channel.components = target.path == TargetPath::kRotation ? 4 : 3;
   if (target.path == TargetPath::kWeights) {
     channel.components = mesh_target_count(m, target.mesh ? target.index : asset.nodes[size_t(target.index)].mesh);
-    if (channel.components == 0)
-      fail(what + ": animates weights of a " + (target.mesh ? "mesh" : "node") + " without morph targets");
+    // A mesh's weights pointer names a property the mesh does not have: the pointer is broken. A node's
+    // weights channel on a mesh without targets is ignored by viewers; what it would deform is unknown, so
+    // only the deforming commands refuse (its keys are still read and checked). It stays in the clip with no
+    // components, so that the clip's channels keep the file's order (skin_data.cpp matches them by position).
+    if (channel.components == 0 && target.mesh) fail(what + ": animates weights of a mesh without morph targets");
+    if (channel.components == 0) asset.cannot_deform.push_back(what + ": animates weights of a node without morph targets");
   } else if (asset.nodes[size_t(target.index)].local.has_matrix) {
-    fail(what + ": animates node " + std::to_string(target.index) + ", which has a matrix (§3.11 forbids it)");
+    // §3.11 forbids it, but three.js and Blender open such a file (the matrix wins or is decomposed): it is
+    // described, and only the deforming commands refuse it.
+    asset.cannot_deform.push_back(what + ": animates node " + std::to_string(target.index) +
+                                  ", which has a matrix (§3.11 forbids it)");
   }
 
   const tinygltf::AnimationSampler& s = anim.samplers[size_t(ch.sampler)];
@@ -152,7 +159,8 @@ Channel read_channel(const tinygltf::Model& m, const AccessorReader& reader, con
              : AccessorShape{{TINYGLTF_TYPE_VEC3}, {TINYGLTF_COMPONENT_TYPE_FLOAT}};
   channel.values = reader.floats(s.output, vshape, swhat + " output");
   const size_t per_key = size_t(channel.components) * (channel.interpolation == Interpolation::kCubicSpline ? 3 : 1);
-  if (channel.values.size() != channel.times.size() * per_key)
+  if (channel.components == 0) channel.values.clear();  // the weights of no morph target (cannot_deform)
+  else if (channel.values.size() != channel.times.size() * per_key)
     fail(swhat + ": output has " + std::to_string(channel.values.size()) + " values for " +
          std::to_string(channel.times.size()) + " keys (expected " + std::to_string(channel.times.size() * per_key) +
          ")");

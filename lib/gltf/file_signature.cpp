@@ -1,8 +1,13 @@
 #include "file_signature.hpp"
 
 #include "dqskin/error.hpp"
+#include "dqskin/load.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string_view>
 
 namespace dqskin::gltf {
@@ -40,3 +45,24 @@ std::optional<std::string> not_gltf_reason(std::span<const uint8_t> bytes) {
 }
 
 }  // namespace dqskin::gltf
+
+namespace dqskin {
+
+bool is_gltf_file(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension == ".gltf" || extension == ".glb") return true;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  // Enough for the magic, a byte order mark and the indentation before a document's '{'.
+  char head[256] = {};
+  std::ifstream in(path, std::ios::binary);
+  in.read(head, sizeof head);
+  const std::string_view text(head, size_t(in.gcount()));
+  if (text.substr(0, 4) == "glTF") return true;
+  size_t first = text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
+  first = text.find_first_not_of(" \t\r\n", first);
+  return first != std::string_view::npos && text[first] == '{';
+}
+
+}  // namespace dqskin

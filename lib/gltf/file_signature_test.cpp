@@ -1,8 +1,13 @@
 // not_gltf_reason: what a file that is not glTF looks like, and no word for what is (or may be) glTF.
+// is_gltf_file: a glTF file known by its bytes under any name.
 #include "file_signature.hpp"
+
+#include "dqskin/load.hpp"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string_view>
 
 namespace dqskin::gltf {
@@ -33,6 +38,34 @@ TEST(FileSignature, QuotesTheFirstLineOfAnythingElsePrintably) {
   const std::optional<std::string> escaped = reason("\x1B[31mred");
   ASSERT_TRUE(escaped);
   EXPECT_EQ(escaped->find('\x1B'), std::string::npos) << *escaped;  // no terminal escape reaches stderr
+}
+
+// A file of `bytes` named `name` in a fresh folder of the test's own.
+std::string file_of(const std::string& name, std::string_view bytes) {
+  const std::filesystem::path folder = std::filesystem::path(::testing::TempDir()) / "dqskin_is_gltf_file";
+  std::filesystem::create_directories(folder);
+  const std::string path = (folder / name).string();
+  std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  return path;
+}
+
+TEST(IsGltfFile, KnowsAGltfFileByItsBytesUnderAnyName) {
+  EXPECT_TRUE(is_gltf_file(file_of("avatar.vrm", std::string_view("glTF\x02\x00\x00\x00", 8))));
+  EXPECT_TRUE(is_gltf_file(file_of("model", std::string_view("glTF\x02\x00\x00\x00", 8))));
+  EXPECT_TRUE(is_gltf_file(file_of("model.dat", "\xEF\xBB\xBF\n  {\"asset\": {\"version\": \"2.0\"}}")));
+}
+
+TEST(IsGltfFile, ImagesFoldersAndMissingFilesAreNot) {
+  EXPECT_FALSE(is_gltf_file(file_of("frame.png", "\x89PNG\r\n\x1A\nrest")));
+  EXPECT_FALSE(is_gltf_file(file_of("notes.txt", "glt")));
+  EXPECT_FALSE(is_gltf_file(file_of("empty.bin", "")));
+  EXPECT_FALSE(is_gltf_file(std::filesystem::path(file_of("x.bin", "")).parent_path().string()));
+  EXPECT_FALSE(is_gltf_file(file_of("x.bin", "").append(".missing")));
+}
+
+TEST(IsGltfFile, AGltfNameIsGltfWhateverItHoldsSoTheLoaderSaysWhatItIs) {
+  EXPECT_TRUE(is_gltf_file(file_of("page.GLB", "<!DOCTYPE html>")));
+  EXPECT_TRUE(is_gltf_file(file_of("missing.gltf", "").append(".gltf")));
 }
 
 }  // namespace

@@ -222,9 +222,13 @@ void read_meshes(const tinygltf::Model& model, const AccessorReader& reader, Ass
     const size_t joints = asset.skins[size_t(node.skin)].joints.size();
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const Primitive& prim = mesh.primitives[p];
-      if (prim.influences == 0)
-        fail("node " + std::to_string(i) + ": is skinned, but mesh " + std::to_string(node.mesh) + " primitive " +
-             std::to_string(p) + " has no JOINTS_0/WEIGHTS_0");
+      // Viewers draw such a primitive unskinned; a deformation of it is not defined (§3.7.3), so only the
+      // deforming commands refuse it.
+      if (prim.influences == 0) {
+        asset.cannot_deform.push_back("node " + std::to_string(i) + ": is skinned, but mesh " + std::to_string(node.mesh) +
+                                      " primitive " + std::to_string(p) + " has no JOINTS_0/WEIGHTS_0");
+        continue;
+      }
       for (size_t k = 0; k < prim.joints.size(); ++k)
         if (prim.joints[k] >= joints)
           fail("mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p) + ": vertex " +

@@ -102,6 +102,18 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
   data.rewritable = data.why_not.empty();
   AnimationOrigins origins;
   data.structure = read_structure(m, parsed.json_bytes, path, options, &origins);
+  // The loader's one mesh-level reason not to deform (mesh.cpp), which read_structure does not read: a
+  // skinned node's primitive without influences. lint reports it as cannot-deform, in the same words.
+  for (size_t n = 0; n < data.structure.nodes.size(); ++n) {
+    const Node& node = data.structure.nodes[n];
+    if (node.mesh < 0 || node.skin < 0) continue;
+    const std::vector<tinygltf::Primitive>& primitives = m.meshes[size_t(node.mesh)].primitives;
+    for (size_t k = 0; k < primitives.size(); ++k)
+      if (highest_influence_set(primitives[k]) < 0)
+        data.structure.cannot_deform.push_back("node " + std::to_string(n) + ": is skinned, but mesh " +
+                                               std::to_string(node.mesh) + " primitive " + std::to_string(k) +
+                                               " has no JOINTS_0/WEIGHTS_0");
+  }
   const Asset& asset = data.structure;
   const AccessorReader reader{m, options.max_unbacked_elements};
   // What the raw sets may take besides what loading the structure took (primitives may share accessors,

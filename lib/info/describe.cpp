@@ -105,6 +105,7 @@ AssetFacts describe(const Asset& asset) {
     if (targets) f.morph_targets.push_back({int(m), asset.meshes[m].name, targets});
   }
 
+  f.cannot_deform = asset.cannot_deform;
   f.warnings = asset.warnings;
   // `info` describes everything, so the notices (what glTF defines and dqskin follows) are among its warnings.
   f.warnings.insert(f.warnings.end(), asset.notices.begin(), asset.notices.end());

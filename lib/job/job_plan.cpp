@@ -72,6 +72,42 @@ void check_frame_size(const Asset& asset, const std::vector<MeshInstance>& insta
                      byte_size(vertices * kBytesPerVertex) + ", more than --max-memory " + byte_size(max_memory));
 }
 
+// "--frames 0:59" or "--frames 0:59:2", as the user gave it.
+std::string frames_flag(const FrameSpec& spec) {
+  char text[64];
+  if (spec.step != 1)
+    std::snprintf(text, sizeof text, "--frames %d:%d:%d", spec.first.value_or(0), spec.last.value_or(0), spec.step);
+  else
+    std::snprintf(text, sizeof text, "--frames %d:%d", spec.first.value_or(0), spec.last.value_or(0));
+  return text;
+}
+
+// "'Walk' (0.4 s) has frames 0..12 at 30 fps"
+std::string clip_frames(const Clip& clip, const FrameSpec& spec, int count) {
+  char text[96];
+  std::snprintf(text, sizeof text, " (%.3g s) has frames 0..%d at %.6g fps", clip.last_key, count - 1, spec.fps);
+  return "animation '" + clip.name + "'" + text;
+}
+
+// The frames of one clip that --frames A:B asks for. A batch goes on past a clip shorter than B: the clip
+// gives the frames it has (a warning names it), and one that has none of them is left out (`times` empty,
+// a warning too). Without --frames, or with --keys or --times, every frame frame_times gives.
+std::vector<double> clip_times(const Clip& clip, const FrameSpec& spec, std::vector<std::string>& warnings) {
+  if (!spec.last || spec.keys || !spec.times.empty()) return frame_times(clip, spec);
+  const int count = grid_frame_count(clip, spec);
+  if (*spec.last < count) return frame_times(clip, spec);
+  if (spec.first.value_or(0) >= count) {
+    warnings.push_back(clip_frames(clip, spec, count) + ": " + frames_flag(spec) + " asks for none of them; it is left out");
+    return {};
+  }
+  FrameSpec shorter = spec;
+  const int first = spec.first.value_or(0);
+  shorter.last = first + (count - 1 - first) / spec.step * spec.step;  // the last frame of the range it has
+  warnings.push_back(clip_frames(clip, spec, count) + ", so " + frames_flag(spec) + " gives its frames " +
+                     std::to_string(first) + ".." + std::to_string(*shorter.last));
+  return frame_times(clip, shorter);
+}
+
 }  // namespace
 
 std::string safe_name(const std::string& name) {
@@ -125,8 +161,11 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
       plan.skins.assign(skins.begin(), skins.end());
 
       std::vector<const Clip*> clips;
-      if (asset.clips.empty() && options.clips == "all") {
-        clips.push_back(nullptr);  // a file without animations bakes its rest pose
+      if (asset.clips.empty() && (options.clips == "all" || options.clips == "0")) {
+        // A file without animations bakes its rest pose; so does "--anim 0", the first animation there is,
+        // so that one command line serves a batch of files with and without animations.
+        clips.push_back(nullptr);
+        if (options.clips == "0") plan.asset->warnings.push_back("the file has no animations; --anim 0 takes its rest pose");
       } else {
         for (size_t c : select_clips(asset, options.clips)) clips.push_back(&asset.clips[c]);
       }
@@ -148,7 +187,8 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
         cp.folder.append("/").append(folder);
         check_name_lengths(options.out_dir, cp, plan.stem, name_max);
         if (cp.clip) {
-          cp.times = frame_times(*cp.clip, options.frames);
+          cp.times = clip_times(*cp.clip, options.frames, plan.asset->warnings);
+          if (cp.times.empty()) continue;  // none of --frames A:B is in it (warned); its folder name stays taken
         } else {
           cp.times = options.frames.times.empty() ? std::vector<double>{0.0} : options.frames.times;
         }
@@ -158,6 +198,13 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
           cp.numbers.push_back(grid ? options.frames.first.value_or(0) + int(f) * options.frames.step : int(f));
         cp.number_width = std::max(4, digits(size_t(cp.numbers.empty() ? 0 : cp.numbers.back())));
         plan.clips.push_back(std::move(cp));
+      }
+      if (plan.clips.empty()) {  // every clip was left out: the longest says what --frames could ask for
+        const Clip* longest = clips.front();
+        for (const Clip* c : clips)
+          if (c->last_key > longest->last_key) longest = c;
+        throw InputError(frames_flag(options.frames) + " asks for frames past the end of every animation; the longest, " +
+                         clip_frames(*longest, options.frames, grid_frame_count(*longest, options.frames)));
       }
     } catch (const std::bad_alloc&) {
       const MemoryCeilingLifted lifted;  // the message and the empty plan allocate

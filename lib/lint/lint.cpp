@@ -8,6 +8,7 @@
 #include "lint_checks.hpp"
 
 #include <new>
+#include <set>
 
 namespace dqskin {
 
@@ -23,6 +24,8 @@ const char* to_string(LintSeverity severity) {
 const std::vector<LintCheckInfo>& lint_checks() {
   using S = LintSeverity;
   static const std::vector<LintCheckInfo> checks = {
+      {"cannot-deform", S::kError,
+       "the file is read, but bake, render, report and diff refuse to deform it (the message says why)", false},
       {"weight-sum", S::kError,
        "a vertex's weights (over every WEIGHTS_n) sum away from 1 beyond what the component type allows", true},
       {"zero-weight-vertex", S::kError, "a vertex has no weight on any joint (--fix binds it to the nearest joint)",
@@ -100,6 +103,14 @@ LintFileResult lint_file(const std::string& path, const LintOptions& options) {
     const gltf::SkinData data = gltf::read_skin_data(path, options.load);
     lint::Findings found;
     check_cancelled(options.cancel);
+    // What the loader reads but the deforming commands refuse (LoadOptions::refuse_undeformable): lint
+    // describes the file and reports each as an error, the first one's message shown. Different duplicate
+    // channels have their own check (duplicate-channel, which --fix repairs), so they are not counted twice.
+    std::set<std::string> own_check;
+    for (const gltf::DuplicateChannel& d : data.duplicate_channels)
+      if (!d.identical) own_check.insert(d.message);
+    for (const std::string& why : data.structure.cannot_deform)
+      if (!own_check.count(why)) found["cannot-deform"].add(0, {why.substr(0, why.find(": "))}, [&why] { return why; });
     lint::check_influences(data, options, found);
     lint::check_skeletons(data, options, found);
     lint::check_rotation_keys(data, options, found);

@@ -112,7 +112,8 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
 
   ReportResult result;
   for (const InputPlan& plan : plans)
-    for (const ClipPlan& clip : plan.clips) result.frames_total += clip.times.size();
+    if (!plan.skins.empty())
+      for (const ClipPlan& clip : plan.clips) result.frames_total += clip.times.size();
   JobContext context(options.backend);
   ProgressCounter counter(result.frames_total, progress);
   size_t outputs_before = 0, verdicts_before = 0;
@@ -120,6 +121,12 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
       plans,
       [&](const InputPlan& plan, OutputJournal& journal, InputResult& input_result) {
         outputs_before = result.outputs.size(), verdicts_before = result.verdicts.size();
+        // lbs, dqs and dib agree on a file without a skin: there is nothing to compare, and a batch goes on
+        // (as bake bakes such a file) with a warning instead of failing it.
+        if (plan.skins.empty()) {
+          input_result.warnings.push_back("no skinned mesh in the scene: nothing to report; no report is written for it");
+          return;
+        }
         InputData data = measure_input(plan, options, counter);
         // A report is one output: its sheets, report.json and report.html are written to temporaries and
         // committed together once all are complete, so that a failure or a signal leaves none of them.

@@ -45,6 +45,10 @@ struct FrameSpec {
 // times. Throws InputError for a spec that cannot be satisfied (fps ≤ 0, a range outside the grid).
 std::vector<double> frame_times(const Clip& clip, const FrameSpec& spec);
 
+// The number of frames of the clip's fps grid under spec (its fps and start; not first, last or step).
+// Throws InputError for fps ≤ 0 or a grid of more frames than dqskin takes.
+int grid_frame_count(const Clip& clip, const FrameSpec& spec);
+
 // Parses "A:B" or "A:B:step" into spec.first/last/step. Throws InputError naming the problem.
 void parse_frame_range(const std::string& text, FrameSpec& spec);
 

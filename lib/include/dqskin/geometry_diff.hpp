@@ -132,9 +132,6 @@ struct GeometryDiffReport {
 // "the rest pose", "clip Walk, t = 0 s" or "the bind pose": where a report's correspondence was made.
 std::string pose_text(const GeometryDiffReport& report);
 
-// True when `path` names a glTF file (.gltf or .glb, any case): diff compares geometry then.
-bool is_gltf_name(const std::string& path);
-
 // True when `path` is a folder `dqskin bake` wrote (it holds a manifest.json).
 bool is_bake_folder(const std::string& path);
 

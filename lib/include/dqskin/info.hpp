@@ -48,6 +48,9 @@ struct AssetFacts {
   std::vector<ClipFacts> clips;
   std::vector<MorphFacts> morph_targets;  // meshes with morph targets
   std::vector<std::string> warnings;
+  // Why the deforming commands refuse the file, though it is read (Asset::cannot_deform); empty when they
+  // accept it.
+  std::vector<std::string> cannot_deform;
 };
 
 AssetFacts describe(const Asset& asset);

@@ -57,4 +57,12 @@ Asset load_asset(const std::string& path, const LoadOptions& options = {});
 Asset load_asset_from_memory(std::span<const uint8_t> bytes, const std::string& name, const std::string& base_dir,
                              const LoadOptions& options = {});
 
+// Whether `path` holds a glTF file, judged by its bytes as load_asset judges them, not by its name: a .vrm
+// (a GLB), a .glb saved as .bin or without an extension, a .gltf under another name. True for a regular
+// file that starts with the GLB magic "glTF" (§4.4.2) or whose text opens with '{' (a glTF document is a
+// JSON object, §5.1), and for any name ending in .gltf or .glb (any case), whatever it holds, so that the
+// loader says what such a file is instead. False for folders, files it cannot open, and other files
+// (images), which the callers (diff) treat otherwise.
+bool is_gltf_file(const std::string& path);
+
 }  // namespace dqskin
