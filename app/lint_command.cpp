@@ -138,7 +138,7 @@ Command add_lint_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-influences", o.max_influences,
                   "More joints with weight per vertex is a warning (more than 8 is an error); --fix keeps this many "
-                  "(1-8; 8 keeps JOINTS_1)")
+                  "(1-32; 8 keeps JOINTS_1), as bake --max-influences N deforms")
       ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--bind-tolerance", o.bind_tolerance,

@@ -56,6 +56,8 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
       {"inputs", inputs},
       {"outputs", outputs},
   };
+  // --max-influences only where given: the manifests of other runs stay as they were.
+  if (options.load.max_influences > 0) manifest["max_influences"] = options.load.max_influences;
   // Texture settings only where textures are written: the manifests of mesh bakes stay as they were.
   if (options.formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones))) {
     const TextureOptions& t = options.textures;

@@ -37,7 +37,7 @@ std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInst
       attributes["POSITION"] = bin.positions(flat(source.positions));
       if (source.normals.size() == n) attributes["NORMAL"] = bin.floats(flat(source.normals), n, "VEC3");
       if (source.uv0.size() == n) attributes["TEXCOORD_0"] = bin.floats(flat(source.uv0), n, "VEC2");
-      // The loader's influences are vertex-major, `influences` (4 or 8) per vertex; glTF sets hold 4.
+      // The loader's influences are vertex-major, `influences` (4 per set) per vertex; glTF sets hold 4.
       const size_t per = size_t(source.influences);
       for (size_t set = 0; set * 4 < per; ++set) {
         std::vector<uint16_t> joints(4 * n);
