@@ -10,6 +10,11 @@ dqskin_cli_test(cli.influences_info_twenty 0 ARGS info ${_twenty}
   STDOUT "up to 20 influences per vertex \\(JOINTS_0..JOINTS_4\\)" LABELS influences)
 dqskin_cli_test(cli.influences_info_twelve 0 ARGS info ${_cases}/twelve_influences.gltf
   STDOUT "up to 12 influences per vertex \\(JOINTS_0..JOINTS_2\\)" LABELS influences)
+# three.js reads JOINTS_0 only, Babylon.js JOINTS_0 and JOINTS_1: a warning, not an error.
+dqskin_cli_test(cli.influences_lint_warns 1 ARGS lint ${_twenty}
+  STDOUT "warning over-8-influences \\(164\\): 20 joints with weight \\(Babylon.js reads 8, three.js 4" LABELS influences)
+dqskin_cli_test(cli.influences_lint_allowed 0 ARGS lint --max-influences 20 ${_twenty} STDOUT ": clean\n"
+  LABELS influences)
 dqskin_cli_test(cli.influences_lint_fix_past_cap 2 ARGS lint --fix --max-influences 33 ${_twenty} -o ${_work}/never.glb
   STDERR "--max-influences must be from 1 to 32 for --fix" LABELS influences)
 

@@ -19,8 +19,8 @@ struct LintOptions {
   // Weights of a vertex (over every WEIGHTS_n) may sum to 1 ± sum_tolerance; with normalized integers at
   // least ± n·0.5/255 (or /65535) for n nonzero weights, what rounding each stored weight allows.
   double sum_tolerance = 1e-3;
-  // More nonzero weights per vertex than this is a warning (and what --fix keeps, at most kMaxInfluences);
-  // more than 8 is an error.
+  // More nonzero weights per vertex than this is a warning (and what --fix keeps, at most kMaxInfluences):
+  // too-many-influences up to 8, over-8-influences past them (runtimes that read 8 drop the rest).
   int max_influences = 4;
   // Inverse bind matrices against the inverse of the joints' rest world matrices: largest entry of
   // world · inverseBind − I, translations as fractions of the skeleton's size (at least 1 unit).
