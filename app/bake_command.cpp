@@ -176,6 +176,7 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*bake_cmd, bake.selection, "bake");
   add_load_settings(*bake_cmd, bake.load);
+  add_max_influences(*bake_cmd, bake.load);
   bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
       ->type_name("lbs|dqs|dib")
       ->capture_default_str();

@@ -42,10 +42,14 @@ Command add_merge_command(CLI::App& app);
 struct LoadSettings {
   std::vector<std::string> resource_roots;
   std::string max_memory = "2G";
+  int max_influences = 0;  // --max-influences of the commands that deform; 0: every influence
 };
 
 // Adds the LoadSettings flags to a command.
 void add_load_settings(CLI::App& command, LoadSettings& settings);
+
+// Adds --max-influences, for the commands that deform (bake, render, report, diff): LoadOptions::max_influences.
+void add_max_influences(CLI::App& command, LoadSettings& settings);
 
 // Adds --max-memory alone, for the commands that read no glTF file (verify, merge).
 void add_max_memory(CLI::App& command, std::string& max_memory);

@@ -179,6 +179,7 @@ Command add_diff_command(CLI::App& app) {
   diff_cmd->add_flag("-v,--verbose", diff.verbose,
                      "glTF and bakes: also print, on stderr, how long the correspondence and the whole diff took");
   add_load_settings(*diff_cmd, diff.load);
+  add_max_influences(*diff_cmd, diff.load);
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--junit", diff.junit, "Also write a JUnit XML report, one testcase per pair, to FILE")
       ->type_name("FILE");

@@ -18,6 +18,12 @@
 namespace dqskin::cli {
 namespace {
 
+// The JOINTS_n attributes of `sets` influence sets, as the text report names them.
+std::string influence_set_names(int sets) {
+  if (sets > 2) return "JOINTS_0..JOINTS_" + std::to_string(sets - 1);
+  return sets > 1 ? "JOINTS_0, JOINTS_1" : "JOINTS_0";
+}
+
 struct InfoSettings {
   std::vector<std::string> inputs;
   LoadSettings load;
@@ -44,7 +50,8 @@ void print_text(const std::string& path, const AssetFacts& f) {
   for (const SkinnedMeshFacts& m : f.skinned_meshes)
     std::cout << "    " << (m.name.empty() ? "(unnamed)" : printable(m.name)) << " (node " << m.node << ", mesh " << m.mesh
               << ", skin " << m.skin << "): " << m.vertices << " vertices, " << m.triangles << " triangles, up to "
-              << m.max_influences << (m.max_influences == 1 ? " influence" : " influences") << " per vertex (" << (m.influence_sets > 1 ? "JOINTS_0, JOINTS_1" : "JOINTS_0")
+              << m.max_influences << (m.max_influences == 1 ? " influence" : " influences") << " per vertex ("
+              << influence_set_names(m.influence_sets)
               << ")\n";
   std::cout << "  skins: " << f.skins.size() << " (" << f.joint_nodes << " distinct joints)\n";
   for (size_t i = 0; i < f.skins.size(); ++i) {

@@ -139,8 +139,8 @@ Command add_lint_command(CLI::App& app) {
       ->type_name("X")
       ->capture_default_str();
   cmd->add_option("--max-influences", o.max_influences,
-                  "More joints with weight per vertex is a warning (more than 8 is an error); --fix keeps this many "
-                  "(1-8; 8 keeps JOINTS_1)")
+                  "More joints with weight per vertex is a warning (three.js reads 4, Babylon.js 8); --fix keeps "
+                  "this many (1-32; 8 keeps JOINTS_1), as bake --max-influences N deforms")
       ->type_name("N")
       ->capture_default_str();
   cmd->add_option("--bind-tolerance", o.bind_tolerance,

@@ -17,6 +17,15 @@ void add_load_settings(CLI::App& command, LoadSettings& settings) {
   add_max_memory(command, settings.max_memory);
 }
 
+void add_max_influences(CLI::App& command, LoadSettings& settings) {
+  command
+      .add_option("--max-influences", settings.max_influences,
+                  "Keep the N largest influences of each vertex (1-" + std::to_string(kMaxInfluences) +
+                      ") and renormalize, as lint --fix --max-influences N writes them; by default every one "
+                      "the file has")
+      ->type_name("N");
+}
+
 void add_max_memory(CLI::App& command, std::string& max_memory) {
   command
       .add_option("--max-memory", max_memory,
@@ -42,6 +51,9 @@ LoadOptions to_load_options(const LoadSettings& settings) {
       throw InputError("--resource-root " + root + ": " + (error ? error.message() : "not a folder"));
   }
   options.resource_roots = settings.resource_roots;
+  if (settings.max_influences != 0 && (settings.max_influences < 1 || settings.max_influences > kMaxInfluences))
+    throw InputError("--max-influences must be from 1 to " + std::to_string(kMaxInfluences) + " (0: every influence)");
+  options.max_influences = settings.max_influences;
   return options;
 }
 

@@ -186,6 +186,7 @@ Command add_render_command(CLI::App& app) {
   render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*render_cmd, render.selection, "render");
   add_load_settings(*render_cmd, render.load);
+  add_max_influences(*render_cmd, render.load);
   render_cmd->add_option("--mode", render.mode,
                          "Blending: lbs (linear), dqs (dual quaternion DLB) or dib (iterative, deformed on the CPU)")
       ->type_name("lbs|dqs|dib")

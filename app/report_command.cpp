@@ -109,6 +109,7 @@ Command add_report_command(CLI::App& app) {
   cmd->add_option("-o,--out", s.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
   add_frame_selection(*cmd, s.selection, "report");
   add_load_settings(*cmd, s.load);
+  add_max_influences(*cmd, s.load);
   cmd->add_option("--scene", s.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
   cmd->add_option("--backend", s.backend,
                   "Headless OpenGL backend that draws the contact sheets: auto (EGL, then OSMesa), egl or osmesa "

@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   info.insert(info.end(), limits.begin(), limits.end());
   expect_status(run(info));
 
-  // lint reads what the loader refuses (JOINTS_2 and up, joints out of range); --fix writes it back.
+  // lint reads what the loader refuses (joints out of range, negative weights); --fix writes it back.
   std::vector<std::string> lint = {"lint", "--json", model};
   if (size % 3 == 0) lint.insert(lint.end(), {"--fix", "-o", (scratch() / "fixed.glb").string()});
   lint.insert(lint.end(), limits.begin(), limits.end());

@@ -5,7 +5,7 @@
 // Compiled once per variant; the host prepends "#version 430" and these defines:
 //   MODE_LBS | MODE_DQS    blend mode (DIB runs on the CPU reference only)
 //   TEXELS                 T, texels per joint (2 rigid, 5 with scale/shear)
-//   INFLUENCES             4 or 8 per vertex
+//   INFLUENCES             per vertex: 4 per JOINTS_n/WEIGHTS_n set, up to 32 (every set the file has)
 //   HAS_NORMALS, HAS_TANGENTS, MORPH_TARGETS (count, 0 for none)
 // Kavan et al., "Geometric Skinning with Approximate Dual Quaternion Blending" (2008): DLB (§4) with the
 // antipodality pivot of DESIGN.md, and two-phase skinning for scale: v' = DLB(rigid) applied to (Σ w S) v.

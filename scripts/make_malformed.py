@@ -929,6 +929,35 @@ def undeformable_cases(cat, base):
                           r"node 0: is skinned, but mesh 0 primitive 0 has no JOINTS_0/WEIGHTS_0$")
 
 
+def influence_set_cases(cat, base):
+    """JOINTS_n/WEIGHTS_n sets past the first two (glTF 2.0 §3.7.3.3: any number of sets, numbered from 0
+    without gaps, §3.7.2.1). dqskin reads up to 8 sets (32 influences per vertex) and refuses more, so
+    that attribute names alone cannot make it decode gigabytes; the extra sets reuse the base's JOINTS_0
+    and WEIGHTS_0 accessors, which have the right shape and count."""
+    def sets(names):
+        def f(a):
+            attributes = a.gltf["meshes"][0]["primitives"][0]["attributes"]
+            for n in names:
+                attributes["JOINTS_%s" % n] = JOINTS
+                attributes["WEIGHTS_%s" % n] = WEIGHTS
+        return f
+    prefix = r"mesh 0 primitive 0: "
+    cat.gltf("influence_set_gap", edit(base, sets([2])),
+             prefix + r"has JOINTS_2 or WEIGHTS_2 but not JOINTS_1 or WEIGHTS_1 \(sets are numbered from 0 without gaps\)$")
+    cat.gltf("influence_sets_past_cap", edit(base, sets(range(1, 9))),
+             prefix + r"has JOINTS_8/WEIGHTS_8: more than 32 influences per vertex \(8 sets\), which dqskin does not read$")
+    cat.gltf("influence_set_index_huge", edit(base, sets([999999999])),
+             prefix + r"has JOINTS_999999999/WEIGHTS_999999999: more than 32 influences per vertex")
+
+    def joints_without_weights(a):
+        sets([1, 2, 3])(a)
+        del a.gltf["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_3"]
+    cat.gltf("joints_3_without_weights_3", edit(base, joints_without_weights), prefix + r"has JOINTS_3 without WEIGHTS_3$")
+    # Eight sets, the most dqskin reads: they load (the same four influences eight times over).
+    cat.write("valid_eight_influence_sets.gltf", edit(base, sets(range(1, 8))).gltf_bytes())
+    cat.valid.append("valid_eight_influence_sets.gltf")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: make_malformed.py OUTDIR")
@@ -1343,6 +1372,7 @@ def main():
     draco_cases(cat, base)
     animation_channel_cases(cat, base)
     texture_extension_cases(cat, base)
+    influence_set_cases(cat, base)
 
     # A valid file that must load in time: a chain of 200000 nodes (4 MB). A cycle check that walks up
     # from every node is quadratic (about 45 s in a Release build), which the test's timeout catches.

@@ -83,7 +83,7 @@ void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t 
         if (!prim.normals.empty() && !prim.targets[k].normals.empty())
           nrm += morph[k] * glm::dvec3(prim.targets[k].normals[v]);
       }
-      std::array<int, 8> joints{};  // glTF's JOINTS_0 and JOINTS_1 at most (the loader's limit)
+      std::array<int, kMaxInfluences> joints{};  // every JOINTS_n set the loader reads (asset.hpp)
       for (size_t i = 0; i < per; ++i) joints[i] = prim.joints[v * per + i];
       const std::span<const float> weights(&prim.weights[v * per], per);
       const SkinnedVertex s = skin_vertex(image, frame, std::span<const int>(joints.data(), per), weights, p, nrm);

@@ -58,6 +58,8 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
   };
   // Where the glb frames' images went, only where glb frames are written: other manifests stay as they were.
   if (options.formats & unsigned(BakeFormat::kGlb)) manifest["glb_images"] = to_string(options.glb_images);
+  // --max-influences only where given: the manifests of other runs stay as they were.
+  if (options.load.max_influences > 0) manifest["max_influences"] = options.load.max_influences;
   // Texture settings only where textures are written: the manifests of mesh bakes stay as they were.
   if (options.formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones))) {
     const TextureOptions& t = options.textures;

@@ -4,6 +4,7 @@
 #include "dqskin/error.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace dqskin::deform {
@@ -18,6 +19,8 @@ void scatter(const std::vector<Vec>& src, int c, float* dst) {
 }
 
 RestPrimitive make_primitive(const Asset& asset, const MeshInstance& inst, size_t instance_index, const Primitive& src) {
+  if (src.influences > kMaxInfluences)  // the Asset's contract (asset.hpp); the loader never makes more
+    throw std::invalid_argument("make_rest_data: more than kMaxInfluences influences per vertex");
   RestPrimitive r;
   r.instance = instance_index;
   r.vertices = src.vertex_count();
@@ -55,8 +58,8 @@ RestPrimitive make_primitive(const Asset& asset, const MeshInstance& inst, size_
   // Influences as the reference gathers them, the largest (the first of equals) moved to k = 0. Padding
   // lanes and weightless vertices read the identity with weight 1.
   for (size_t v = 0; v < padded; ++v) {
-    int32_t joint[8];
-    double weight[8], sum = 0;
+    int32_t joint[kMaxInfluences];
+    double weight[kMaxInfluences], sum = 0;
     size_t count = 0;
     if (!skinned && v < r.vertices) {
       joint[0] = 0, weight[0] = 1, sum = 1, count = 1;

@@ -7,6 +7,7 @@
 #include "dqskin/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "draco.hpp"
+#include "influence_limit.hpp"
 #include "materials.hpp"
 #include "memory_estimate.hpp"
 #include "mesh.hpp"
@@ -225,6 +226,7 @@ Asset convert(tinygltf::Model& m, uint64_t json_bytes, const std::string& path, 
   read_scenes(m, asset);
   read_skins(m, reader, asset);
   gltf::read_meshes(m, reader, asset);
+  gltf::keep_largest_influences(asset, options.max_influences);  // --max-influences, once, before anything deforms
   gltf::read_appearance(m, asset);
   gltf::read_animations(m, reader, asset);
   add_warnings(m, asset);

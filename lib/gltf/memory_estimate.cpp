@@ -55,9 +55,10 @@ public:
       if (const int a = find(p.attributes, name); a >= 0) read(a, 4);
     if (const int a = find(p.attributes, "COLOR_0"); a >= 0) read(a, 6);  // RGB is widened to RGBA
     if (p.indices >= 0) read(p.indices, 4);
-    for (const char* set : {"0", "1"}) {  // joints as uint16, weights as float; both sets merged in a copy
-      if (const int a = find(p.attributes, std::string("JOINTS_") + set); a >= 0) read(a, 2 * 2);
-      if (const int a = find(p.attributes, std::string("WEIGHTS_") + set); a >= 0) read(a, 4 * 2);
+    // Every influence set the loader reads: joints as uint16, weights as float, all sets merged in a copy.
+    for (int set = 0; set < kMaxInfluenceSets; ++set) {
+      if (const int a = find(p.attributes, "JOINTS_" + std::to_string(set)); a >= 0) read(a, 2 * 2);
+      if (const int a = find(p.attributes, "WEIGHTS_" + std::to_string(set)); a >= 0) read(a, 4 * 2);
     }
     for (const auto& target : p.targets)
       for (const auto& [name, accessor] : target)

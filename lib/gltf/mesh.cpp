@@ -3,7 +3,10 @@
 #include "dqskin/error.hpp"
 #include "dqskin/triangles.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string_view>
+#include <utility>
 
 namespace dqskin::gltf {
 namespace {
@@ -58,6 +61,54 @@ Shapes shapes_for(bool quantized) {
 int find_attribute(const std::map<std::string, int>& attributes, const std::string& name) {
   const auto it = attributes.find(name);
   return it == attributes.end() ? -1 : it->second;
+}
+
+// Skin influences (§3.7.3.3): every JOINTS_n/WEIGHTS_n pair, numbered from 0 without gaps (§3.7.2.1:
+// "indices MUST start with 0 and be continuous positive integers"), at most kMaxInfluenceSets of them,
+// into prim.joints/weights, 4 per set and vertex. Every set is read before the merged arrays are made, so
+// each value is copied once.
+void read_influences(const tinygltf::Primitive& p, const AccessorReader& reader, const Shapes& shape,
+                     const std::string& what, Primitive& prim) {
+  const int highest = highest_influence_set(p);
+  if (highest < 0) return;
+  if (highest >= kMaxInfluenceSets)
+    fail(what + ": has JOINTS_" + std::to_string(highest) + "/WEIGHTS_" + std::to_string(highest) + ": more than " +
+         std::to_string(kMaxInfluences) + " influences per vertex (" + std::to_string(kMaxInfluenceSets) +
+         " sets), which dqskin does not read");
+  const size_t n = prim.positions.size(), sets = size_t(highest) + 1;
+  std::vector<std::vector<uint32_t>> joints(sets);
+  std::vector<std::vector<float>> weights(sets);
+  for (size_t set = 0; set < sets; ++set) {
+    const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+    const int ja = find_attribute(p.attributes, js), wa = find_attribute(p.attributes, ws);
+    if (ja < 0 && wa < 0)
+      fail(what + ": has JOINTS_" + std::to_string(highest) + " or WEIGHTS_" + std::to_string(highest) + " but not " +
+           js + " or " + ws + " (sets are numbered from 0 without gaps)");
+    if (ja < 0 || wa < 0) fail(what + ": has " + (ja < 0 ? ws : js) + " without " + (ja < 0 ? js : ws));
+    for (const auto& [accessor, name] : {std::pair{ja, js}, std::pair{wa, ws}}) {
+      const size_t count = reader.count(accessor, what + " " + name);
+      if (count != n)
+        fail(what + ": " + name + " has " + std::to_string(count) + " elements, POSITION has " + std::to_string(n));
+    }
+    joints[set] = reader.uints(ja, shape.joints, what + " " + js);
+    weights[set] = reader.floats(wa, shape.weights, what + " " + ws);
+    for (size_t v = 0; v < n; ++v)
+      for (size_t k = 0; k < 4; ++k)
+        if (weights[set][v * 4 + k] < 0) fail(what + ": " + ws + " of vertex " + std::to_string(v) + " is negative");
+  }
+  const size_t per = 4 * sets;
+  prim.influences = int(per);
+  prim.joints.resize(n * per);
+  prim.weights.resize(n * per);
+  for (size_t set = 0; set < sets; ++set) {
+    for (size_t v = 0; v < n; ++v)
+      for (size_t k = 0; k < 4; ++k) {
+        prim.joints[v * per + 4 * set + k] = uint16_t(joints[set][v * 4 + k]);
+        prim.weights[v * per + 4 * set + k] = weights[set][v * 4 + k];
+      }
+    joints[set] = {};
+    weights[set] = {};
+  }
 }
 
 Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& reader, const Shapes& shape,
@@ -124,36 +175,7 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
              std::to_string(n) + " vertices");
   }
 
-  // Skin influences: JOINTS_0/WEIGHTS_0 and, for up to 8, JOINTS_1/WEIGHTS_1 (§3.7.3.3).
-  for (int set = 0; set < 3; ++set) {
-    const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
-    const int ja = find_attribute(p.attributes, js), wa = find_attribute(p.attributes, ws);
-    if (ja < 0 && wa < 0) break;
-    if (ja < 0 || wa < 0) fail(what + ": has " + (ja < 0 ? ws : js) + " without " + (ja < 0 ? js : ws));
-    if (set == 2) fail(what + ": has more than 8 influences per vertex (JOINTS_2), which dqskin does not support");
-    same_count(ja, js);
-    same_count(wa, ws);
-    const std::vector<uint32_t> j = reader.uints(ja, shape.joints, what + " " + js);
-    const std::vector<float> w = reader.floats(wa, shape.weights, what + " " + ws);
-    const size_t old = size_t(prim.influences);
-    const size_t now = old + 4;
-    std::vector<uint16_t> joints(n * now);
-    std::vector<float> weights(n * now);
-    for (size_t v = 0; v < n; ++v) {
-      for (size_t k = 0; k < old; ++k) {
-        joints[v * now + k] = prim.joints[v * old + k];
-        weights[v * now + k] = prim.weights[v * old + k];
-      }
-      for (size_t k = 0; k < 4; ++k) {
-        if (w[v * 4 + k] < 0) fail(what + ": " + ws + " of vertex " + std::to_string(v) + " is negative");
-        joints[v * now + old + k] = uint16_t(j[v * 4 + k]);
-        weights[v * now + old + k] = w[v * 4 + k];
-      }
-    }
-    prim.joints = std::move(joints);
-    prim.weights = std::move(weights);
-    prim.influences = int(now);
-  }
+  read_influences(p, reader, shape, what, prim);
 
   for (size_t t = 0; t < p.targets.size(); ++t) {
     MorphTarget target;
@@ -181,6 +203,20 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
 }
 
 }  // namespace
+
+int highest_influence_set(const tinygltf::Primitive& p) {
+  int highest = -1;
+  for (const auto& [name, accessor] : p.attributes)
+    for (const std::string_view prefix : {std::string_view("JOINTS_"), std::string_view("WEIGHTS_")}) {
+      const std::string_view view(name);
+      if (view.substr(0, prefix.size()) != prefix || view.size() == prefix.size() || view.size() > prefix.size() + 9)
+        continue;
+      const std::string_view digits = view.substr(prefix.size());
+      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+      highest = std::max(highest, std::stoi(std::string(digits)));
+    }
+  return highest;
+}
 
 void read_meshes(const tinygltf::Model& model, const AccessorReader& reader, Asset& asset) {
   bool quantized = false;

@@ -6,6 +6,10 @@
 
 namespace dqskin::gltf {
 
+// The highest n of the primitive's JOINTS_n and WEIGHTS_n attributes (n of up to 9 digits; longer names are
+// not influence sets), or -1 when it has none. The loader and lint (skin_data.cpp) bound the sets with it.
+int highest_influence_set(const tinygltf::Primitive& p);
+
 // Fills asset.meshes from the model: attributes, indices, skin influences, morph targets, generated
 // normals. Checks every accessor; throws InputError.
 void read_meshes(const tinygltf::Model& model, const AccessorReader& reader, Asset& asset);

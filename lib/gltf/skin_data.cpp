@@ -5,6 +5,7 @@
 
 #include "accessor.hpp"
 #include "dqskin/error.hpp"
+#include "mesh.hpp"
 #include "model_io.hpp"
 #include "structure.hpp"
 
@@ -21,25 +22,6 @@ int find_attribute(const std::map<std::string, int>& attributes, const std::stri
   return it == attributes.end() ? -1 : it->second;
 }
 
-// Influence sets read at most: 8 sets are 32 influences per vertex, four times what any runtime takes, so a
-// file past them is refused rather than read. Without a bound, a few bytes of JSON (JOINTS_0 … JOINTS_999
-// naming one accessor) would decode to gigabytes and make the per-vertex checks quadratic in the sets.
-constexpr int kMaxInfluenceSets = 8;
-
-// The highest n of the primitive's JOINTS_n and WEIGHTS_n attributes, or -1 when it has none.
-int highest_influence_set(const tinygltf::Primitive& p) {
-  int highest = -1;
-  for (const auto& [name, accessor] : p.attributes)
-    for (const char* prefix : {"JOINTS_", "WEIGHTS_"}) {
-      const std::string_view view(name), pre(prefix);
-      if (view.substr(0, pre.size()) != pre || view.size() == pre.size() || view.size() > pre.size() + 9) continue;
-      const std::string_view digits = view.substr(pre.size());
-      if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
-      highest = std::max(highest, std::stoi(std::string(digits)));
-    }
-  return highest;
-}
-
 // Every influence set of one primitive. Values are read as they are (negative weights, any joint index);
 // only the shapes §3.7.3.3 allows are accepted, as anything else has no meaning as a weight. Sets must be
 // numbered from 0 without gaps (§3.7.3.3, "TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n": indices must start
@@ -47,9 +29,11 @@ int highest_influence_set(const tinygltf::Primitive& p) {
 std::vector<InfluenceSet> read_sets(const tinygltf::Primitive& p, const AccessorReader& reader, size_t vertices,
                                     const std::string& what, uint64_t& memory_left) {
   const int highest = highest_influence_set(p);
-  if (highest >= kMaxInfluenceSets)
+  // The loader's bound (asset.hpp), so that lint reads every file the deforming commands read.
+  if (highest >= dqskin::kMaxInfluenceSets)
     throw InputError(what + ": has JOINTS_" + std::to_string(highest) + "/WEIGHTS_" + std::to_string(highest) +
-                     ": more than " + std::to_string(4 * kMaxInfluenceSets) + " influences per vertex, which lint does not read");
+                     ": more than " + std::to_string(dqskin::kMaxInfluences) +
+                     " influences per vertex, which lint does not read");
   std::vector<InfluenceSet> sets;
   for (int n = 0; n <= highest; ++n) {
     const std::string js = "JOINTS_" + std::to_string(n), ws = "WEIGHTS_" + std::to_string(n);

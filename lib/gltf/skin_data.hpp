@@ -1,7 +1,7 @@
 // The raw skin data of a glTF file, as plain data (internal: lib/gltf reads it, lib/lint checks and fixes
-// it). The Asset keeps what deforming needs and the loader refuses what it cannot deform (JOINTS_2 and
-// up, joint indices out of range, negative weights); a linter must see exactly those, with the component
-// type each was stored in. No tinygltf type appears here.
+// it). The Asset keeps what deforming needs and the loader refuses what it cannot deform (joint indices
+// out of range, negative weights); a linter must see exactly those, with the component type each was
+// stored in. No tinygltf type appears here.
 #pragma once
 
 #include "animation_origins.hpp"
@@ -57,9 +57,10 @@ struct SkinData {
 };
 
 // Reads `path` (.gltf or .glb) under `options`' limits (the raw sets and positions count against
-// max_memory too). Influence sets must come in pairs numbered from 0 without gaps, at most 8 of them (32
-// influences), with POSITION's count, JOINTS_n as unsigned byte or short, WEIGHTS_n as float or normalized unsigned byte or short
-// (§3.7.3.3); their values are not judged. Throws InputError for a file that is not valid glTF otherwise.
+// max_memory too). Influence sets must come in pairs numbered from 0 without gaps, at most
+// kMaxInfluenceSets of them (asset.hpp: the loader's bound too), with POSITION's count, JOINTS_n as
+// unsigned byte or short, WEIGHTS_n as float or normalized unsigned byte or short (§3.7.3.3); their
+// values are not judged. Throws InputError for a file that is not valid glTF otherwise.
 SkinData read_skin_data(const std::string& path, const LoadOptions& options);
 
 }  // namespace dqskin::gltf

@@ -134,6 +134,9 @@ struct SkinKernel::Impl {
         p.targets = int(src.targets.size());
         const bool skinned = inst.skin >= 0;
         p.influences = skinned ? src.influences : 4;  // a rigid instance: one joint, its node, weight 1
+        // skin.comp takes any multiple of 4 (INFLUENCES); the Asset holds at most kMaxInfluences (asset.hpp).
+        if (p.influences > kMaxInfluences)
+          throw std::invalid_argument("SkinKernel: more than kMaxInfluences influences per vertex");
 
         std::vector<float> pos(p.vertices * 3), nrm, offsets;
         for (size_t v = 0; v < p.vertices; ++v)

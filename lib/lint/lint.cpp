@@ -37,10 +37,14 @@ const std::vector<LintCheckInfo>& lint_checks() {
        "a joint index that fits the larger of the skins that draw the mesh but not a smaller one (--fix keeps "
        "it: the larger skin needs it)",
        false},
-      {"over-8-influences", S::kError, "more than 8 joints with weight on one vertex (dqskin and most engines refuse)",
+      {"over-8-influences", S::kWarning,
+       "more than 8 (and --max-influences) joints with weight on one vertex: Babylon.js reads 8 (JOINTS_0/1), "
+       "three.js 4 (JOINTS_0); they drop the rest (dqskin reads up to 32)",
        true},
       {"too-many-influences", S::kWarning,
-       "more than --max-influences (and at most 8) joints with weight on one vertex", true},
+       "more than --max-influences (and at most 8) joints with weight on one vertex: three.js reads only 4 "
+       "(JOINTS_0) and drops the rest",
+       true},
       {"unused-joint", S::kInfo, "a joint of the skin with weight on no vertex", false},
       {"no-common-root", S::kError, "the skin's joints hang under different root nodes", false},
       {"skeleton-not-root", S::kError,

@@ -274,7 +274,7 @@ struct FixMemory {
 };
 FixMemory fix_memory(const gltf::SkinData& data, size_t keep, uint64_t file_bytes) {
   FixMemory m;
-  const uint64_t out_sets = (std::min<uint64_t>(keep, 8) + 3) / 4;
+  const uint64_t out_sets = (std::min<uint64_t>(keep, kMaxInfluences) + 3) / 4;
   for (const gltf::SkinnedPrimitive& p : data.primitives) {
     const uint64_t v = p.vertices, slots = std::bit_ceil(std::max<uint64_t>(1, 4 * p.sets.size()));
     m.data += v * (12 + 48 * p.sets.size());
@@ -328,8 +328,8 @@ gltf::FileEdits plan_edits(const std::string& input, const LintOptions& options)
 }  // namespace
 
 LintFixSummary lint_fix(const std::string& input, const std::string& output, const LintOptions& options) {
-  if (options.max_influences < 1 || options.max_influences > 8)
-    throw InputError("--max-influences must be from 1 to 8 for --fix");
+  if (options.max_influences < 1 || options.max_influences > kMaxInfluences)
+    throw InputError("--max-influences must be from 1 to " + std::to_string(kMaxInfluences) + " for --fix");
   const gltf::FileEdits edits = plan_edits(input, options);
   check_cancelled(options.cancel);
   const std::string glb = gltf::fixed_glb(input, options.load, edits);

@@ -273,9 +273,9 @@ TEST(LintFix, RefusesWhatItCannotRead) {
   const std::string out = (dir.path() / "fixed.glb").string();
   EXPECT_THROW(lint_fix(catalogue("no_such_file.gltf"), out, {}), InputError);
   EXPECT_FALSE(std::filesystem::exists(out));
-  LintOptions nine;
-  nine.max_influences = 9;
-  EXPECT_THROW(lint_fix(catalogue("clean.gltf"), out, nine), InputError);
+  LintOptions past_cap;  // more than the loader reads (asset.hpp), so more than a fix could keep
+  past_cap.max_influences = kMaxInfluences + 1;
+  EXPECT_THROW(lint_fix(catalogue("clean.gltf"), out, past_cap), InputError);
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ std::string write_render_manifest(const std::vector<InputPlan>& plans, const Ren
                   {"size", uint64_t(std::filesystem::file_size(path))},
                   {"sha256", sha256_file(path)}};
   });
-  const json manifest = {
+  json manifest = {
       {"tool", {{"name", "dqskin"}, {"version", kVersion}}},
       {"backend", {{"name", report.gpu.backend}, {"renderer", report.gpu.renderer}, {"gl_version", report.gpu.version}}},
       {"deformer", report.deformer},
@@ -76,6 +76,8 @@ std::string write_render_manifest(const std::vector<InputPlan>& plans, const Ren
       {"inputs", std::move(inputs)},
       {"outputs", std::move(outputs)},
   };
+  // --max-influences only where given: the manifests of other runs stay as they were.
+  if (options.load.max_influences > 0) manifest["max_influences"] = options.load.max_influences;
   return job_manifest::write(options.out_dir, job_manifest::file_name("render-manifest", options.shard), manifest);
 }
 

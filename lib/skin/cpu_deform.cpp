@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <thread>
 
 namespace dqskin {
@@ -21,10 +22,11 @@ Vec3<double> unit_or(const Vec3<double>& v, const Vec3<double>& fallback) {
   return length > 0 ? v / length : fallback;
 }
 
+// A vertex's influences with weight: every JOINTS_n/WEIGHTS_n set the file has (up to kMaxInfluences).
 struct Influences {
   size_t count = 0;
-  int joint[8];
-  double weight[8];  // divided by their sum
+  int joint[kMaxInfluences];
+  double weight[kMaxInfluences];  // divided by their sum
 };
 
 Influences gather(const Primitive& prim, size_t v) {
@@ -60,7 +62,8 @@ VertexTransform blend(const Influences& in, const JointTransforms& jt, BlendMode
     return x;
   }
   x.is_matrix = false;
-  DualQuat<double> q[8];
+  // DLB over every influence [Kavan §4], each flipped to the heaviest's hemisphere (blend_dlb).
+  DualQuat<double> q[kMaxInfluences];
   for (size_t k = 0; k < in.count; ++k) q[k] = jt.rigid[size_t(in.joint[k])];
   const std::span<const DualQuat<double>> qs(q, in.count);
   const std::span<const double> ws(in.weight, in.count);
@@ -122,6 +125,8 @@ void deform_range(const Primitive& prim, std::span<const double> morph, const Ve
 DeformedPrimitive deform_primitive(const Asset& asset, const MeshInstance& instance, size_t primitive,
                                    const Pose& pose, const JointTransforms* joints, BlendMode mode, int threads) {
   const Primitive& prim = asset.meshes[size_t(instance.mesh)].primitives[primitive];
+  if (prim.influences > kMaxInfluences)  // the Asset's contract (asset.hpp); the loader never makes more
+    throw std::invalid_argument("deform_primitive: more than kMaxInfluences influences per vertex");
   const size_t n = prim.vertex_count();
   DeformedPrimitive out;
   out.positions.resize(n);

@@ -211,12 +211,12 @@ Mat4<double> dq_matrix(const DqTexels& t) {
 
 struct Influences {
   size_t count = 0;
-  size_t joint[8];
-  double weight[8];
+  size_t joint[kMaxInfluences];  // every influence the Asset holds (asset.hpp)
+  double weight[kMaxInfluences];
 };
 
 Influences gather([[maybe_unused]] const BoneImage& image, std::span<const int> joints, std::span<const float> weights) {
-  assert(joints.size() == weights.size() && joints.size() <= 8);
+  assert(joints.size() == weights.size() && joints.size() <= size_t(kMaxInfluences));
   Influences in;
   for (size_t k = 0; k < joints.size(); ++k) {
     if (!(weights[k] > 0)) continue;
@@ -233,8 +233,8 @@ SkinnedVertex skin_dq(const BoneImage& image, size_t frame, const Influences& in
                       const Vec3<double>& n) {
   double sum = 0;
   for (size_t k = 0; k < in.count; ++k) sum += in.weight[k];
-  DualQuat<double> q[8];
-  double w[8];
+  DualQuat<double> q[kMaxInfluences];
+  double w[kMaxInfluences];
   Mat3<double> scale(0.0);
   for (size_t k = 0; k < in.count; ++k) {
     const DqTexels t = read_dq(image, in.joint[k], frame);
@@ -263,7 +263,7 @@ SkinnedVertex skin_cocos(const BoneImage& image, size_t frame, const Influences&
 
 SkinnedVertex skin_matrices(const BoneImage& image, size_t frame, const Influences& in, const Vec3<double>& p,
                             const Vec3<double>& n) {
-  Mat4<double> m[8];
+  Mat4<double> m[kMaxInfluences];
   for (size_t k = 0; k < in.count; ++k) m[k] = read_matrix(image, in.joint[k], frame);
   const Mat4<double> blended =
       blend_lbs(std::span<const Mat4<double>>(m, in.count), std::span<const double>(in.weight, in.count));

@@ -72,7 +72,7 @@ struct SkinnedVertex {
 };
 
 // Skins one vertex at `frame` from the texels as the profile's shader does, in double precision:
-// up to 8 influences (joints and weights of one size; weights ≤ 0 are skipped). The normal is returned
+// up to kMaxInfluences influences (joints and weights of one size; weights ≤ 0 are skipped). The normal is returned
 // unit (every runtime normalizes before shading; zero stays zero) and transformed as the runtime does:
 //   dq        weights divided by their sum (as skin.comp), DLB via blend_dlb, S blended linearly;
 //             p' = rigid(S p), n' = R cofactor(S) n. No weight at all leaves the vertex as it is.

@@ -40,7 +40,7 @@ std::string encode_bones_mesh_glb(const Asset& asset, const std::vector<MeshInst
       if (has_materials(look) && source.uv1.size() == n) attributes["TEXCOORD_1"] = bin.floats(flat(source.uv1), n, "VEC2");
       // COLOR_0 multiplies the base color (§3.9.2), so it is part of the look.
       if (has_materials(look) && source.colors.size() == n) attributes["COLOR_0"] = colors_accessor(source.colors, bin);
-      // The loader's influences are vertex-major, `influences` (4 or 8) per vertex; glTF sets hold 4.
+      // The loader's influences are vertex-major, `influences` (4 per set) per vertex; glTF sets hold 4.
       const size_t per = size_t(source.influences);
       for (size_t set = 0; set * 4 < per; ++set) {
         std::vector<uint16_t> joints(4 * n);

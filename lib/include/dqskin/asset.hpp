@@ -17,6 +17,13 @@ namespace dqskin {
 // glTF primitive.mode values.
 enum class PrimitiveMode : int { kPoints = 0, kLines, kLineLoop, kLineStrip, kTriangles, kTriangleStrip, kTriangleFan };
 
+// Influence sets (JOINTS_n/WEIGHTS_n pairs, glTF 2.0 §3.7.3.3) read at most: 8 sets are 32 influences per
+// vertex, four times what any real-time runtime takes and past the 20 that real exports carry. A bound
+// keeps a few bytes of JSON (JOINTS_0 … JOINTS_999 naming one accessor) from decoding to gigabytes; the
+// loader refuses more sets and `lint` reads no more either.
+inline constexpr int kMaxInfluenceSets = 8;
+inline constexpr int kMaxInfluences = 4 * kMaxInfluenceSets;
+
 // Per-vertex offsets of one morph target; an attribute the target does not move is empty.
 struct MorphTarget {
   std::vector<glm::vec3> positions;
@@ -42,8 +49,9 @@ struct Primitive {
   std::vector<uint32_t> indices;     // empty when not indexed
   bool normals_generated = false;    // NORMAL was absent: smooth normals were computed (see load.hpp)
 
-  // Skin influences, `influences` per vertex (0, 4 or 8: JOINTS_0/WEIGHTS_0 and JOINTS_1/WEIGHTS_1),
-  // vertex-major. Weights are as stored (normalized integers decoded), not renormalised.
+  // Skin influences, `influences` per vertex (0, or 4 per JOINTS_n/WEIGHTS_n set, at most kMaxInfluences),
+  // vertex-major. Weights are as stored (normalized integers decoded), not renormalised, unless
+  // LoadOptions::max_influences cut them (then the kept ones sum to 1).
   int influences = 0;
   std::vector<uint16_t> joints;
   std::vector<float> weights;

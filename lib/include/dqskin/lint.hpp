@@ -19,8 +19,8 @@ struct LintOptions {
   // Weights of a vertex (over every WEIGHTS_n) may sum to 1 ± sum_tolerance; with normalized integers at
   // least ± n·0.5/255 (or /65535) for n nonzero weights, what rounding each stored weight allows.
   double sum_tolerance = 1e-3;
-  // More nonzero weights per vertex than this is a warning (and what --fix keeps); more than 8, the most
-  // dqskin deforms, is an error.
+  // More nonzero weights per vertex than this is a warning (and what --fix keeps, at most kMaxInfluences):
+  // too-many-influences up to 8, over-8-influences past them (runtimes that read 8 drop the rest).
   int max_influences = 4;
   // As a share of the skeleton's size (the bounding-box diagonal of the joints' bind positions, in bind
   // space): how far a joint may be bound from where its parent's bind transform and its rest offset put it
@@ -89,9 +89,9 @@ struct LintFixSummary {
 
 // Writes a corrected copy of `input` to `output` (.glb, atomically): influences merged per joint, negative
 // weights and joints beyond every skin that draws the mesh dropped (one that fits a larger skin only is
-// kept), sorted by weight and cut to options.max_influences (at most 8), a vertex without weight bound to
-// the joint nearest to it in bind space, renormalized in the original
-// component type (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
+// kept), sorted by weight and cut to options.max_influences (at most kMaxInfluences), a vertex without
+// weight bound to the joint nearest to it in bind space, renormalized in the original component type
+// (normalized integers summing exactly to 255 or 65535); rotation keys made unit and
 // hemisphere-consistent; a `skeleton` that is not the joints' common root removed; of channels of one
 // animation with the same target, all but the first removed. What it cannot fix
 // (joints without a common root, inverse bind matrices, joint scale) stays. Throws InputError for an input

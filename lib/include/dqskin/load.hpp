@@ -34,6 +34,11 @@ struct LoadOptions {
   // Folders besides the model's own that its external buffers and images may come from (--resource-root).
   // A URI that resolves anywhere else, by "..", an absolute path or a symbolic link, is refused.
   std::vector<std::string> resource_roots;
+  // --max-influences: when 1 or more, every vertex of a primitive where some vertex has more joints with
+  // weight than this keeps only the `max_influences` largest (its influences merged per joint first, ties
+  // to the lower joint index), sorted by weight and renormalized to sum 1, as `lint --fix` writes them;
+  // 0 keeps them all. At most kMaxInfluences.
+  int max_influences = 0;
   // Throw the first of Asset::cannot_deform. The commands that only describe a file (info, lint) turn it
   // off: they report what they find in every file a viewer opens, and only the commands that deform refuse.
   bool refuse_undeformable = true;
