@@ -41,12 +41,12 @@ dqskin_outcome_test(resource_root_must_be_a_folder 2 ARGS info models/shared_tex
   ONE_LINE STDERR "^dqskin: --resource-root good.png: not a folder\n$")
 
 # ---- A failed input leaves the output folder as it was -----------------------------------------------------
-# 70,000 joints: a bone texture wider than any GPU's, refused by the GPU path before the first file
-# (bones_skin0.exr was written, then left behind). The CPU deformers have no such limit.
+# 70,000 joints: a bone texture wider than any GPU's, refused by the plan (--max-size) before the first
+# file (bones_skin0.exr was once written, then left behind).
 dqskin_outcome_test(huge_skin_leaves_no_file 2 FOLDER ${hard_scratch}/huge UNCHANGED
   PREPARE bake ${rig} -o ${hard_scratch}/huge --format ply --quiet
   ARGS bake huge_skin.gltf -o ${hard_scratch}/huge --format bones,ply --backend egl --quiet
-  ONE_LINE STDERR "^dqskin: huge_skin.gltf: skin 0 has 70000 joints: its bone texture needs at least 140000 texels")
+  ONE_LINE STDERR "^dqskin: huge_skin.gltf: clip wave: skin 0: the dq bone texture needs 140000 × 31 texels, over --max-size 8192")
 # Two 254-byte animation names: the second folder's name is 256 bytes (the first clip's frame was written).
 dqskin_outcome_test(long_animation_names_leave_no_file 2 FOLDER ${hard_scratch}/long UNCHANGED
   ARGS bake long_names.gltf -o ${hard_scratch}/long --format ply --quiet
