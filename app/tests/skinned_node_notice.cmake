@@ -1,17 +1,7 @@
 # The notice that a skinned mesh node's transform is ignored (glTF 2.0 §3.7.3.1): one line per file, not one
 # per node, from info; from bake only with --verbose. The file: three skinned mesh nodes under a moved node
 # (scripts/make_lint_cases.py three_skinned_nodes, generated at configure time into the build tree).
-find_package(Python3 COMPONENTS Interpreter REQUIRED)
-set(DQSKIN_LINT_CASES_DIR ${CMAKE_CURRENT_BINARY_DIR}/lint_cases)
-set(_lint_cases_generator ${PROJECT_SOURCE_DIR}/scripts/make_lint_cases.py)
-execute_process(
-  COMMAND ${Python3_EXECUTABLE} ${_lint_cases_generator} ${DQSKIN_LINT_CASES_DIR}
-  RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
-if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_lint_cases.py failed (${_status}):\n${_output}")
-endif()
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_lint_cases_generator}
-  ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py)
+# DQSKIN_LINT_CASES_DIR: written by lint_cases.cmake, included before this file.
 set(notice_scratch ${CMAKE_CURRENT_BINARY_DIR}/skinned_node_notice)
 
 # Lines that mention the transform: the notice ("have a transform") or the warning it was ("has a transform").

@@ -1,5 +1,6 @@
 #include "clip_matching.hpp"
 
+#include "dqskin/animation.hpp"
 #include "dqskin/error.hpp"
 
 #include <algorithm>
@@ -11,16 +12,6 @@
 
 namespace dqskin::diff_detail {
 namespace {
-
-const char* path_name(TargetPath path) {
-  switch (path) {
-    case TargetPath::kTranslation: return "translation";
-    case TargetPath::kRotation: return "rotation";
-    case TargetPath::kScale: return "scale";
-    case TargetPath::kWeights: return "weights";
-  }
-  return "?";
-}
 
 const char* interpolation_name(Interpolation interpolation) {
   switch (interpolation) {
@@ -123,7 +114,9 @@ std::vector<AnimationFinding> compare_animations(const Asset& a, const Clip& cli
   const auto in_a = channels(a, clip_a), in_b = channels(b, clip_b);
   std::vector<AnimationFinding> notes;
   auto note = [&](const std::string& text) { notes.push_back({DiffStatus::kPass, label, text}); };
-  auto name = [](const Key& key) { return std::get<0>(key) + " " + path_name(TargetPath(std::get<1>(key))); };
+  auto name = [](const Key& key) {
+    return std::get<0>(key) + " " + target_path_name(TargetPath(std::get<1>(key)));
+  };
 
   if (std::abs(clip_a.last_key - clip_b.last_key) > 1e-5)
     note("duration " + seconds(clip_a.last_key) + " in A, " + seconds(clip_b.last_key) + " in B");

@@ -5,6 +5,7 @@
 #include "animations.hpp"
 
 #include "animation_pointer.hpp"
+#include "dqskin/animation.hpp"
 #include "dqskin/error.hpp"
 
 #include <map>
@@ -29,16 +30,6 @@ std::string named(const char* kind, size_t index, const std::string& name) {
 // A pointer as messages quote it: a hostile file's may be megabytes long.
 std::string quoted(const std::string& pointer) {
   return "'" + (pointer.size() > 80 ? pointer.substr(0, 80) + "..." : pointer) + "'";
-}
-
-const char* path_name(TargetPath path) {
-  switch (path) {
-    case TargetPath::kTranslation: return "translation";
-    case TargetPath::kRotation: return "rotation";
-    case TargetPath::kScale: return "scale";
-    case TargetPath::kWeights: return "weights";
-  }
-  return "weights";
 }
 
 Interpolation parse_interpolation(const std::string& name, const std::string& what) {
@@ -176,7 +167,7 @@ bool same_keys(const Channel& a, const Channel& b) {
 // "node 5 'Arm' rotation", "mesh 0 'Body' weights"
 std::string describe(const Target& t, const tinygltf::Model& m, const Asset& asset) {
   const std::string& name = t.mesh ? m.meshes[size_t(t.index)].name : asset.nodes[size_t(t.index)].name;
-  return named(t.mesh ? "mesh" : "node", size_t(t.index), name) + " " + path_name(t.path);
+  return named(t.mesh ? "mesh" : "node", size_t(t.index), name) + " " + target_path_name(t.path);
 }
 
 // The quoted pointers of a list, at most 5, then how many more.
