@@ -32,9 +32,9 @@ foreach(_backend cpu fast-cpu)
 endforeach()
 dqskin_cli_test(cli.influences_render_twenty 0
   ARGS render ${_twenty} -o ${_work}/render --size 96x96 --fps 4 --backend fast-cpu --force
-  STDERR "deformed on fast-cpu" LABELS influences gpu)
+  STDERR "deformed on fast-cpu" ENVIRONMENT ${bake_test_environment} LABELS influences gpu)
 dqskin_cli_test(cli.influences_report_twenty 0 ARGS report ${_twenty} -o ${_work}/report --fps 4
-  LABELS influences gpu)
+  ENVIRONMENT ${bake_test_environment} LABELS influences gpu)
 dqskin_cli_test(cli.influences_flag_past_cap 2 ARGS bake ${_twenty} -o ${_work}/never --max-influences 33
   STDERR "--max-influences must be from 1 to 32" LABELS influences)
 
