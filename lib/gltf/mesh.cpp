@@ -204,6 +204,11 @@ Primitive read_primitive(const tinygltf::Primitive& p, const AccessorReader& rea
 
 }  // namespace
 
+std::string no_influences_reason(size_t node, int mesh, size_t primitive) {
+  return "node " + std::to_string(node) + ": is skinned, but mesh " + std::to_string(mesh) + " primitive " +
+         std::to_string(primitive) + " has no JOINTS_0/WEIGHTS_0";
+}
+
 int highest_influence_set(const tinygltf::Primitive& p) {
   int highest = -1;
   for (const auto& [name, accessor] : p.attributes)
@@ -261,8 +266,7 @@ void read_meshes(const tinygltf::Model& model, const AccessorReader& reader, Ass
       // Viewers draw such a primitive unskinned; a deformation of it is not defined (§3.7.3), so only the
       // deforming commands refuse it.
       if (prim.influences == 0) {
-        asset.cannot_deform.push_back("node " + std::to_string(i) + ": is skinned, but mesh " + std::to_string(node.mesh) +
-                                      " primitive " + std::to_string(p) + " has no JOINTS_0/WEIGHTS_0");
+        asset.cannot_deform.push_back(no_influences_reason(i, node.mesh, p));
         continue;
       }
       for (size_t k = 0; k < prim.joints.size(); ++k)

@@ -94,9 +94,7 @@ SkinData read_skin_data(const std::string& path, const LoadOptions& options) {
     const std::vector<tinygltf::Primitive>& primitives = m.meshes[size_t(node.mesh)].primitives;
     for (size_t k = 0; k < primitives.size(); ++k)
       if (highest_influence_set(primitives[k]) < 0)
-        data.structure.cannot_deform.push_back("node " + std::to_string(n) + ": is skinned, but mesh " +
-                                               std::to_string(node.mesh) + " primitive " + std::to_string(k) +
-                                               " has no JOINTS_0/WEIGHTS_0");
+        data.structure.cannot_deform.push_back(no_influences_reason(n, node.mesh, k));
   }
   const Asset& asset = data.structure;
   const AccessorReader reader{m, options.max_unbacked_elements};
