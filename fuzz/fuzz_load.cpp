@@ -6,7 +6,7 @@
 // Besides fuzzing, DQSKIN_FUZZ_PREFIXES=FILE... (colon-separated) makes the binary feed the prefixes of
 // each file (all of them up to 8 KiB), each in a fresh allocation of exactly its size, and exit:
 // meshoptimizer's truncated-input idiom, so that AddressSanitizer catches any read past the end
-// (scripts/fuzz.sh runs it on the seeds).
+// (scripts/check/fuzz.sh runs it on the seeds).
 #include "dqskin/animation.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/info.hpp"

@@ -8,14 +8,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-bash scripts/install-deps.sh
+bash scripts/install/deps.sh
 
 jobs=$(nproc)
 build_and_test() {
   echo "== $1: configure and build"
   cmake --preset "$1" >/dev/null
   cmake --build --preset "$1" -j "$jobs"
-  bash scripts/install-node-tools.sh "build/$1/tools"  # validator and optimizers, for the glb and geometry diff tests
+  bash scripts/install/node_tools.sh "build/$1/tools"  # validator and optimizers, for the glb and geometry diff tests
   echo "== $1: test"
   ctest --preset "$1" -j "$jobs"
   if [ "$1" = release ]; then
@@ -27,6 +27,6 @@ build_and_test() {
 build_and_test release
 if [ "${FUZZ_SECONDS:-60}" -gt 0 ]; then
   echo "== fuzz: ${FUZZ_SECONDS:-60} s"
-  FUZZ_JOBS=$jobs bash scripts/fuzz.sh "${FUZZ_SECONDS:-60}"
+  FUZZ_JOBS=$jobs bash scripts/check/fuzz.sh "${FUZZ_SECONDS:-60}"
 fi
 build_and_test sanitize

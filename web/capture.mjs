@@ -3,7 +3,7 @@
 //
 //   node web/capture.mjs --root DIR --out SHOTS [--chromium PROGRAM] [--size 256x256] NAME=QUERY ...
 //
-// DIR holds player/ (scripts/install-player.sh) and the bakes; each NAME=QUERY opens
+// DIR holds player/ (scripts/install/player.sh) and the bakes; each NAME=QUERY opens
 // player/?QUERY&size=…&capture=1 and writes SHOTS/NAME.png from the canvas. A static server of DIR
 // listens on 127.0.0.1 on a free port while the captures run and is closed afterwards. Chromium runs with
 // SwiftShader's WebGL2 (no GPU needed); the page puts the canvas in <pre id="capture"> and marks its body

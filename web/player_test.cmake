@@ -31,11 +31,11 @@ macro(skip why)
 endmacro()
 foreach(need MODEL NODE CHROMIUM)
   if("${${need}}" STREQUAL "" OR "${${need}}" MATCHES "NOTFOUND$" OR NOT EXISTS "${${need}}")
-    skip("${need} '${${need}}' is missing (Chromium and Node.js: scripts/install-deps.sh; the shared models: ../shared/testdata)")
+    skip("${need} '${${need}}' is missing (Chromium and Node.js: scripts/install/deps.sh; the shared models: ../shared/testdata)")
   endif()
 endforeach()
 if(NOT EXISTS "${THREE_DIR}/build/three.module.js")
-  skip("three.js is missing at ${THREE_DIR}; run scripts/install-node-tools.sh on the build folder's tools/")
+  skip("three.js is missing at ${THREE_DIR}; run scripts/install/node_tools.sh on the build folder's tools/")
 endif()
 
 function(run)
@@ -55,7 +55,7 @@ run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/houdini" --anim "${CLIP}" --fps ${FP
 run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/morphq" --anim "${CLIP}" --fps ${FPS} --format morph --max-error 0.1%
     --morph-quantize -q)
 run("${DQSKIN}" render "${MODEL}" -o "${WORK}/render" --anim "${CLIP}" --fps ${FPS} --shade normals --size 256x256 -q)
-run(env "THREE_DIR=${THREE_DIR}" bash "${SOURCE_DIR}/scripts/install-player.sh" "${WORK}")
+run(env "THREE_DIR=${THREE_DIR}" bash "${SOURCE_DIR}/scripts/install/player.sh" "${WORK}")
 
 get_filename_component(stem "${MODEL}" NAME_WE)
 # The box dqskin render frames: the clip's bounds over its frames, as the bake measured them.

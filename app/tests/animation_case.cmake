@@ -144,7 +144,7 @@ if(MODE STREQUAL "different")
     message(FATAL_ERROR "the fixed ${FILE} bakes like ${SECOND} (the second channel): the bakes do not tell them apart")
   endif()
   if(NOT NODE OR NOT EXISTS "${VALIDATOR}/package.json")
-    message("animation: validation skipped: Node.js or the gltf-validator (scripts/install-node-tools.sh) is missing")
+    message("animation: validation skipped: Node.js or the gltf-validator (scripts/install/node_tools.sh) is missing")
     return()
   endif()
   execute_process(COMMAND "${NODE}" "${VALIDATE_SCRIPT}" --validator "${VALIDATOR}" "${fixed}" RESULT_VARIABLE status

@@ -1,18 +1,18 @@
 # Animation channels on the command line: duplicate channels (two channels of one animation for the same
 # node and path) and KHR_animation_pointer. The inputs are written at configure time by
-# scripts/make_animation_cases.py from testdata/twisted_cylinder.gltf (its docstring lists them), the
+# scripts/testdata/make_animation_cases.py from testdata/twisted_cylinder.gltf (its docstring lists them), the
 # pointer-animated copies at test time (animation_case.cmake says what each mode checks).
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
-set(animation_generator ${PROJECT_SOURCE_DIR}/scripts/make_animation_cases.py)
+set(animation_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_animation_cases.py)
 set(animation_cases ${CMAKE_CURRENT_BINARY_DIR}/animation_cases)
 execute_process(COMMAND ${Python3_EXECUTABLE} ${animation_generator} cases ${animation_cases} ${PROJECT_SOURCE_DIR}/testdata
   RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_animation_cases.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_animation_cases.py failed (${_status}):\n${_output}")
 endif()
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${animation_generator}
-  ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf)
+  ${PROJECT_SOURCE_DIR}/scripts/testdata/gltf_builder.py ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf)
 set(animation_scratch ${CMAKE_CURRENT_BINARY_DIR}/animation_scratch)
 find_program(DQSKIN_NODE node)
 set(animation_driver ${CMAKE_CURRENT_LIST_DIR}/animation_case.cmake)
@@ -28,7 +28,7 @@ add_test(NAME cli.animation_different_duplicates COMMAND ${CMAKE_COMMAND} -DDQSK
   -DMODE=different -DFILE=${animation_cases}/dup_different.gltf
   -DORIGINAL=${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf -DSECOND=${animation_cases}/dup_second_kept.gltf
   -DNODE=${DQSKIN_NODE} -DVALIDATOR=${CMAKE_BINARY_DIR}/tools/node_modules/gltf-validator
-  -DVALIDATE_SCRIPT=${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs
+  -DVALIDATE_SCRIPT=${PROJECT_SOURCE_DIR}/scripts/check/validate_gltf.mjs
   -DWORK=${animation_scratch}/different -P ${animation_driver})
 set_tests_properties(cli.animation_identical_duplicates cli.animation_different_duplicates PROPERTIES
   LABELS animation TIMEOUT 600)

@@ -92,13 +92,13 @@ set_property(TEST cli.bake_no_gl_context_exits_3 APPEND PROPERTY ENVIRONMENT
   "__EGL_VENDOR_LIBRARY_FILENAMES=${CMAKE_CURRENT_BINARY_DIR}/no-such-vendor.json")
 
 # Every rig and shared model baked to glb, then every frame file through the Khronos glTF-Validator
-# (installed by scripts/install-node-tools.sh into the build tree; the test fails when it is missing).
+# (installed by scripts/install/node_tools.sh into the build tree; the test fails when it is missing).
 set(bake_glb_dir ${CMAKE_CURRENT_BINARY_DIR}/bake_glb)
 add_test(NAME cli.bake_glb_samples COMMAND ${CMAKE_COMMAND} -DCOMMAND=$<TARGET_FILE:dqskin_cli>
   -DTESTDATA=${PROJECT_SOURCE_DIR}/testdata -DSHARED=${PROJECT_SOURCE_DIR}/../shared/testdata -DOUT=${bake_glb_dir}
   -P ${PROJECT_SOURCE_DIR}/app/tests/bake_glb_samples.cmake)
 set_tests_properties(cli.bake_glb_samples PROPERTIES FIXTURES_SETUP bake_glb ENVIRONMENT "${bake_test_environment}")
 find_program(DQSKIN_NODE node)
-add_test(NAME cli.bake_glb_validator COMMAND ${DQSKIN_NODE} ${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs
+add_test(NAME cli.bake_glb_validator COMMAND ${DQSKIN_NODE} ${PROJECT_SOURCE_DIR}/scripts/check/validate_gltf.mjs
   --validator ${CMAKE_BINARY_DIR}/tools/node_modules/gltf-validator ${bake_glb_dir})
 set_tests_properties(cli.bake_glb_validator PROPERTIES FIXTURES_REQUIRED bake_glb)

@@ -1,17 +1,17 @@
-# Files people have, in batches (scripts/make_batch_cases.py): a glTF file is known by its bytes in every
+# Files people have, in batches (scripts/testdata/make_batch_cases.py): a glTF file is known by its bytes in every
 # command, whatever its name (a .vrm avatar, a .glb without extension, a .gltf named .dat); a batch goes on
 # past a file without a skin, a file without animations under --anim 0, and clips shorter than --frames B.
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 set(DQSKIN_BATCH_DIR ${CMAKE_CURRENT_BINARY_DIR}/batch_cases)
-set(_batch_generator ${PROJECT_SOURCE_DIR}/scripts/make_batch_cases.py)
+set(_batch_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_batch_cases.py)
 execute_process(
   COMMAND ${Python3_EXECUTABLE} ${_batch_generator} ${DQSKIN_BATCH_DIR} ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf
   RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_batch_cases.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_batch_cases.py failed (${_status}):\n${_output}")
 endif()
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_batch_generator}
-  ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
+  ${PROJECT_SOURCE_DIR}/scripts/testdata/gltf_builder.py ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
 
 set(batch_scratch ${CMAKE_CURRENT_BINARY_DIR}/batch_out)
 include(${CMAKE_CURRENT_LIST_DIR}/outcome_test.cmake)

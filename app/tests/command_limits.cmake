@@ -1,4 +1,4 @@
-# The newer commands against crafted inputs (scripts/make_hostile_commands.py, docs/SECURITY.md "Every
+# The newer commands against crafted inputs (scripts/testdata/make_hostile_commands.py, docs/SECURITY.md "Every
 # command"): report, lint and lint --fix, verify, merge, the diffs and the morph and texture bakes must do
 # what bake does with a hostile file: one printable line naming the file, exit 2 (1 when only some inputs
 # failed), nothing half-written, memory within --max-memory, no hang. Every case runs under a 4 GiB
@@ -6,15 +6,15 @@
 # that a command that would take too much or never return fails instead of swapping or stalling CI.
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 set(DQSKIN_HOSTILE_DIR ${CMAKE_CURRENT_BINARY_DIR}/hostile)
-set(_hostile_generator ${PROJECT_SOURCE_DIR}/scripts/make_hostile_commands.py)
+set(_hostile_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_hostile_commands.py)
 execute_process(
   COMMAND ${Python3_EXECUTABLE} ${_hostile_generator} ${DQSKIN_HOSTILE_DIR}
   RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_hostile_commands.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_hostile_commands.py failed (${_status}):\n${_output}")
 endif()
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_hostile_generator}
-  ${PROJECT_SOURCE_DIR}/scripts/make_malformed.py ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py)
+  ${PROJECT_SOURCE_DIR}/scripts/testdata/make_malformed.py ${PROJECT_SOURCE_DIR}/scripts/testdata/gltf_builder.py)
 
 # dqskin_limit_test(NAME EXPECTED ARGS ... [TIMEOUT s] [options of dqskin_outcome_case])
 # One case, limits.NAME: `dqskin ARGS` run in the generated folder under a 4 GiB address-space cap, with

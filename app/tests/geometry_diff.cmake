@@ -1,7 +1,7 @@
 # `dqskin diff A B` on two glTF files: the geometric diff of their deformed animations, on the command
 # line. Each test makes B at test time into the build tree (geometry_diff_case.cmake) from a rig in
 # testdata/, a shared model (../shared/testdata; skipped when absent) or an npm optimizer's output
-# (scripts/install-node-tools.sh installs them into tools/ of the build folder; skipped when absent), then
+# (scripts/install/node_tools.sh installs them into tools/ of the build folder; skipped when absent), then
 # checks the diff's exit status (0 pass, 1 warnings only, 2 failure or input error) and report:
 #   defect    one rotation key of one joint turned 5° (make_diff_cases.py rotate-key): exit 2, and a line
 #             names the clip, the joint and the key's time; the same file rewritten (copy): exit 0 and a
@@ -27,7 +27,7 @@ function(geometry_diff_test name expected)
                         "A;SOURCE;TOOL;STDOUT;STDERR;HEAT_MAP_SIZE;MAX_NORMAL_DEGREES"
                         "MAKE;TOOL_ARGS;ARGS;OUT_FILES" ${ARGN})
   set(script_args -DDQSKIN=$<TARGET_FILE:dqskin_cli> -DPYTHON=${Python3_EXECUTABLE}
-      -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/make_diff_cases.py -DWORK=${geometry_diff_scratch}/${name}
+      -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/testdata/make_diff_cases.py -DWORK=${geometry_diff_scratch}/${name}
       -DA=${T_A} -DEXPECTED=${expected} -DTIMEOUT=600)
   foreach(list MAKE TOOL_ARGS ARGS OUT_FILES)
     if(DEFINED T_${list})

@@ -1,8 +1,8 @@
 # One case of the geometric diff (app/tests/geometry_diff.cmake), at test time: makes B from SOURCE (with
-# scripts/make_diff_cases.py or an npm optimizer), runs `dqskin diff A B ARGS` through expect_outcome.cmake
+# scripts/testdata/make_diff_cases.py or an npm optimizer), runs `dqskin diff A B ARGS` through expect_outcome.cmake
 # and checks the report.
 #
-#   cmake -DDQSKIN=dqskin -DPYTHON=python3 -DSCRIPT=scripts/make_diff_cases.py -DWORK=folder
+#   cmake -DDQSKIN=dqskin -DPYTHON=python3 -DSCRIPT=scripts/testdata/make_diff_cases.py -DWORK=folder
 #         -DA=a.glb [-DSOURCE=file B is made from, default A] [-DB_NAME=b.glb]
 #         [-DMAKE=make_diff_cases.py command and its options | -DTOOL=gltfpack|gltf-transform -DTOOLS=node_modules/.bin
 #          "-DTOOL_ARGS=arguments, with <A> and <B> for the files"]

@@ -1,4 +1,4 @@
-# `dqskin diff` on the shapes real exports have (scripts/make_diff_models.py writes the characters into the
+# `dqskin diff` on the shapes real exports have (scripts/testdata/make_diff_models.py writes the characters into the
 # build tree at configure time): the diff must pass a file that deforms the same and say how it compared.
 #   crumpled  a character whose nodes alone crumple the mesh (its pose is only in the clip): against its
 #             `gltfpack -noq` output and against itself in another vertex order, exit 0 at --relative
@@ -10,14 +10,14 @@
 #             figure under 1°, faces compared (the JSON's correspondence.normals).
 # The shared driver is geometry_diff.cmake's geometry_diff_test (geometry_diff_case.cmake).
 set(_models ${CMAKE_CURRENT_BINARY_DIR}/geometry_diff_models)
-set(_generator ${PROJECT_SOURCE_DIR}/scripts/make_diff_models.py)
+set(_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_diff_models.py)
 execute_process(COMMAND ${Python3_EXECUTABLE} ${_generator} all ${_models}
                 RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_diff_models.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_diff_models.py failed (${_status}):\n${_output}")
 endif()
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_generator} ${PROJECT_SOURCE_DIR}/scripts/make_rigs.py
-                                                               ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_generator} ${PROJECT_SOURCE_DIR}/scripts/testdata/make_rigs.py
+                                                               ${PROJECT_SOURCE_DIR}/scripts/testdata/gltf_builder.py)
 
 # Within 1 mm on a character 4.6 m across: --fail and --warn 1e-3 of the diagonal (gltfpack's 30 Hz
 # resampling of the clip moves the surface by up to 410 um).

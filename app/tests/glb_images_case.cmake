@@ -99,7 +99,7 @@ endif()
 
 if(DEFINED NODE)
   if(NOT EXISTS ${VALIDATOR}/package.json)
-    message("SKIP: the glTF-Validator is not installed at ${VALIDATOR} (scripts/install-node-tools.sh)")
+    message("SKIP: the glTF-Validator is not installed at ${VALIDATOR} (scripts/install/node_tools.sh)")
     return()
   endif()
   execute_process(COMMAND ${NODE} ${SCRIPT} --validator ${VALIDATOR} ${OUT} RESULT_VARIABLE status

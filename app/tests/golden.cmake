@@ -1,4 +1,4 @@
-# Golden images: the synthetic rigs rendered as scripts/make_goldens.sh rendered testdata/golden/ (both run
+# Golden images: the synthetic rigs rendered as scripts/testdata/make_goldens.sh rendered testdata/golden/ (both run
 # golden_render.cmake), then `dqskin diff` against the committed images.
 #
 # Thresholds: a pixel fails above 0.02 (5 steps of 255 in a channel) and an image fails when more than

@@ -1,5 +1,5 @@
 # Renders the golden set of the synthetic rigs in testdata/ into OUT (removed first), with the flags the
-# committed goldens in testdata/golden/ were made with. scripts/make_goldens.sh runs this same script, so
+# committed goldens in testdata/golden/ were made with. scripts/testdata/make_goldens.sh runs this same script, so
 # the goldens and their test cannot drift apart.
 #   cmake -DDQSKIN=path/to/dqskin -DTESTDATA=testdata -DOUT=folder [-DMODE=dqs] [-DBACKEND=auto] [-DONLY=rig]
 #         -P golden_render.cmake

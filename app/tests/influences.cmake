@@ -1,4 +1,4 @@
-# More than 8 influences per vertex (scripts/make_influence_cases.py, generated at configure time by
+# More than 8 influences per vertex (scripts/testdata/make_influence_cases.py, generated at configure time by
 # lib/CMakeLists.txt into DQSKIN_INFLUENCE_CASES_DIR): every command reads the 12- and 20-influence rigs,
 # the summaries name the deformer that ran (every one takes up to 32 influences: none falls back), lint
 # warns about runtimes that read fewer, and --max-influences cuts them as lint --fix does.

@@ -10,7 +10,7 @@
 #
 #   interrupt_merge.sh DQSKIN HOSTILE SCRATCH
 #     DQSKIN   the dqskin binary
-#     HOSTILE  the folder scripts/make_hostile_commands.py wrote
+#     HOSTILE  the folder scripts/testdata/make_hostile_commands.py wrote
 #     SCRATCH  a folder of this test's own (emptied first; removed when the test passes)
 set -euo pipefail
 

@@ -1,5 +1,5 @@
 # `dqskin lint` on the command line: every file of the bad-skin catalogue (testdata/bad_skins/, written by
-# scripts/make_bad_skins.py) gives its exit status and its one check id in --json; --fix removes what it can
+# scripts/testdata/make_bad_skins.py) gives its exit status and its one check id in --json; --fix removes what it can
 # fix, keeps the rest, and writes a file the Khronos glTF-Validator accepts; the project's rigs lint as
 # known; the JUnit report is well-formed; usage errors; and every shared model lints without a crash.
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
@@ -15,7 +15,7 @@ function(dqskin_lint_case name status check fixable fixed_status validate)
     -DFILE=${bad_skins}/${name}.gltf -DEXPECTED=${status} -DCHECKS=${check} -DWORK=${lint_scratch}/${name}
     -DFIX=ON -DFIXABLE=${fixable} -DFIXED_EXPECTED=${fixed_status} -DVALIDATE=${validate} -DNODE=${DQSKIN_NODE}
     -DVALIDATOR=${CMAKE_BINARY_DIR}/tools/node_modules/gltf-validator
-    -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs -P ${CMAKE_CURRENT_LIST_DIR}/lint_case.cmake)
+    -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/check/validate_gltf.mjs -P ${CMAKE_CURRENT_LIST_DIR}/lint_case.cmake)
   set_tests_properties(cli.lint_${name} PROPERTIES LABELS lint)
 endfunction()
 dqskin_lint_case(clean 0 "" ON 0 ON)
@@ -40,7 +40,7 @@ dqskin_lint_case(uniform_scaled_joint 0 joint-uniform-scale OFF 0 ON)
 # Legal (a joint scaled at rest, its inverse bind matrix scaling back): clean.
 dqskin_lint_case(non_orthonormal_ibm 0 "" OFF 0 ON)
 
-# Generated cases (scripts/make_hostile_commands.py lint_cases, in DQSKIN_HOSTILE_DIR/lint), the same way.
+# Generated cases (scripts/testdata/make_hostile_commands.py lint_cases, in DQSKIN_HOSTILE_DIR/lint), the same way.
 # A mesh drawn by a two-joint and a three-joint skin, one vertex on joint 2: a warning, and --fix keeps
 # the influence (it dropped it, checking against the smaller skin).
 function(dqskin_lint_generated_case name status check fixable fixed_status validate)
@@ -48,7 +48,7 @@ function(dqskin_lint_generated_case name status check fixable fixed_status valid
     -DFILE=${DQSKIN_HOSTILE_DIR}/lint/${name}.gltf -DEXPECTED=${status} -DCHECKS=${check} -DWORK=${lint_scratch}/${name}
     -DFIX=ON -DFIXABLE=${fixable} -DFIXED_EXPECTED=${fixed_status} -DVALIDATE=${validate} -DNODE=${DQSKIN_NODE}
     -DVALIDATOR=${CMAKE_BINARY_DIR}/tools/node_modules/gltf-validator
-    -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs -P ${CMAKE_CURRENT_LIST_DIR}/lint_case.cmake)
+    -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/check/validate_gltf.mjs -P ${CMAKE_CURRENT_LIST_DIR}/lint_case.cmake)
   set_tests_properties(cli.lint_${name} PROPERTIES LABELS lint)
 endfunction()
 dqskin_lint_generated_case(two_skins_one_mesh 1 joint-beyond-smaller-skin OFF 1 OFF)

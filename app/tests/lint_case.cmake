@@ -60,7 +60,7 @@ endforeach()
 
 if(VALIDATE)
   if(NOT NODE OR NOT EXISTS "${VALIDATOR}/package.json")
-    message("lint: validation skipped: Node.js or the gltf-validator (scripts/install-node-tools.sh) is missing")
+    message("lint: validation skipped: Node.js or the gltf-validator (scripts/install/node_tools.sh) is missing")
     return()
   endif()
   execute_process(COMMAND "${NODE}" "${SCRIPT}" --validator "${VALIDATOR}" "${fixed}" RESULT_VARIABLE status

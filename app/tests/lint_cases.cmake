@@ -1,18 +1,18 @@
-# `dqskin lint` on rigs laid out as real exporters lay them out (scripts/make_lint_cases.py, generated at
+# `dqskin lint` on rigs laid out as real exporters lay them out (scripts/testdata/make_lint_cases.py, generated at
 # configure time into the build tree): the legal ones (an armature at 0.01 with joints in centimetres, the
 # mesh under it or beside it, a rest pose unlike the bind pose) pass `lint --werror`; each defect of the
 # newer checks fails with its check and nothing else.
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 set(DQSKIN_LINT_CASES_DIR ${CMAKE_CURRENT_BINARY_DIR}/lint_cases)
-set(_lint_cases_generator ${PROJECT_SOURCE_DIR}/scripts/make_lint_cases.py)
+set(_lint_cases_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_lint_cases.py)
 execute_process(
   COMMAND ${Python3_EXECUTABLE} ${_lint_cases_generator} ${DQSKIN_LINT_CASES_DIR}
   RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_lint_cases.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_lint_cases.py failed (${_status}):\n${_output}")
 endif()
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_lint_cases_generator}
-  ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py)
+  ${PROJECT_SOURCE_DIR}/scripts/testdata/gltf_builder.py)
 include(${CMAKE_CURRENT_LIST_DIR}/cli_test.cmake)
 set(lint_cases_scratch ${CMAKE_CURRENT_BINARY_DIR}/lint_cases_out)
 

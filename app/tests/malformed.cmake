@@ -1,4 +1,4 @@
-# The catalogue of malformed inputs (scripts/make_malformed.py): one CTest test per broken file, each
+# The catalogue of malformed inputs (scripts/testdata/make_malformed.py): one CTest test per broken file, each
 # checking that `dqskin info FILE` exits with status 2 and prints exactly one line,
 # "dqskin: FILE: MESSAGE", whose MESSAGE names the problem (the regex of cases.txt). The valid base files
 # must load. Every test has a timeout, so an input that makes the loader hang fails instead of stalling.
@@ -6,15 +6,15 @@
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 
 set(DQSKIN_MALFORMED_DIR ${CMAKE_CURRENT_BINARY_DIR}/malformed)
-set(_generator ${PROJECT_SOURCE_DIR}/scripts/make_malformed.py)
+set(_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_malformed.py)
 execute_process(
   COMMAND ${Python3_EXECUTABLE} ${_generator} ${DQSKIN_MALFORMED_DIR}
   RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_malformed.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_malformed.py failed (${_status}):\n${_output}")
 endif()
 # Re-run configure (and so the generator) when the generator changes.
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_generator} ${PROJECT_SOURCE_DIR}/scripts/gltf_builder.py)
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_generator} ${PROJECT_SOURCE_DIR}/scripts/testdata/gltf_builder.py)
 
 set(_checker ${CMAKE_CURRENT_LIST_DIR}/expect_error.cmake)
 # Every case runs in malformed/cwd (one case checks that a buffer there is not found) under a 4 GiB

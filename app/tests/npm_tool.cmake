@@ -5,7 +5,7 @@
 macro(npm_tool_or_skip tool)
   set(program "${TOOLS}/${tool}")
   if(NOT EXISTS "${program}")
-    skip("${program} is missing; run scripts/install-node-tools.sh on the build folder's tools/")
+    skip("${program} is missing; run scripts/install/node_tools.sh on the build folder's tools/")
   endif()
   set(_version_flag --version)
   if("${tool}" STREQUAL "gltfpack")

@@ -1,7 +1,7 @@
 # Real optimizer outputs read by every command: CesiumMan (textured, skinned, animated) through gltfpack
 # (KHR_mesh_quantization and KHR_texture_transform by default, EXT_meshopt_compression with -c) and
 # glTF-Transform (optimize: meshopt, quantization; draco: KHR_draco_mesh_compression), each made at test time
-# with the npm tools that scripts/install-node-tools.sh puts into the build folder's tools/ (skipped when
+# with the npm tools that scripts/install/node_tools.sh puts into the build folder's tools/ (skipped when
 # absent), then info, bake and render of it, and its render compared with the original's
 # (optimized_input_case.cmake).
 set(_model ${PROJECT_SOURCE_DIR}/../shared/testdata/CesiumMan/CesiumMan.glb)

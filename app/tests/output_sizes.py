@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Outputs at their true size (app/tests/output_sizes.cmake): bakes the cases of
-scripts/make_shared_vertex_cases.py and checks what the files hold. Python 3 standard library only.
+scripts/testdata/make_shared_vertex_cases.py and checks what the files hold. Python 3 standard library only.
 
     output_sizes.py shared DQSKIN CASES_DIR OUT_DIR
         shared_vertices.gltf (three primitives naming one vertex set) baked to ply, obj, vat (each profile)

@@ -9,7 +9,7 @@
 #
 #   report_signal.sh DQSKIN INPUT SCRATCH
 #     DQSKIN   the dqskin binary
-#     INPUT    a rig whose report takes seconds and writes large files (scripts/make_hostile_commands.py)
+#     INPUT    a rig whose report takes seconds and writes large files (scripts/testdata/make_hostile_commands.py)
 #     SCRATCH  a folder of this test's own (emptied first)
 set -euo pipefail
 

@@ -1,6 +1,6 @@
 # The notice that a skinned mesh node's transform is ignored (glTF 2.0 §3.7.3.1): one line per file, not one
 # per node, from info; from bake only with --verbose. The file: three skinned mesh nodes under a moved node
-# (scripts/make_lint_cases.py three_skinned_nodes, generated at configure time into the build tree).
+# (scripts/testdata/make_lint_cases.py three_skinned_nodes, generated at configure time into the build tree).
 # DQSKIN_LINT_CASES_DIR: written by lint_cases.cmake, included before this file.
 set(notice_scratch ${CMAKE_CURRENT_BINARY_DIR}/skinned_node_notice)
 

@@ -46,13 +46,13 @@ started=$(bash "$cluster" start "$scratch/cluster" 2>&1) || status=$?
 case $status in
   0) ;;
   77) skip "no Slurm cluster here: $(tail -n 1 <<<"$started")" ;;
-  *) fail "scripts/slurm-cluster.sh start exited with $status: $started" ;;
+  *) fail "scripts/check/slurm_cluster.sh start exited with $status: $started" ;;
 esac
 # This cluster's configuration, and none of the caller's sbatch defaults (SBATCH_PARTITION and the like).
 # shellcheck disable=SC2046
 unset SLURM_CONF $(compgen -v SBATCH_ || true)
 eval "$(grep '^export SLURM_CONF=' <<<"$started")"
-[ -n "${SLURM_CONF:-}" ] || fail "scripts/slurm-cluster.sh start printed no SLURM_CONF: $started"
+[ -n "${SLURM_CONF:-}" ] || fail "scripts/check/slurm_cluster.sh start printed no SLURM_CONF: $started"
 
 # The recipe's line as the README has it, run where models/ is (sbatch's default working folder is the
 # submitting one); --output puts each shard's messages where a failure below can show them.

@@ -3,7 +3,7 @@
 # finds the two images equal within the golden thresholds and, when given, `dqskin info CASE` prints a
 # warning matching WARNING. A control diff of the reference against UNLIKE (a render that must differ: the
 # rig without its texture, or with it) proves that the comparison can fail. Used for the texture
-# extensions (scripts/make_texture_cases.py) and the meshes written beside textures.
+# extensions (scripts/testdata/make_texture_cases.py) and the meshes written beside textures.
 #   cmake -DDQSKIN=dqskin -DCASE=a.gltf -DREFERENCE=b.gltf -DUNLIKE=c.gltf -DOUT=dir [-DTIME=s]
 #         [-DWARNING=regex] -P texture_render_case.cmake
 file(REMOVE_RECURSE ${OUT})

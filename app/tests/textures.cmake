@@ -1,13 +1,13 @@
-# Textures stored the ways real exports store them (scripts/make_texture_cases.py, generated here at
+# Textures stored the ways real exports store them (scripts/testdata/make_texture_cases.py, generated here at
 # configure time): EXT_texture_webp with and without a core fallback, KHR_texture_basisu with and without
 # one. `render` must draw the WebP image, or the fallback, or the material's factors with one warning.
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 set(texture_cases ${CMAKE_CURRENT_BINARY_DIR}/texture_cases)
-set(_texture_generator ${PROJECT_SOURCE_DIR}/scripts/make_texture_cases.py)
+set(_texture_generator ${PROJECT_SOURCE_DIR}/scripts/testdata/make_texture_cases.py)
 execute_process(COMMAND ${Python3_EXECUTABLE} ${_texture_generator} ${texture_cases}
   RESULT_VARIABLE _status OUTPUT_VARIABLE _output ERROR_VARIABLE _output)
 if(NOT _status STREQUAL "0")
-  message(FATAL_ERROR "scripts/make_texture_cases.py failed (${_status}):\n${_output}")
+  message(FATAL_ERROR "scripts/testdata/make_texture_cases.py failed (${_status}):\n${_output}")
 endif()
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_texture_generator}
   ${PROJECT_SOURCE_DIR}/testdata/textured_cylinder.gltf)
@@ -45,7 +45,7 @@ foreach(mode shared embed none)
   set(args -DDQSKIN=$<TARGET_FILE:dqskin_cli> -DINPUT=${textured} -DOUT=${glb_images_scratch}/${mode} -DMODE=${mode})
   if(DQSKIN_NODE)
     list(APPEND args -DNODE=${DQSKIN_NODE} -DVALIDATOR=${glb_validator}
-         -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs)
+         -DSCRIPT=${PROJECT_SOURCE_DIR}/scripts/check/validate_gltf.mjs)
   endif()
   add_test(NAME cli.glb_images_${mode} COMMAND ${CMAKE_COMMAND} ${args}
     -P ${PROJECT_SOURCE_DIR}/app/tests/glb_images_case.cmake)
@@ -84,7 +84,7 @@ foreach(case vat:dqskin:rest.glb vat:openvat:textured_cylinder.glb vat:houdini:t
   set_tests_properties(cli.mesh_look_drawn_${name} PROPERTIES ENVIRONMENT "${bake_test_environment}" LABELS gpu
     FIXTURES_REQUIRED mesh_look_${name})
   if(DQSKIN_NODE)
-    add_test(NAME cli.mesh_look_validator_${name} COMMAND ${DQSKIN_NODE} ${PROJECT_SOURCE_DIR}/scripts/validate_gltf.mjs
+    add_test(NAME cli.mesh_look_validator_${name} COMMAND ${DQSKIN_NODE} ${PROJECT_SOURCE_DIR}/scripts/check/validate_gltf.mjs
       --validator ${glb_validator} ${look_scratch}/${name})
     set_tests_properties(cli.mesh_look_validator_${name} PROPERTIES FIXTURES_REQUIRED mesh_look_${name})
   endif()

@@ -1,4 +1,4 @@
-// More than 8 influences per vertex (scripts/make_influence_cases.py: 12 in JOINTS_0..2, 20 in
+// More than 8 influences per vertex (scripts/testdata/make_influence_cases.py: 12 in JOINTS_0..2, 20 in
 // JOINTS_0..4): every deformer (the CPU reference, the fast CPU deformer, the GPU path on each headless
 // backend), lbs and dqs, against an independent double-precision computation written here from the
 // definitions: joint matrix world(joint) · inverseBind(joint) (glTF 2.0 §3.7.3.3), LBS Σ wᵢ Mᵢ p, DQS as
@@ -105,7 +105,7 @@ class ManyInfluences : public testing::TestWithParam<Case> {};
 TEST_P(ManyInfluences, DeformerMatchesTheDefinitionOnEveryFrame) {
   const Case& c = GetParam();
   const std::string path = influence_case(c.file);
-  ASSERT_TRUE(fs::exists(path)) << path << " was not generated (scripts/make_influence_cases.py)";
+  ASSERT_TRUE(fs::exists(path)) << path << " was not generated (scripts/testdata/make_influence_cases.py)";
   std::unique_ptr<GpuContext> context;
   if (c.backend == Backend::kEgl || c.backend == Backend::kOsMesa) {
     context = testing_support::context_or_null(c.backend);

@@ -1,5 +1,5 @@
 // Reading every influence set, and LoadOptions::max_influences (--max-influences): the generated
-// many-influence rigs (scripts/make_influence_cases.py).
+// many-influence rigs (scripts/testdata/make_influence_cases.py).
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
 #include "dqskin/skinning.hpp"

@@ -1,5 +1,5 @@
 // The checks of `dqskin lint`: each file of the bad-skin catalogue (testdata/bad_skins/, written by
-// scripts/make_bad_skins.py) shows its one problem and nothing else, with the right worst example; the
+// scripts/testdata/make_bad_skins.py) shows its one problem and nothing else, with the right worst example; the
 // tolerances; unreadable files; the reports.
 #include "dqskin/lint.hpp"
 

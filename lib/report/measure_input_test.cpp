@@ -1,4 +1,4 @@
-// The report's measures on the project's rigs (testdata/, made by scripts/make_rigs.py), whose answers are
+// The report's measures on the project's rigs (testdata/, made by scripts/testdata/make_rigs.py), whose answers are
 // known: the twisted cylinder's candy wrapper, the bending arm's elbow, the eight-influence chain.
 #include "measure_input.hpp"
 

@@ -9,7 +9,7 @@ cmake_minimum_required(VERSION 3.25)
 
 foreach(need NODE CHROMIUM)
   if("${${need}}" STREQUAL "" OR "${${need}}" MATCHES "NOTFOUND$" OR NOT EXISTS "${${need}}")
-    message("report_check: SKIPPED: ${need} '${${need}}' is missing (Chromium and Node.js: scripts/install-deps.sh)")
+    message("report_check: SKIPPED: ${need} '${${need}}' is missing (Chromium and Node.js: scripts/install/deps.sh)")
     return()
   endif()
 endforeach()

@@ -1,5 +1,5 @@
 // Properties of the CPU reference deformer (skinning.hpp), checked on the project's synthetic rigs
-// (testdata/, written by scripts/make_rigs.py) and, where present, on the shared sample models.
+// (testdata/, written by scripts/testdata/make_rigs.py) and, where present, on the shared sample models.
 //
 // The rigs' rest poses are pure translations whose inverse bind matrices are their exact inverses, so
 // at rest every joint matrix is the identity in exact arithmetic; tolerances are relative to the
@@ -33,7 +33,7 @@ using DVec4 = glm::vec<4, double, glm::defaultp>;
 
 constexpr BlendMode kModes[] = {BlendMode::kLbs, BlendMode::kDqs, BlendMode::kDib};
 
-// The rigs scripts/make_rigs.py writes into testdata/.
+// The rigs scripts/testdata/make_rigs.py writes into testdata/.
 const char* const kRigs[] = {"twisted_cylinder.gltf", "bending_arm.gltf",        "uniform_scale.gltf",
                              "nonuniform_scale.gltf", "eight_influences.gltf",   "interpolation_modes.gltf",
                              "morph_skin.gltf",       "two_skins.gltf"};
@@ -222,7 +222,7 @@ void expect_rest_pose_is_bind_pose(const Model& m, double tolerance) {
 TEST(CpuDeform, EveryGeneratedRigIsInTestdata) {
   for (const char* name : kRigs)
     EXPECT_TRUE(fs::is_regular_file(fs::path(DQSKIN_TESTDATA_DIR) / name))
-        << name << " is missing from testdata/: run python3 scripts/make_rigs.py";
+        << name << " is missing from testdata/: run python3 scripts/testdata/make_rigs.py";
 }
 
 TEST(CpuDeform, BindPoseLeavesEveryVertexInPlace) {
