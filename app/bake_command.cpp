@@ -11,7 +11,6 @@
 #include "dqskin/bake.hpp"
 #include "../lib/base/byte_size.hpp"
 #include "dqskin/error.hpp"
-#include "../lib/base/output_journal.hpp"
 #include "dqskin/version.hpp"
 
 #include <nlohmann/json.hpp>
@@ -132,13 +131,11 @@ void print_summary(const BakeSettings& s, const BakeReport& r) {
 int run_bake(const BakeSettings& given) {
   BakeSettings settings = given;
   ProgressPrinter progress(settings.json_progress, settings.quiet);
-  OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing baked
   return guarded_run("bake", [&] {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     BakeOptions options = to_options(settings);
     options.cancel = catch_interrupts("bake");
-    if (!options.dry_run) out_folder.make_folders(options.out_dir);
 
     const BakeReport report = bake(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
@@ -156,9 +153,8 @@ int run_bake(const BakeSettings& given) {
     } else {
       print_summary(settings, report);
     }
-    if (failed_inputs(report.inputs) < report.inputs.size()) out_folder.keep();
     return job_exit_status(report.inputs, settings.quiet, "baked");
-  }, [&] { progress.done(); }, &out_folder);
+  }, [&] { progress.done(); });
 }
 
 }  // namespace

@@ -14,8 +14,7 @@
 
 namespace dqskin::cli {
 
-int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy,
-                OutputJournal* out_folder) {
+int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy) {
   // What runs after a failure runs without the memory ceiling: the failed work's memory is freed by then,
   // and a message that cannot be made would end in std::terminate.
   std::optional<MemoryCeilingLifted> lifted;
@@ -27,7 +26,6 @@ int guarded_run(const char* command, const std::function<int()>& body, const std
     return body();
   } catch (const JobCancelled&) {
     tidy_up();
-    if (out_folder) out_folder->roll_back();  // removes the output folder this run made only if it is still empty
     return die_of_interrupt(command);
   } catch (const NoGpuContext& e) {
     tidy_up();

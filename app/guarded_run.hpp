@@ -2,22 +2,19 @@
 // line on stderr and an exit status, never in an abort or an uncaught exception.
 #pragma once
 
-#include "../lib/base/output_journal.hpp"
-
 #include <functional>
 
 namespace dqskin::cli {
 
 // Runs `body` and returns its status, or maps what escapes it, after `tidy` (clearing a progress bar):
-//   JobCancelled        the process dies of the signal that cancelled it (die_of_interrupt), after
-//                       `out_folder` (the output folder this run made) is removed if it is still empty
+//   JobCancelled        the process dies of the signal that cancelled it (die_of_interrupt); the job
+//                       has taken back what it wrote, its output folder included (lib/job/output_folder.hpp)
 //   NoGpuContext        3 (kNoGlContext) and its message
 //   filesystem_error    2 and the path with the system's message
 //   std::bad_alloc      2 and out_of_memory_message() (a command that knows its file names it: a
 //                       std::bad_alloc caught where the file is known becomes that file's error)
 //   other exceptions    2 and their message
 // `command` names the command in the interrupt's message ("bake: interrupted").
-int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy = {},
-                OutputJournal* out_folder = nullptr);
+int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy = {});
 
 }  // namespace dqskin::cli

@@ -9,7 +9,6 @@
 #include "progress.hpp"
 
 #include "dqskin/error.hpp"
-#include "../lib/base/output_journal.hpp"
 #include "dqskin/render.hpp"
 
 #include <nlohmann/json.hpp>
@@ -134,19 +133,16 @@ RenderOptions to_options(const RenderSettings& s) {
 int run_render(const RenderSettings& given) {
   RenderSettings settings = given;
   ProgressPrinter progress(settings.json_progress, settings.quiet);
-  OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing rendered
   return guarded_run("render", [&] {
     if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     RenderOptions options = to_options(settings);
     options.cancel = catch_interrupts("render");
-    out_folder.make_folders(options.out_dir);
     const RenderReport report =
         render(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
     print_input_messages(report.inputs, settings.quiet, settings.verbose);
     const size_t failed = failed_inputs(report.inputs);
-    if (failed < report.inputs.size()) out_folder.keep();
     // mode-diff: what the heat map's top color stands for, per animation.
     nlohmann::json scales = nlohmann::json::array();
     for (const ModeDiffScale& m : report.mode_diff) {
@@ -169,7 +165,7 @@ int run_render(const RenderSettings& given) {
                    printable(options.out_dir).c_str(), report.deformer.c_str(), report.gpu.renderer.c_str());
     }
     return job_exit_status(report.inputs, settings.quiet, "rendered");
-  }, [&] { progress.done(); }, &out_folder);
+  }, [&] { progress.done(); });
 }
 
 }  // namespace

@@ -9,7 +9,6 @@
 #include "progress.hpp"
 
 #include "dqskin/error.hpp"
-#include "../lib/base/output_journal.hpp"
 #include "dqskin/report.hpp"
 
 #include <nlohmann/json.hpp>
@@ -66,18 +65,15 @@ ReportOptions to_options(const ReportSettings& s) {
 int run_report(const ReportSettings& given) {
   ReportSettings settings = given;
   ProgressPrinter progress(settings.json_progress, settings.quiet);
-  OutputJournal out_folder;  // the output folder, when this run creates it: removed again if nothing was reported
   return guarded_run("report", [&] {
     if (settings.inputs.empty()) throw InputError("no input given (dqskin report FILE... -o OUTDIR)");
     if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required");
     ReportOptions options = to_options(settings);
     options.cancel = catch_interrupts("report");
-    out_folder.make_folders(options.out_dir);
     const ReportResult result = report(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
     print_input_messages(result.inputs, settings.quiet, settings.verbose);
     const size_t failed = failed_inputs(result.inputs);
-    if (failed < result.inputs.size()) out_folder.keep();
     if (settings.json_progress) {
       std::cout << json_text(nlohmann::json{{"event", "summary"}, {"frames", result.frames_total}, {"files", result.outputs},
                                             {"verdicts", result.verdicts}, {"failed_inputs", failed},
@@ -93,7 +89,7 @@ int run_report(const ReportSettings& given) {
                      printable(options.out_dir).c_str());
     }
     return job_exit_status(result.inputs, settings.quiet, "reported");
-  }, [&] { progress.done(); }, &out_folder);
+  }, [&] { progress.done(); });
 }
 
 }  // namespace

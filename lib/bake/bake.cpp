@@ -12,6 +12,7 @@
 #include "dqskin/deformer.hpp"
 #include "../write/mesh_output.hpp"
 #include "../job/job_run.hpp"
+#include "../job/output_folder.hpp"
 #include "../base/output_journal.hpp"
 #include "../base/sha256.hpp"
 #include "../texture/texture_output.hpp"
@@ -358,6 +359,7 @@ bool BakeReport::any_failed() const {
 BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
                 const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
+  OutputFolder out_folder(options.out_dir, !options.dry_run);  // before any check, as the command always made it
   BakeReport report;
   if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
   if (!has_gpu_path(options.mode) && options.backend != Backend::kAuto && options.backend != Backend::kCpu)
@@ -471,6 +473,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   sync_folder(options.out_dir);
   report.times.write += since(sync);
   report.manifest = write_manifest(plans, options, report);
+  out_folder.keep_if_any_succeeded(report.inputs);
   report.wall_seconds = since(start);
   return report;
 }

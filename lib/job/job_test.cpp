@@ -1,7 +1,9 @@
 // The job layer on the bundled rigs: shards split the plan's units between them exactly once, a failing
-// input takes no unit and fails alone, a cancel keeps the files written.
+// input takes no unit and fails alone, a cancel keeps the files written; the output folder a job made is
+// taken back when no input succeeded, one that was there stays.
 #include "job_plan.hpp"
 #include "job_run.hpp"
+#include "output_folder.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
@@ -188,6 +190,73 @@ TEST(JobRun, OutOfMemoryFailsTheInputAndNoContextStopsTheJob) {
                    [](const InputPlan&) { FAIL() << "no context is not an input's failure"; }),
                NoGpuContext);
   EXPECT_EQ(started, 1u);
+}
+
+InputResult succeeded() { return {"in.gltf", "", 1, {}, {}}; }
+InputResult failed() { return {"in.gltf", "cannot read", 0, {}, {}}; }
+
+TEST(OutputFolder, RemovesTheFoldersItMadeWhenNoInputSucceeded) {
+  ScratchDir out("job");
+  const fs::path folder = out.path() / "new" / "deeper";
+  {
+    OutputFolder made(folder.string());
+    EXPECT_TRUE(fs::is_directory(folder));  // made at once, with its missing parent
+    made.keep_if_any_succeeded({failed(), failed()});
+  }
+  EXPECT_FALSE(fs::exists(out.path() / "new"));  // the parent it made too
+  EXPECT_TRUE(fs::is_directory(out.path()));
+}
+
+TEST(OutputFolder, KeepsTheFoldersItMadeWhenAnInputSucceeded) {
+  ScratchDir out("job");
+  const fs::path folder = out.path() / "new" / "deeper";
+  {
+    OutputFolder made(folder.string());
+    made.keep_if_any_succeeded({failed(), succeeded()});
+  }
+  EXPECT_TRUE(fs::is_directory(folder));  // an input that wrote nothing (report's unskinned file) keeps it empty
+}
+
+TEST(OutputFolder, KeepsAFolderThatWasThereWhateverHappens) {
+  ScratchDir out("job");
+  const fs::path folder = out.path() / "there";
+  fs::create_directories(folder);
+  {
+    OutputFolder existing(folder.string());
+    existing.keep_if_any_succeeded({failed()});
+  }
+  EXPECT_TRUE(fs::is_directory(folder));
+  { OutputFolder existing(folder.string()); }  // an exception left the job before any input ended
+  EXPECT_TRUE(fs::is_directory(folder));
+}
+
+TEST(OutputFolder, LeavesAFolderSomethingWasWrittenInto) {
+  ScratchDir out("job");
+  const fs::path folder = out.path() / "new";
+  {
+    OutputFolder made(folder.string());
+    std::ofstream(folder / "written by someone else") << "x";  // rmdir refuses a folder that is not empty
+  }
+  EXPECT_TRUE(fs::exists(folder / "written by someone else"));
+}
+
+TEST(OutputFolder, ADryRunMakesNoFolder) {
+  ScratchDir out("job");
+  const fs::path folder = out.path() / "new";
+  { OutputFolder not_made(folder.string(), false); }
+  EXPECT_FALSE(fs::exists(folder));
+}
+
+TEST(OutputFolder, AFolderThatCannotBeMadeIsAnOutputErrorNamingIt) {
+  ScratchDir out("job");
+  std::ofstream(out.path() / "file") << "x";  // a file where a parent folder should be
+  const std::string folder = (out.path() / "file" / "out").string();
+  try {
+    OutputFolder impossible(folder);
+    FAIL() << "made a folder under a file";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find(folder + ": cannot create folder"), std::string::npos) << e.what();
+  }
 }
 
 // Writers on several threads report frames at once: every frame is counted once, the total is the job's.

@@ -6,6 +6,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/deformer.hpp"
 #include "../job/job_run.hpp"
+#include "../job/output_folder.hpp"
 #include "../base/output_journal.hpp"
 #include "../base/ordered_worker.hpp"
 #include "render_manifest.hpp"
@@ -224,6 +225,7 @@ bool RenderReport::any_failed() const {
 RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
                     const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
+  OutputFolder out_folder(options.out_dir);  // before any check, as the command always made it
   if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
   // The backend's context draws; where the deformation runs is deform_path()'s decision.
   if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
@@ -265,6 +267,7 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
     sync_folder(options.out_dir);
     report.manifest = render_detail::write_render_manifest(plans, options, report);
   }
+  out_folder.keep_if_any_succeeded(report.inputs);
   report.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return report;
 }

@@ -14,6 +14,7 @@
 #include "dqskin/image_output.hpp"
 #include "../job/job_plan.hpp"
 #include "../job/job_run.hpp"
+#include "../job/output_folder.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -99,6 +100,7 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
                     const std::function<void(const JobProgress&)>& progress) {
   using namespace report_detail;
   const Clock::time_point start = Clock::now();
+  OutputFolder out_folder(options.out_dir);  // before any check, as the command always made it
   if (options.worst_frames < 1 || options.worst_frames > 16) throw InputError("--worst-frames must be 1 to 16");
   if (options.image_size < 16 || options.image_size > 4096) throw InputError("--image-size must be 16 to 4096 pixels");
   const ReportThresholds& t = options.thresholds;
@@ -156,6 +158,7 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
         result.verdicts.resize(verdicts_before);
       });
   std::sort(result.outputs.begin(), result.outputs.end());
+  out_folder.keep_if_any_succeeded(result.inputs);
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }
