@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace dqskin::cli {
+namespace dqskin::bench_detail {
 
 Asset make_synthetic_asset(size_t vertices, size_t joints, bool with_scale) {
   constexpr double kSegment = 0.5;  // joint spacing along y
@@ -85,4 +85,4 @@ Asset make_synthetic_asset(size_t vertices, size_t joints, bool with_scale) {
   return asset;
 }
 
-}  // namespace dqskin::cli
+}  // namespace dqskin::bench_detail
