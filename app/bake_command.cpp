@@ -29,14 +29,10 @@ namespace {
 
 struct BakeSettings {
   std::vector<std::string> inputs;  // empty: the bundled default input
-  std::string out_dir;
-  LoadSettings load;
-  FrameSelection selection;
-  std::string shard;
+  PlanSettings plan;
   std::string mode = "dqs";
   std::string formats = "glb";
   std::string backend = "auto";
-  int scene = -1;
   unsigned jobs = 0;
   size_t gpu_memory_mb = 512;
   bool dry_run = false, quiet = false, json_progress = false, force = false, verbose = false;
@@ -59,16 +55,11 @@ void parse_max_error(const std::string& text, TextureOptions& t) {
 
 BakeOptions to_options(const BakeSettings& s) {
   BakeOptions o;
-  o.out_dir = s.out_dir;
-  o.load = to_load_options(s.load);
-  o.clips = s.selection.anim;
-  o.frames = to_frame_spec(s.selection);
+  o.plan = to_plan_options(s.plan);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   o.formats = parse_bake_formats(s.formats);
   if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
   o.gpu_memory = s.gpu_memory_mb << 20;
-  o.scene = s.scene;
-  if (!s.shard.empty()) o.shard = parse_shard(s.shard);
   o.jobs = s.jobs;
   o.dry_run = s.dry_run;
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
@@ -132,15 +123,15 @@ int run_bake(const BakeSettings& given) {
   BakeSettings settings = given;
   ProgressPrinter progress(settings.json_progress, settings.quiet);
   return guarded_run("bake", [&] {
-    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.out_dir, settings.quiet));
-    if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
+    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("bake", settings.plan.out_dir, settings.quiet));
+    if (settings.plan.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     BakeOptions options = to_options(settings);
     options.cancel = catch_interrupts("bake");
 
     const BakeReport report = bake(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
     progress.done();
     if (options.dry_run) {
-      for (const BakeOutput& o : report.outputs) std::cout << printable(options.out_dir + '/' + o.path) << '\n';
+      for (const BakeOutput& o : report.outputs) std::cout << printable(options.plan.out_dir + '/' + o.path) << '\n';
       if (!settings.quiet)
         for (const std::string& line : report.plans) std::fprintf(stderr, "%s\n", printable(line).c_str());
       print_input_messages(report.inputs, settings.quiet, settings.verbose);
@@ -169,10 +160,7 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_option("INPUT", bake.inputs,
                        ".gltf or .glb files. Without any, the bundled textured_cylinder rig is baked into a new "
                        "temporary folder, which is printed");
-  bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
-  add_frame_selection(*bake_cmd, bake.selection, "bake");
-  add_load_settings(*bake_cmd, bake.load);
-  add_max_influences(*bake_cmd, bake.load);
+  add_plan_settings(*bake_cmd, bake.plan, "bake");
   bake_cmd->add_option("--mode", bake.mode, "Blending: lbs (linear), dqs (dual quaternion DLB), dib (iterative, CPU)")
       ->type_name("lbs|dqs|dib")
       ->capture_default_str();
@@ -236,11 +224,9 @@ Command add_bake_command(CLI::App& app) {
                        "fast-cpu (vectorized float, every core), or cpu (the double-precision reference)")
       ->type_name("NAME")
       ->capture_default_str();
-  bake_cmd->add_option("--scene", bake.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
-  bake_cmd->add_option("--shard", bake.shard,
-                       "Bake only shard I of N of the (input, animation, frame) work; the N shards' outputs "
-                       "together equal the whole bake")
-      ->type_name("I/N");
+  add_scene_and_shard(*bake_cmd, bake.plan,
+                      "Bake only shard I of N of the (input, animation, frame) work; the N shards' outputs "
+                      "together equal the whole bake");
   bake_cmd->add_option("-j,--jobs", bake.jobs, "Encoder threads (default: one per core)")
       ->type_name("N")
       ->check(CLI::Range(1u, 1024u));

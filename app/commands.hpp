@@ -4,6 +4,7 @@
 #pragma once
 
 #include "dqskin/animation.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/load.hpp"
 
 #include <CLI/CLI.hpp>
@@ -63,19 +64,45 @@ std::optional<uint64_t> max_memory_of(const CLI::App& command);
 LoadOptions to_load_options(const LoadSettings& settings);
 
 // Which animations and frames a command works on (--anim, --fps, --frames, --keys, --times), shared by
-// bake and render so that both read the same flags the same way.
+// bake, render, report and diff so that all read the same flags the same way.
 struct FrameSelection {
   std::string anim = "all";
-  double fps = 30;
+  std::optional<double> fps;  // none: 30 (FrameSpec's grid), or diff's key times and midpoints
   std::string frames, times;
   bool keys = false;
+  // Whether a flag chose the frames (diff samples its own default times otherwise).
+  bool chosen() const { return fps || !frames.empty() || !times.empty() || keys; }
 };
 
-// Adds the FrameSelection flags to a command; `verb` goes into the help ("Animation to bake: …").
-void add_frame_selection(CLI::App& command, FrameSelection& selection, const char* verb);
+// Adds the FrameSelection flags to a command; `verb` goes into the help ("Animation to bake: …"). With
+// `grid_default`, --help shows the fps grid (30) as --fps's default; diff, whose default is other times,
+// passes false.
+void add_frame_selection(CLI::App& command, FrameSelection& selection, const char* verb, bool grid_default = true);
 
-// The FrameSpec they ask for. Throws InputError for a bad range or list, or more than one way given.
+// The FrameSpec they ask for (fps 30 unless given). Throws InputError for a bad range or list, or more than
+// one way given.
 FrameSpec to_frame_spec(const FrameSelection& selection);
+
+// What a job is planned from (dqskin/job.hpp PlanOptions): -o, the frames, the loading flags, --scene and
+// --shard, shared by bake, render and report so that the three read the same flags the same way.
+struct PlanSettings {
+  std::string out_dir;
+  FrameSelection selection;
+  LoadSettings load;
+  int scene = -1;
+  std::string shard;  // "I/N"; empty: the whole job
+};
+
+// Adds -o, the FrameSelection flags (`verb` in their help), the LoadSettings flags and --max-influences, in
+// the order --help lists them.
+void add_plan_settings(CLI::App& command, PlanSettings& settings, const char* verb);
+
+// Adds --scene and, with a `shard_help`, --shard (report makes whole reports: it has none). Separate from
+// add_plan_settings because --help lists them after the command's own blending and backend flags.
+void add_scene_and_shard(CLI::App& command, PlanSettings& settings, const char* shard_help = nullptr);
+
+// The PlanOptions they ask for. Throws InputError for a bad size, root, frame selection or shard.
+PlanOptions to_plan_options(const PlanSettings& settings);
 
 // A length in scene units ("0.002") or a percentage of a bounding-box diagonal ("0.5%", as the fraction
 // 0.005 with relative set): bake's --max-error and report's --tolerance.

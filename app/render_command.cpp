@@ -28,13 +28,9 @@ namespace {
 
 struct RenderSettings {
   std::vector<std::string> inputs;
-  std::string out_dir;
-  LoadSettings load;
-  FrameSelection selection;
-  std::string shard;
+  PlanSettings plan;
   std::string mode = "dqs";
   std::string backend = "auto";
-  int scene = -1;
   std::string size;  // WxH; empty: 512x512, or 512 high in a --camera's aspect ratio
   std::string background = "0.2,0.2,0.2";  // sRGB
   int samples = 4;
@@ -97,14 +93,9 @@ glm::vec4 parse_background(const std::string& text) {
 
 RenderOptions to_options(const RenderSettings& s) {
   RenderOptions o;
-  o.out_dir = s.out_dir;
-  o.load = to_load_options(s.load);
-  o.clips = s.selection.anim;
-  o.frames = to_frame_spec(s.selection);
+  o.plan = to_plan_options(s.plan);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
-  o.scene = s.scene;
-  if (!s.shard.empty()) o.shard = parse_shard(s.shard);
   parse_size(s.size.empty() ? "512x512" : s.size, o.renderer);
   o.size_from_camera = s.size.empty();
   o.renderer.samples = s.samples;
@@ -134,8 +125,8 @@ int run_render(const RenderSettings& given) {
   RenderSettings settings = given;
   ProgressPrinter progress(settings.json_progress, settings.quiet);
   return guarded_run("render", [&] {
-    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.out_dir, settings.quiet));
-    if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
+    if (settings.inputs.empty()) settings.inputs.push_back(unpack_default_input("render", settings.plan.out_dir, settings.quiet));
+    if (settings.plan.out_dir.empty()) throw InputError("-o OUTDIR is required when inputs are given");
     RenderOptions options = to_options(settings);
     options.cancel = catch_interrupts("render");
     const RenderReport report =
@@ -162,7 +153,7 @@ int run_render(const RenderSettings& given) {
       for (const InputResult& in : report.inputs) frames += in.frames;
       std::fprintf(stderr, "rendered %zu frames of %zu input%s in %.2f s into %s\ndeformed on %s, drawn by %s\n", frames,
                    report.inputs.size() - failed, report.inputs.size() - failed == 1 ? "" : "s", report.wall_seconds,
-                   printable(options.out_dir).c_str(), report.deformer.c_str(), report.gpu.renderer.c_str());
+                   printable(options.plan.out_dir).c_str(), report.deformer.c_str(), report.gpu.renderer.c_str());
     }
     return job_exit_status(report.inputs, settings.quiet, "rendered");
   }, [&] { progress.done(); });
@@ -179,10 +170,7 @@ Command add_render_command(CLI::App& app) {
   render_cmd->add_option("INPUT", render.inputs,
                          ".gltf or .glb files. Without any, the bundled textured_cylinder rig is rendered into a new "
                          "temporary folder (printed)");
-  render_cmd->add_option("-o,--out", render.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
-  add_frame_selection(*render_cmd, render.selection, "render");
-  add_load_settings(*render_cmd, render.load);
-  add_max_influences(*render_cmd, render.load);
+  add_plan_settings(*render_cmd, render.plan, "render");
   render_cmd->add_option("--mode", render.mode,
                          "Blending: lbs (linear), dqs (dual quaternion DLB) or dib (iterative, deformed on the CPU)")
       ->type_name("lbs|dqs|dib")
@@ -194,9 +182,7 @@ Command add_render_command(CLI::App& app) {
                          "draw as auto)")
       ->type_name("NAME")
       ->capture_default_str();
-  render_cmd->add_option("--scene", render.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
-  render_cmd->add_option("--shard", render.shard, "Render only shard I of N of the (input, animation, frame) work")
-      ->type_name("I/N");
+  add_scene_and_shard(*render_cmd, render.plan, "Render only shard I of N of the (input, animation, frame) work");
   render_cmd->add_option("--size", render.size,
                          "Image size in pixels (default 512x512; with --camera, 512 high in the camera's aspect ratio)")
       ->type_name("WxH");

@@ -23,10 +23,7 @@ namespace {
 
 struct ReportSettings {
   std::vector<std::string> inputs;
-  std::string out_dir;
-  LoadSettings load;
-  FrameSelection selection;
-  int scene = -1;
+  PlanSettings plan;  // without --shard: a report is made whole
   std::string backend = "auto";
   std::string tolerance = "0.5%";
   double twist = 150, candy_wrapper = 0.3, bulge = 0.1;
@@ -46,11 +43,7 @@ void parse_tolerance(const std::string& text, ReportThresholds& t) {
 
 ReportOptions to_options(const ReportSettings& s) {
   ReportOptions o;
-  o.out_dir = s.out_dir;
-  o.load = to_load_options(s.load);
-  o.clips = s.selection.anim;
-  o.frames = to_frame_spec(s.selection);
-  o.scene = s.scene;
+  o.plan = to_plan_options(s.plan);
   if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
   parse_tolerance(s.tolerance, o.thresholds);
   o.thresholds.twist_degrees = s.twist;
@@ -67,7 +60,7 @@ int run_report(const ReportSettings& given) {
   ProgressPrinter progress(settings.json_progress, settings.quiet);
   return guarded_run("report", [&] {
     if (settings.inputs.empty()) throw InputError("no input given (dqskin report FILE... -o OUTDIR)");
-    if (settings.out_dir.empty()) throw InputError("-o OUTDIR is required");
+    if (settings.plan.out_dir.empty()) throw InputError("-o OUTDIR is required");
     ReportOptions options = to_options(settings);
     options.cancel = catch_interrupts("report");
     const ReportResult result = report(settings.inputs, options, [&](const JobProgress& p) { progress(p); });
@@ -86,7 +79,7 @@ int run_report(const ReportSettings& given) {
       if (failed < result.inputs.size())
         std::fprintf(stderr, "reported %zu frames (lbs, dqs and dib each) of %zu input%s in %.2f s into %s\n",
                      result.frames_total, reported, reported == 1 ? "" : "s", result.wall_seconds,
-                     printable(options.out_dir).c_str());
+                     printable(options.plan.out_dir).c_str());
     }
     return job_exit_status(result.inputs, settings.quiet, "reported");
   }, [&] { progress.done(); });
@@ -102,11 +95,8 @@ Command add_report_command(CLI::App& app) {
                 "area, volume, twist and bend, antipodal flips; a verdict per joint and per file, report.json and "
                 "contact sheets of the worst frames");
   cmd->add_option("INPUT", s.inputs, ".gltf or .glb files")->required();
-  cmd->add_option("-o,--out", s.out_dir, "Output folder (created when missing)")->type_name("OUTDIR");
-  add_frame_selection(*cmd, s.selection, "report");
-  add_load_settings(*cmd, s.load);
-  add_max_influences(*cmd, s.load);
-  cmd->add_option("--scene", s.scene, "Scene index (default: the file's default scene)")->type_name("INDEX");
+  add_plan_settings(*cmd, s.plan, "report");
+  add_scene_and_shard(*cmd, s.plan);
   cmd->add_option("--backend", s.backend,
                   "Headless OpenGL backend that draws the contact sheets: auto (EGL, then OSMesa), egl or osmesa "
                   "(the measurements always run on the double-precision CPU reference)")

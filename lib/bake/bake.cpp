@@ -49,7 +49,7 @@ bool has_look(unsigned formats) { return has(formats, BakeFormat::kVat) || has(f
 
 // The planner's view of a bake: which inputs, clips, frames and shard.
 PlanOptions plan_options(const BakeOptions& options) {
-  PlanOptions plan{options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
+  PlanOptions plan = options.plan;
   // What the glb writer, the morph animation and the meshes beside textures copy from the file.
   plan.load.keep_source = has(options.formats, BakeFormat::kGlb) || has(options.formats, BakeFormat::kMorph) ||
                           has_look(options.formats);
@@ -63,7 +63,7 @@ struct Ledger {
   BakeReport& report;
   std::mutex mutex;
 
-  std::string absolute(const std::string& relative) const { return options.out_dir + "/" + relative; }
+  std::string absolute(const std::string& relative) const { return options.plan.out_dir + "/" + relative; }
 
   void check_cancel() const { check_cancelled(options.cancel); }
 
@@ -359,9 +359,9 @@ bool BakeReport::any_failed() const {
 BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& options,
                 const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
-  OutputFolder out_folder(options.out_dir, !options.dry_run);  // before any check, as the command always made it
+  OutputFolder out_folder(options.plan.out_dir, !options.dry_run);  // before any check, as the command always made it
   BakeReport report;
-  if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
+  if (options.plan.shard.count == 0 || options.plan.shard.index >= options.plan.shard.count) throw InputError("bad shard");
   if (!has_gpu_path(options.mode) && options.backend != Backend::kAuto && options.backend != Backend::kCpu)
     throw InputError("--mode " + std::string(to_string(options.mode)) +
                      " runs on the CPU reference only; use --backend cpu (or auto)");
@@ -409,13 +409,13 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   }
   report.vertex_frames = work.vertex_frames;
   report.planned_bytes = work.bytes;
-  report.free_bytes = free_bytes(options.out_dir);
+  report.free_bytes = free_bytes(options.plan.out_dir);
   // Files already there are kept when they are equal; with --force the old ones stay (linked aside) until
   // their input has succeeded, so every new file needs its space.
   const bool keeps_existing = options.overwrite == Overwrite::kRefuseDifferent;
   const uint64_t needed = !keeps_existing ? work.bytes : work.bytes > work.existing ? work.bytes - work.existing : 0;
   if (needed > report.free_bytes)
-    throw InputError(options.out_dir + ": the bake would write up to " + byte_size(work.bytes) + " in " +
+    throw InputError(options.plan.out_dir + ": the bake would write up to " + byte_size(work.bytes) + " in " +
                      std::to_string(work.files) + " files, but the file system has " + byte_size(report.free_bytes) +
                      " free");
 
@@ -469,8 +469,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   // One sync of the file system instead of one per file (milliseconds each): after a power loss, a manifest
   // that exists only lists outputs that are on disk.
   const Clock::time_point sync = Clock::now();
-  std::filesystem::create_directories(options.out_dir);
-  sync_folder(options.out_dir);
+  std::filesystem::create_directories(options.plan.out_dir);
+  sync_folder(options.plan.out_dir);
   report.times.write += since(sync);
   report.manifest = write_manifest(plans, options, report);
   out_folder.keep_if_any_succeeded(report.inputs);

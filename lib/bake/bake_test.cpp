@@ -49,7 +49,7 @@ protected:
 
   BakeOptions options(const std::string& folder, unsigned formats = kAllFormats) {
     BakeOptions o;
-    o.out_dir = (root_ / folder).string();
+    o.plan.out_dir = (root_ / folder).string();
     o.formats = formats;
     o.jobs = 2;
     return o;
@@ -101,9 +101,9 @@ void check_bake_of(const std::string& input, const fs::path& out) {
   SCOPED_TRACE(input);
   const Asset asset = load_asset(input);
   BakeOptions o;
-  o.out_dir = out.string();
+  o.plan.out_dir = out.string();
   o.formats = kAllFormats;
-  o.frames.fps = modest_fps(asset);
+  o.plan.frames.fps = modest_fps(asset);
   o.jobs = 2;
   const BakeReport report = bake({input}, o);
   ASSERT_FALSE(report.any_failed()) << report.inputs[0].error;
@@ -191,7 +191,7 @@ TEST_F(BakeTest, BoneTextureFileIsTheShadersTexture) {
   ASSERT_FALSE(bake({input}, o).any_failed());
   const Asset asset = load_asset(input);
   const Clip& clip = asset.clips[0];
-  const std::vector<double> times = frame_times(clip, o.frames);
+  const std::vector<double> times = frame_times(clip, o.plan.frames);
   std::vector<JointTransforms> frames;
   for (double t : times) frames.push_back(joint_transforms(asset.skins[0], sample_pose(asset, &clip, t)));
   const BoneTexture expected = pack_bone_texture(frames);
@@ -230,7 +230,7 @@ TEST_F(BakeTest, ShardsTogetherEqualTheWholeBake) {
   std::set<std::string> listed;
   for (size_t i = 0; i < 3; ++i) {
     BakeOptions o = options("sharded");
-    o.shard = {i, 3};
+    o.plan.shard = {i, 3};
     const BakeReport r = bake(inputs, o);
     ASSERT_FALSE(r.any_failed());
     EXPECT_TRUE(fs::exists(root_ / "sharded" / ("manifest.shard-" + std::to_string(i) + "-of-3.json")));
@@ -269,7 +269,7 @@ TEST_F(BakeTest, TextureProfilesAreDeterministicAndShardsUnionToTheWhole) {
     ASSERT_FALSE(bake(inputs, with("b")).any_failed());
     for (size_t i = 0; i < 3; ++i) {
       BakeOptions o = with("sharded");
-      o.shard = {i, 3};
+      o.plan.shard = {i, 3};
       ASSERT_FALSE(bake(inputs, o).any_failed());
     }
     const auto a = tree(root_ / name / "a", true), b = tree(root_ / name / "b", true);
@@ -307,7 +307,7 @@ TEST_F(BakeTest, EveryBoneProfileSkinsTheSharedModelsAsTheBake) {
       BakeOptions o = options(std::string("shared_") + profile, unsigned(BakeFormat::kBones));
       o.textures.bones_profile = profile;
       o.mode = mode;
-      o.frames.last = 5;  // six frames of each clip (the shortest has six)
+      o.plan.frames.last = 5;  // six frames of each clip (the shortest has six)
       o.overwrite = Overwrite::kReplace;
       const BakeReport r = bake({model}, o);
       ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;
@@ -349,7 +349,7 @@ TEST_F(BakeTest, HalfBoneTexturesSkinWithinHalfPrecision) {
       }
       for (const BakeOutput& out : r.outputs) {
         if (!out.path.ends_with(".json")) continue;
-        EXPECT_EQ(nlohmann::json::parse(read_file(fs::path(o.out_dir) / out.path))["type"], "float16") << out.path;
+        EXPECT_EQ(nlohmann::json::parse(read_file(fs::path(o.plan.out_dir) / out.path))["type"], "float16") << out.path;
       }
     }
   }
@@ -364,7 +364,7 @@ TEST_F(BakeTest, PlannerDecimatesFramesToFitTheBytes) {
   const BakeReport r = bake({rig("twisted_cylinder.gltf")}, o);
   ASSERT_FALSE(r.any_failed()) << r.inputs[0].error;
   const nlohmann::json side = nlohmann::json::parse(read_file(root_ / "planned/twisted_cylinder/twist/vat.json"));
-  const size_t frames = frame_times(load_asset(rig("twisted_cylinder.gltf")).clips[0], o.frames).size();
+  const size_t frames = frame_times(load_asset(rig("twisted_cylinder.gltf")).clips[0], o.plan.frames).size();
   EXPECT_LT(side["frame_count"].get<size_t>(), frames);
   EXPECT_GT(side["plan"]["frame_step"].get<size_t>(), 1u);
   EXPECT_LE(side["plan"]["gpu_bytes"].get<uint64_t>(), 100000u);
@@ -465,13 +465,13 @@ TEST_F(BakeTest, InputsWritingToTheSameFolderAreRefusedBeforeAnythingIsWritten) 
 TEST_F(BakeTest, DryRunListsAndWritesNothing) {
   BakeOptions o = options("out", unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kVat));
   o.dry_run = true;
-  o.frames.fps = 4;
+  o.plan.frames.fps = 4;
   const BakeReport r = bake({rig("two_skins.gltf")}, o);
   EXPECT_FALSE(fs::exists(root_ / "out"));
   ASSERT_FALSE(r.outputs.empty());
   EXPECT_EQ(r.outputs.front().path.rfind("two_skins/", 0), 0u);
   const Asset asset = load_asset(rig("two_skins.gltf"));
-  EXPECT_EQ(r.outputs.size(), frame_times(asset.clips[0], o.frames).size() + 4)
+  EXPECT_EQ(r.outputs.size(), frame_times(asset.clips[0], o.plan.frames).size() + 4)
       << "frames + vat (2 EXR, the rest mesh, 1 JSON)";
 }
 

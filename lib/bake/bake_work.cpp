@@ -110,7 +110,7 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
       work.bytes = add(work.bytes, add(size, 160));  // and its line in the manifest
       ++work.files;
       struct stat st {};
-      if (::stat((options.out_dir + "/" + file).c_str(), &st) == 0 && S_ISREG(st.st_mode))
+      if (::stat((options.plan.out_dir + "/" + file).c_str(), &st) == 0 && S_ISREG(st.st_mode))
         work.existing = add(work.existing, uint64_t(st.st_size));
     }
   }

@@ -138,7 +138,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
     if (const std::string why = bone_size_problem(profile, {image.width, image.height}, o.max_size); !why.empty())
       throw InputError("clip " + clip.name + ": skin " + std::to_string(skin) + ": " + why);
     writers.push_back(std::make_unique<texture::BoneTextureWriter>(
-        options.out_dir + "/" + base + ".exr", options.out_dir + "/" + base + ".json", std::move(image),
+        options.plan.out_dir + "/" + base + ".exr", options.plan.out_dir + "/" + base + ".json", std::move(image),
         bone_texel_type(o), asset, skin, clip.times, clip.fps, o.exr_compression));
     bases.push_back(base);
   }
@@ -203,7 +203,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
   if (writers.empty()) return result;
   // The skinned mesh the textures deform, first: a reader that finds a texture finds its mesh.
   const std::string mesh_name = clip.folder + "/" + kBonesMeshFile;
-  AtomicFile mesh(options.out_dir + "/" + mesh_name, false);
+  AtomicFile mesh(options.plan.out_dir + "/" + mesh_name, false);
   mesh.write(texture::encode_bones_mesh_glb(asset, input.instances, input.stem, look));
   if (commit.overwrite == Overwrite::kRefuseDifferent && mesh.conflicts())
     throw OutputError(mesh.path() + ": exists with different contents; not overwritten");

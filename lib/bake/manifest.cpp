@@ -52,14 +52,14 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
       {"backend", {{"name", report.gpu.backend}, {"renderer", report.gpu.renderer}, {"gl_version", report.gpu.version}}},
       {"mode", to_string(options.mode)},
       {"formats", formats},
-      {"shard", {{"index", options.shard.index}, {"count", options.shard.count}}},
+      {"shard", {{"index", options.plan.shard.index}, {"count", options.plan.shard.count}}},
       {"inputs", inputs},
       {"outputs", outputs},
   };
   // Where the glb frames' images went, only where glb frames are written: other manifests stay as they were.
   if (options.formats & unsigned(BakeFormat::kGlb)) manifest["glb_images"] = to_string(options.glb_images);
   // --max-influences only where given: the manifests of other runs stay as they were.
-  if (options.load.max_influences > 0) manifest["max_influences"] = options.load.max_influences;
+  if (options.plan.load.max_influences > 0) manifest["max_influences"] = options.plan.load.max_influences;
   // Texture settings only where textures are written: the manifests of mesh bakes stay as they were.
   if (options.formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones))) {
     const TextureOptions& t = options.textures;
@@ -86,7 +86,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     }
     manifest["morph"] = std::move(morph);
   }
-  return job_manifest::write(options.out_dir, job_manifest::file_name("manifest", options.shard), manifest);
+  return job_manifest::write(options.plan.out_dir, job_manifest::file_name("manifest", options.plan.shard), manifest);
 }
 
 }  // namespace dqskin::bake_detail

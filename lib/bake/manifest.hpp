@@ -6,7 +6,7 @@
 
 namespace dqskin::bake_detail {
 
-// Writes manifest.json (or manifest.shard-I-of-N.json) into options.out_dir; returns its path.
+// Writes manifest.json (or manifest.shard-I-of-N.json) into options.plan.out_dir; returns its path.
 std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOptions& options, const BakeReport& report);
 
 }  // namespace dqskin::bake_detail

@@ -74,10 +74,10 @@ class MorphBakeTest : public testing::Test {
 protected:
   BakeOptions options(const fs::path& out, double fps = 10) const {
     BakeOptions o;
-    o.out_dir = out.string();
+    o.plan.out_dir = out.string();
     o.formats = kMorph;
     o.backend = Backend::kCpu;  // the reference, as the test plays both files on it
-    o.frames.fps = fps;
+    o.plan.frames.fps = fps;
     o.jobs = 2;
     return o;
   }
@@ -91,7 +91,7 @@ protected:
 void check_morph_bake(const std::string& input, const BakeOptions& o, json& manifest) {
   const BakeReport report = bake({input}, o);
   ASSERT_FALSE(report.any_failed()) << report.inputs[0].error;
-  const fs::path out = o.out_dir;
+  const fs::path out = o.plan.out_dir;
 
   // Exactly the planned files are there.
   BakeOptions dry = o;
@@ -296,7 +296,7 @@ TEST(MorphViewerWarnings, APrimitivePastTheTexelsWebGl2GuaranteesIsAWarning) {
 
 TEST_F(MorphBakeTest, FrameTimesThatDoNotIncreaseAreRefused) {
   BakeOptions o = options(root_ / "times");
-  o.frames.times = {0.5, 0.25};
+  o.plan.frames.times = {0.5, 0.25};
   const BakeReport r = bake({model_path("bending_arm.gltf")}, o);
   ASSERT_TRUE(r.any_failed());
   EXPECT_NE(r.inputs[0].error.find("clip bend: a morph-target animation needs increasing frame times"), std::string::npos)

@@ -164,7 +164,7 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
   });
   measure.finish(info, what_);
 
-  const std::string folder = options.out_dir + "/" + clip.folder;
+  const std::string folder = options.plan.out_dir + "/" + clip.folder;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem, look);
   writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));

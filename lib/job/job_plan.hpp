@@ -15,15 +15,6 @@
 
 namespace dqskin {
 
-struct PlanOptions {
-  std::string out_dir;  // where the files go: names are checked against its file system's limits
-  LoadOptions load;     // resource roots and limits for reading the inputs
-  std::string clips = "all";  // select_clips: all, a name or an index
-  FrameSpec frames;
-  int scene = -1;  // choose_scene
-  Shard shard;
-};
-
 struct ClipPlan {
   const Clip* clip = nullptr;     // null: the rest pose of a file without animations
   std::string name;               // the clip's name, for reports and manifests

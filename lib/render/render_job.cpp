@@ -98,7 +98,7 @@ public:
     check_cancel();
     const std::vector<size_t> mine = clip.my_frames();
     if (mine.empty()) return;
-    journal_.make_folders(options_.out_dir + "/" + clip.folder);
+    journal_.make_folders(options_.plan.out_dir + "/" + clip.folder);
 
     // The box (and the largest mode difference) over every frame, not only this shard's, so that every
     // shard frames the same camera and colors with the same scale. A glTF camera needs no box.
@@ -132,11 +132,11 @@ public:
     if (options_.sheet) sheet.emplace(options_.sheet_cell);
     std::unique_ptr<GifWriter> gif;
     // Shards write into one folder, each with its own frames: their sheets and GIFs get the shard's name.
-    const std::string suffix = options_.shard.whole()
+    const std::string suffix = options_.plan.shard.whole()
                                    ? ""
-                                   : "_shard" + std::to_string(options_.shard.index) + "of" + std::to_string(options_.shard.count);
+                                   : "_shard" + std::to_string(options_.plan.shard.index) + "of" + std::to_string(options_.plan.shard.count);
     const std::string gif_file = clip.folder + "/animation" + suffix + ".gif";
-    if (options_.gif) gif = std::make_unique<GifWriter>(options_.out_dir + "/" + gif_file, clip.fps > 0 ? clip.fps : options_.frames.fps);
+    if (options_.gif) gif = std::make_unique<GifWriter>(options_.plan.out_dir + "/" + gif_file, clip.fps > 0 ? clip.fps : options_.plan.frames.fps);
 
     // Encoding and writing a frame (PNG compression, the sheet's resize, the GIF's palette) runs on a
     // thread of its own, in frame order, while this one renders the next frame: GL stays on this thread.
@@ -144,7 +144,7 @@ public:
       concurrency::OrderedWorker<std::pair<size_t, Image>> writer([&](const std::pair<size_t, Image>& item) {
         const auto& [f, image] = item;
         const std::string relative = clip.frame_file(f, extension(options_.format));
-        write_image(options_.out_dir + "/" + relative, image, options_.format, {options_.overwrite, &journal_});
+        write_image(options_.plan.out_dir + "/" + relative, image, options_.format, {options_.overwrite, &journal_});
         report_.outputs.push_back(relative);
         if (sheet) sheet->add(image, clip.numbers[f]);
         if (gif) gif->add(image);
@@ -165,7 +165,7 @@ public:
     }
     if (sheet) {
       const std::string relative = clip.folder + "/sheet" + suffix + ".png";
-      sheet->write(options_.out_dir + "/" + relative, {options_.overwrite, &journal_});
+      sheet->write(options_.plan.out_dir + "/" + relative, {options_.overwrite, &journal_});
       report_.outputs.push_back(relative);
     }
     if (gif) {
@@ -225,13 +225,13 @@ bool RenderReport::any_failed() const {
 RenderReport render(const std::vector<std::string>& inputs, const RenderOptions& options,
                     const std::function<void(const JobProgress&)>& progress) {
   const Clock::time_point start = Clock::now();
-  OutputFolder out_folder(options.out_dir);  // before any check, as the command always made it
-  if (options.shard.count == 0 || options.shard.index >= options.shard.count) throw InputError("bad shard");
+  OutputFolder out_folder(options.plan.out_dir);  // before any check, as the command always made it
+  if (options.plan.shard.count == 0 || options.plan.shard.index >= options.plan.shard.count) throw InputError("bad shard");
   // The backend's context draws; where the deformation runs is deform_path()'s decision.
   if (options.sheet && (options.sheet_cell < 1 || options.sheet_cell > 4096))
     throw InputError("--sheet-cell must be 1 to 4096 pixels");
 
-  PlanOptions plan_options{options.out_dir, options.load, options.clips, options.frames, options.scene, options.shard};
+  PlanOptions plan_options = options.plan;
   plan_options.load.decoded_images = true;  // the renderer decodes the textures
   double load_seconds = 0;
   const std::vector<InputPlan> plans = plan_inputs(inputs, plan_options, load_seconds);
@@ -263,8 +263,8 @@ RenderReport render(const std::vector<std::string>& inputs, const RenderOptions&
   // As bake: a render that drew something records it (render-manifest.json, which also clears what a
   // killed run of this shard left), after one sync, so that the record only lists files on disk.
   if (std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
-    std::filesystem::create_directories(options.out_dir);
-    sync_folder(options.out_dir);
+    std::filesystem::create_directories(options.plan.out_dir);
+    sync_folder(options.plan.out_dir);
     report.manifest = render_detail::write_render_manifest(plans, options, report);
   }
   out_folder.keep_if_any_succeeded(report.inputs);

@@ -61,7 +61,7 @@ std::string write_render_manifest(const std::vector<InputPlan>& plans, const Ren
   // The images were written by OpenImageIO from memory we do not keep: hashed from the files, on every core.
   std::vector<json> outputs(report.outputs.size());
   concurrency::parallel_for(outputs.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t k) {
-    const std::string path = options.out_dir + "/" + report.outputs[k];
+    const std::string path = options.plan.out_dir + "/" + report.outputs[k];
     outputs[k] = {{"path", report.outputs[k]},
                   {"size", uint64_t(std::filesystem::file_size(path))},
                   {"sha256", sha256_file(path)}};
@@ -72,13 +72,13 @@ std::string write_render_manifest(const std::vector<InputPlan>& plans, const Ren
       {"deformer", report.deformer},
       {"mode", to_string(options.mode)},
       {"render", settings(options)},
-      {"shard", {{"index", options.shard.index}, {"count", options.shard.count}}},
+      {"shard", {{"index", options.plan.shard.index}, {"count", options.plan.shard.count}}},
       {"inputs", std::move(inputs)},
       {"outputs", std::move(outputs)},
   };
   // --max-influences only where given: the manifests of other runs stay as they were.
-  if (options.load.max_influences > 0) manifest["max_influences"] = options.load.max_influences;
-  return job_manifest::write(options.out_dir, job_manifest::file_name("render-manifest", options.shard), manifest);
+  if (options.plan.load.max_influences > 0) manifest["max_influences"] = options.plan.load.max_influences;
+  return job_manifest::write(options.plan.out_dir, job_manifest::file_name("render-manifest", options.plan.shard), manifest);
 }
 
 }  // namespace dqskin::render_detail

@@ -11,7 +11,7 @@
 
 namespace dqskin::render_detail {
 
-// Hashes report.outputs (on every core) and writes the manifest into options.out_dir; returns its path.
+// Hashes report.outputs (on every core) and writes the manifest into options.plan.out_dir; returns its path.
 std::string write_render_manifest(const std::vector<InputPlan>& plans, const RenderOptions& options,
                                   const RenderReport& report);
 

@@ -100,7 +100,7 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
                     const std::function<void(const JobProgress&)>& progress) {
   using namespace report_detail;
   const Clock::time_point start = Clock::now();
-  OutputFolder out_folder(options.out_dir);  // before any check, as the command always made it
+  OutputFolder out_folder(options.plan.out_dir);  // before any check, as the command always made it
   if (options.worst_frames < 1 || options.worst_frames > 16) throw InputError("--worst-frames must be 1 to 16");
   if (options.image_size < 16 || options.image_size > 4096) throw InputError("--image-size must be 16 to 4096 pixels");
   const ReportThresholds& t = options.thresholds;
@@ -108,9 +108,11 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
       !std::isfinite(t.tolerance) || !std::isfinite(t.twist_degrees) || !std::isfinite(t.candy_wrapper) || !std::isfinite(t.dqs_bulge))
     throw InputError("thresholds must be finite and not negative");
 
-  PlanOptions plan_options{options.out_dir, options.load, options.clips, options.frames, options.scene, Shard{}};
+  // Each input's report.json covers all its animations: there is no part of it for a shard to make.
+  if (!options.plan.shard.whole()) throw InputError("a report is made whole; it cannot be sharded");
+
   double load_seconds = 0;
-  const std::vector<InputPlan> plans = plan_inputs(inputs, plan_options, load_seconds);
+  const std::vector<InputPlan> plans = plan_inputs(inputs, options.plan, load_seconds);
 
   ReportResult result;
   for (const InputPlan& plan : plans)
@@ -132,7 +134,7 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
         InputData data = measure_input(plan, options, counter);
         // A report is one output: its sheets, report.json and report.html are written to temporaries and
         // committed together once all are complete, so that a failure or a signal leaves none of them.
-        const std::string folder = options.out_dir + "/" + plan.stem;
+        const std::string folder = options.plan.out_dir + "/" + plan.stem;
         journal.make_folders(folder);
         std::vector<std::unique_ptr<AtomicFile>> files;
         {

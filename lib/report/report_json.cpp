@@ -48,7 +48,7 @@ nlohmann::json report_json(const InputData& input, const ReportOptions& options)
                   {"skins", input.skins},
                   {"max_influences", input.max_influences}};
   doc["diagonal"] = number(input.diagonal);
-  doc["settings"] = {{"fps", options.frames.fps},
+  doc["settings"] = {{"fps", options.plan.frames.fps},
                      {"tolerance", t.tolerance_relative ? t.tolerance : t.tolerance / std::max(input.diagonal, 1e-300)},
                      {"tolerance_length", tolerance_length(t, input.diagonal)},
                      {"tolerance_relative", t.tolerance_relative},

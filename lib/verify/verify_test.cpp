@@ -43,13 +43,13 @@ class VerifyTest : public testing::Test {
 protected:
   void bake_into(const std::string& folder, Shard shard = {}, BlendMode mode = BlendMode::kDqs) {
     BakeOptions o;
-    o.out_dir = (root_ / folder).string();
+    o.plan.out_dir = (root_ / folder).string();
     o.formats = kFormats;
     o.backend = Backend::kFastCpu;
     o.mode = mode;
     o.jobs = 2;
-    o.shard = shard;
-    o.frames.fps = 10;
+    o.plan.shard = shard;
+    o.plan.frames.fps = 10;
     ASSERT_FALSE(bake({rig_}, o).any_failed());
   }
   std::string at(const std::string& folder) const { return (root_ / folder).string(); }
@@ -206,11 +206,11 @@ TEST_F(VerifyTest, MergeReplacesAnUnreadableManifestAndKeepsFailedInputs) {
   const std::string missing = (root_ / "missing.gltf").string();
   auto bake_both = [&](const std::string& folder, Shard shard) {
     BakeOptions o;
-    o.out_dir = at(folder);
+    o.plan.out_dir = at(folder);
     o.formats = kFormats;
     o.backend = Backend::kFastCpu;
-    o.shard = shard;
-    o.frames.fps = 10;
+    o.plan.shard = shard;
+    o.plan.frames.fps = 10;
     EXPECT_TRUE(bake({rig_, missing}, o).any_failed());
   };
   bake_both("whole", {});

@@ -50,10 +50,9 @@ struct MorphOptions {
 };
 
 struct BakeOptions {
-  std::string out_dir;
-  LoadOptions load;  // resource roots and limits for reading the inputs
-  std::string clips = "all";  // select_clips: all, a name or an index
-  FrameSpec frames;
+  // Output folder, inputs' loading, animations, frames, scene, and the shard this process bakes (its units
+  // of the plan, lib/job/job_plan.hpp).
+  PlanOptions plan;
   BlendMode mode = BlendMode::kDqs;
   unsigned formats = unsigned(BakeFormat::kGlb);
   // Where the glb frames' images go. Shared by default: a clip's frames are used together, from their
@@ -64,8 +63,6 @@ struct BakeOptions {
   MorphOptions morph;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
-  int scene = -1;  // choose_scene
-  Shard shard;  // this process bakes the shard's units of the plan (lib/job/job_plan.hpp)
   unsigned jobs = 0;  // encoder threads; 0: one per core
   bool dry_run = false;  // plan and list, write nothing, start no GPU
   Overwrite overwrite = Overwrite::kRefuseDifferent;

@@ -2,6 +2,9 @@
 // (bake, render, and the commands to come) reports per input, how it reports progress, and how it stops.
 #pragma once
 
+#include "dqskin/animation.hpp"
+#include "dqskin/load.hpp"
+
 #include <atomic>
 #include <cstddef>
 #include <functional>
@@ -37,6 +40,19 @@ struct Shard {
 
 // Parses "I/N" (0 ≤ I < N), the --shard flag. Throws InputError.
 Shard parse_shard(const std::string& text);
+
+// What a job is planned from (lib/job/job_plan.hpp): where its files go, how its inputs are read, which
+// animations, frames and scene, and which shard of the work this process does. Every command that walks
+// inputs × animations × frames embeds one (BakeOptions::plan, RenderOptions::plan, ReportOptions::plan),
+// so that they read the same settings the same way.
+struct PlanOptions {
+  std::string out_dir;  // where the files go: names are checked against its file system's limits
+  LoadOptions load;     // resource roots and limits for reading the inputs
+  std::string clips = "all";  // select_clips: all, a name or an index
+  FrameSpec frames;
+  int scene = -1;  // choose_scene; -1: the file's default scene
+  Shard shard;     // the whole job unless set
+};
 
 // Counts a job's finished frames over all its inputs and reports each step; safe to call from several
 // threads. Frames of an input that fails later stay counted: progress shows work done, not work kept.

@@ -30,14 +30,11 @@ namespace dqskin {
 // deformed twice: once for its bounding box over every frame (so that all frames, and all shards, share
 // one camera), once to render this shard's frames.
 struct RenderOptions {
-  std::string out_dir;
-  LoadOptions load;  // resource roots and limits for reading the inputs
-  std::string clips = "all";
-  FrameSpec frames;
+  // Output folder, inputs' loading, animations, frames, scene, and the shard this process renders (its
+  // frames of the plan, lib/job/job_plan.hpp).
+  PlanOptions plan;
   BlendMode mode = BlendMode::kDqs;  // lbs or dqs: the geometry drawn (mode-diff deforms with both)
   Backend backend = Backend::kAuto;  // draws on its context; cpu: deformed on the CPU reference
-  int scene = -1;
-  Shard shard;  // this process renders the shard's frames of the plan (lib/job/job_plan.hpp)
   RendererOptions renderer;
   CameraOptions camera;
   // --camera: the node (by name) whose glTF camera the frames are seen through, following its animation;

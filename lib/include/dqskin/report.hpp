@@ -29,11 +29,9 @@ struct ReportThresholds {
 };
 
 struct ReportOptions {
-  std::string out_dir;
-  LoadOptions load;
-  std::string clips = "all";
-  FrameSpec frames;
-  int scene = -1;
+  // Output folder, inputs' loading, animations, frames and scene. A report is made whole (each input's
+  // report.json covers all its animations): plan.shard must be the whole job (InputError otherwise).
+  PlanOptions plan;
   ReportThresholds thresholds;
   int image_size = 320;      // contact-sheet cell (the render), pixels square
   int worst_frames = 3;      // frames per contact sheet
