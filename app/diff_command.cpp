@@ -34,9 +34,7 @@ struct DiffSettings {
   bool relative = false;
   std::string mode = "dqs";
   std::string backend = "auto";
-  std::string anim = "all";
-  double fps = 0;  // 0: key times and midpoints
-  std::string times;
+  FrameSelection selection;  // bake's flags; none given: key times of both files and the midpoints
   int image_size = 512;
   bool verbose = false;
   LoadSettings load;
@@ -58,13 +56,11 @@ int run_geometry_diff(const DiffSettings& s) {
   o.load = to_load_options(s.load);
   if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
   if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
-  o.clips = s.anim;
-  if (s.fps != 0) {
-    if (!(s.fps > 0 && s.fps <= 1000)) throw InputError("--fps must be above 0 and at most 1000");
-    o.fps = s.fps;
-  }
-  if (!s.times.empty()) o.times = parse_times(s.times);
-  if (o.fps && !o.times.empty()) throw InputError("give --fps or --times, not both");
+  const FrameSelection& frames = s.selection;
+  o.clips = frames.anim;
+  if (frames.fps && !(*frames.fps > 0 && *frames.fps <= 1000)) throw InputError("--fps must be above 0 and at most 1000");
+  if (frames.chosen()) o.frames = to_frame_spec(frames);
+  if (frames.fps && !frames.times.empty()) throw InputError("give --fps or --times, not both");
   if (s.image_size < 64 || s.image_size > 8192) throw InputError("--image-size must be from 64 to 8192 pixels");
   o.image_size = s.image_size;
   o.thresholds = s.thresholds;
@@ -164,15 +160,8 @@ Command add_diff_command(CLI::App& app) {
   diff_cmd->add_option("--backend", diff.backend, "glTF: deformer, as bake's --backend")
       ->type_name("auto|egl|osmesa|fast-cpu|cpu")
       ->capture_default_str();
-  diff_cmd->add_option("--anim", diff.anim, "glTF: A's animations to compare: all, a name or an index")
-      ->type_name("NAME")
-      ->capture_default_str();
-  diff_cmd->add_option("--fps", diff.fps,
-                       "glTF: compare every 1/FPS s from 0 to A's last key, instead of every key time of both "
-                       "files and the midpoints between them")
-      ->type_name("FPS");
-  diff_cmd->add_option("--times", diff.times, "glTF: compare at these times in seconds (comma-separated)")
-      ->type_name("T,...");
+  // As bake's, on A's animations; without any of them, every key time of both files and the midpoints.
+  add_frame_selection(*diff_cmd, diff.selection, "compare", false);
   diff_cmd->add_option("--image-size", diff.image_size, "glTF: pixels of the heat maps --out writes")
       ->type_name("PX")
       ->capture_default_str();
@@ -195,7 +184,9 @@ Command add_diff_command(CLI::App& app) {
       "Heat maps: each pixel's largest channel difference; black at most --fail, then viridis from dark purple (just\n"
       "over --fail) to yellow (the pair's max error, printed in the report); white where it is NaN or infinite.\n"
       "Two glTF files (.gltf, .glb): both are deformed with --mode at the same times, A's clips paired with B's\n"
-      "by name, then by index. Each vertex of A is followed through the animation at its closest point on B's\n"
+      "by name, then by index. The times: every key time of both files and the midpoints between them, or those\n"
+      "--fps (up to 1000), --frames, --keys or --times choose on A's clip, as bake samples it.\n"
+      "Each vertex of A is followed through the animation at its closest point on B's\n"
       "surface at the rest pose (or, where the rest pose crumples the mesh, at the first clip's first time or the\n"
       "bind pose), and each vertex of B on A's (the identity when both have the same vertices in the same order);\n"
       "vertices on no triangle are left out. Normals: vertex normals where both files have one smooth normal,\n"

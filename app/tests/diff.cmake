@@ -44,6 +44,18 @@ set(slight_metrics "max 0.00392157 at \\(1, 0, G\\)  mean 0.000326797  RMS 0.001
 
 dqskin_diff_test(help 0 ARGS diff --help
   STDOUT "A.*B.*--fail VAL=1e-06 .*--failpercent PERCENT=0 .*--hardfail VAL=inf .*--warn VAL=1e-06 .*--warnpercent PERCENT=0 .*--hardwarn VAL=inf .*--out.*--json.*--junit.*Exit status: 0 all pass, 1 warnings but no failure, 2 a failure")
+# Two glTF files take bake's frame flags (--anim, --fps, --frames, --keys, --times), read as bake reads them,
+# on A's clip; without them the key times of both files and the midpoints (bending_arm: 3 keys, 5 times).
+set(diff_arm ${PROJECT_SOURCE_DIR}/testdata/bending_arm.gltf)
+dqskin_diff_test(help_lists_the_frame_flags 0 ARGS diff --help STDOUT "--anim [^\n]*\n *--fps [^\n]*\n *--frames [^\n]*\n *--keys [^\n]*\n *--times ")
+dqskin_diff_test(gltf_default_times 0 ARGS diff ${diff_arm} ${diff_arm} --backend cpu STDOUT "PASS  clip bend[^\n]*; 5 frames\n")
+dqskin_diff_test(gltf_frames_as_bake 0 ARGS diff ${diff_arm} ${diff_arm} --backend cpu --frames 0:2 STDOUT "PASS  clip bend[^\n]*; 3 frames\n")
+dqskin_diff_test(gltf_keys_of_a 0 ARGS diff ${diff_arm} ${diff_arm} --backend cpu --keys STDOUT "PASS  clip bend[^\n]*; 3 frames\n")
+dqskin_diff_test(gltf_fps_grid 0 ARGS diff ${diff_arm} ${diff_arm} --backend cpu --fps 10 STDOUT "PASS  clip bend[^\n]*; 11 frames\n")
+dqskin_diff_test(gltf_fps_and_times_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --fps 10 --times 0
+  STDERR "^dqskin: give --fps or --times, not both\n$")
+dqskin_diff_test(gltf_two_ways_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --keys --frames 0:1
+  STDERR "^dqskin: --frames, --keys and --times choose frames in different ways; give one of them\n$")
 dqskin_diff_test(identical_passes 0 ARGS diff ${d}/a.ppm ${d}/same.ppm
   STDOUT "^PASS  [^\n]*/a.ppm  ${pass_line}\nsummary: PASS \\(1 pair: 1 pass, 0 warn, 0 fail\\)\n$" STDERR "^$")
 # idiff's defaults: a single 8-bit step is over --fail 1e-6.

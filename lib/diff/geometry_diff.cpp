@@ -249,12 +249,8 @@ private:
   }
 
   std::vector<double> clip_times(const Clip* clip_a, const Clip* clip_b) const {
-    if (!options_.times.empty()) return options_.times;
-    if (options_.fps && clip_a) {
-      FrameSpec spec;
-      spec.fps = *options_.fps;
-      return frame_times(*clip_a, spec);
-    }
+    if (options_.frames && !options_.frames->times.empty()) return options_.frames->times;
+    if (options_.frames && clip_a) return frame_times(*clip_a, *options_.frames);
     return diff_detail::comparison_times(clip_a, clip_b);
   }
 

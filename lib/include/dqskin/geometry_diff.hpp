@@ -4,6 +4,7 @@
 // reference, B the candidate. The reports are dqskin/geometry_report.hpp's.
 #pragma once
 
+#include "dqskin/animation.hpp"
 #include "dqskin/deformer.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/image_diff.hpp"
@@ -25,9 +26,9 @@ struct GeometryDiffOptions {
   unsigned threads = 0;              // CPU work (deforming, comparing): 0 for every core
   std::string clips = "all";         // A's clips to compare: all, a name or an index
   // Times: by default the union of both clips' key times and the midpoints between consecutive ones
-  // (where resampling errors are largest); else every 1/fps from 0 to A's last key, or explicit times.
-  std::optional<double> fps;
-  std::vector<double> times;
+  // (where resampling errors are largest); else the frames of A's clip under this FrameSpec (the fps grid
+  // from 0 to A's last key, a range of it, A's key times), or its explicit times for every clip.
+  std::optional<FrameSpec> frames;
   // idiff's thresholds, applied to the distance between corresponding surface points: in scene units, or
   // with `relative` as fractions of the clip's bounding-box diagonal (A's surface over every frame).
   // Percentages count vertex samples (each vertex of both sides at each frame).
