@@ -1,6 +1,6 @@
 // The vertex-animation-texture (VAT) formats dqskin writes (internal to lib/texture and lib/bake): a
 // runtime's layout chosen by profile, the texel type, where normals go, and the geometry of the image,
-// texel by texel. README "Vertex-animation texture profiles" documents each with its reading shader.
+// texel by texel. docs/formats.md, "Vertex-animation textures", documents each with its reading shader.
 //
 //   dqskin   shared/DESIGN.md's layout: absolute world-space positions, frame-major rows.
 //   openvat  The OpenVAT Blender add-on and its engine kits (sharpen3d/openvat): offsets from the rest
