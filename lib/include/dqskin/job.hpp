@@ -27,8 +27,8 @@ struct JobProgress {
   std::string input, clip;  // what is being worked on now
 };
 
-// Which part of a job this process does: the units of work u with u mod count == index (docs/DESIGN.md
-// §6.5), so that N processes started with 0/N … N-1/N together do the whole job once.
+// Which part of a job this process does: the units of work u with u mod count == index
+// (docs/DESIGN.md §6.5), so that N processes started with 0/N … N-1/N together do the whole job once.
 struct Shard {
   size_t index = 0, count = 1;
   bool owns(size_t unit) const { return unit % count == index; }
