@@ -9,9 +9,9 @@
 #include "progress.hpp"
 
 #include "dqskin/bake.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../lib/base/byte_size.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/output_journal.hpp"
+#include "../lib/base/output_journal.hpp"
 #include "dqskin/version.hpp"
 
 #include <nlohmann/json.hpp>

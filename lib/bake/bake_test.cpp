@@ -6,8 +6,8 @@
 #include "dqskin/deformer.hpp"
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/load.hpp"
-#include "dqskin/sha256.hpp"
-#include "../io/ply_test_reader.hpp"
+#include "../base/sha256.hpp"
+#include "../test_support/ply_test_reader.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/read_file.hpp"
 

@@ -7,8 +7,8 @@
 
 #include "dqskin/error.hpp"
 
-#include "../concurrency/ordered_worker.hpp"
-#include "../concurrency/parallel_for.hpp"
+#include "../base/ordered_worker.hpp"
+#include "../base/parallel_for.hpp"
 #include "fast_rest_data.hpp"
 
 #include <algorithm>

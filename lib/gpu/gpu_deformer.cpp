@@ -3,7 +3,7 @@
 // back, with two batches in flight and the sink on a thread of its own.
 #include "dqskin/gpu_deform.hpp"
 
-#include "../concurrency/ordered_worker.hpp"
+#include "../base/ordered_worker.hpp"
 #include "skin_kernel.hpp"
 
 #include <algorithm>

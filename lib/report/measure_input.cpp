@@ -3,11 +3,11 @@
 #include "closed_volume.hpp"
 #include "joint_metrics.hpp"
 #include "verdict.hpp"
-#include "../concurrency/parallel_for.hpp"
+#include "../base/parallel_for.hpp"
 
 #include "dqskin/deformer.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/sha256.hpp"
+#include "../base/sha256.hpp"
 
 #include <algorithm>
 #include <array>

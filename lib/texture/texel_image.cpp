@@ -1,7 +1,7 @@
 #include "texel_image.hpp"
 
-#include "../io/image_file.hpp"
-#include "../io/oiio_message.hpp"
+#include "../base/image_file.hpp"
+#include "../base/oiio_message.hpp"
 #include "dqskin/error.hpp"
 
 #include <Imath/half.h>

@@ -8,7 +8,7 @@
 #include "dqskin/animation.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
-#include "dqskin/texture_output.hpp"
+#include "texture_output.hpp"
 #include "../test_support/read_file.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/test_models.hpp"

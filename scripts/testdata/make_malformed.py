@@ -241,7 +241,7 @@ COUNT = "an integer of at least 1"
 
 
 def schema_value_cases(cat, base):
-    """One case per rule of lib/gltf/schema_values.cpp: a value that glTF 2.0's schema forbids and that
+    """One case per rule of lib/load/schema_values.cpp: a value that glTF 2.0's schema forbids and that
     tinygltf would read past (a fraction, a negative number, an index beyond 32 bits that it truncates, a
     string, a value not in the enum). Structure, geometry, skins and animation fail the input with a line
     naming the value; appearance loads with a warning saying what happens instead."""

@@ -10,9 +10,6 @@
 
 namespace dqskin {
 
-// The path as glTF spells it ("translation", "rotation", "scale", "weights"), for messages.
-const char* target_path_name(TargetPath path);
-
 // Every node's world matrix and morph weights at one time.
 struct Pose {
   std::vector<Mat4<double>> world;           // per node

@@ -5,7 +5,7 @@
 #include "dqskin/animation.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/deformer.hpp"
-#include "dqskin/glb_output.hpp"
+#include "dqskin/glb_images.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/job.hpp"
 #include "dqskin/load.hpp"
@@ -65,7 +65,7 @@ struct BakeOptions {
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   int scene = -1;  // choose_scene
-  Shard shard;  // this process bakes the shard's units of the plan (dqskin/job_plan.hpp)
+  Shard shard;  // this process bakes the shard's units of the plan (lib/job/job_plan.hpp)
   unsigned jobs = 0;  // encoder threads; 0: one per core
   bool dry_run = false;  // plan and list, write nothing, start no GPU
   Overwrite overwrite = Overwrite::kRefuseDifferent;

@@ -37,7 +37,7 @@ struct RenderOptions {
   BlendMode mode = BlendMode::kDqs;  // lbs or dqs: the geometry drawn (mode-diff deforms with both)
   Backend backend = Backend::kAuto;  // draws on its context; cpu: deformed on the CPU reference
   int scene = -1;
-  Shard shard;  // this process renders the shard's frames of the plan (dqskin/job_plan.hpp)
+  Shard shard;  // this process renders the shard's frames of the plan (lib/job/job_plan.hpp)
   RendererOptions renderer;
   CameraOptions camera;
   // --camera: the node (by name) whose glTF camera the frames are seen through, following its animation;
