@@ -4,7 +4,7 @@
 #     page under docs/, a Markdown link target (DESIGN.md#anchor) is docs/DESIGN.md too;
 #   - ../shared/ other than ../shared/testdata (the sample models, which the tests skip without);
 #   - docs/DESIGN.md §N or §N.M (also "docs/DESIGN.md §4.1, §4.2") where docs/DESIGN.md has no heading
-#     "## N." or "### N.M".
+#     "## N." or "### N.M", or whose section is broken onto the next line, where it would go unchecked.
 # Usage: cmake -DROOT=<the source folder> -P cmake/doc_references.cmake
 # Every text file under ROOT is read except build trees (build/, or any top-level folder holding a
 # CMakeCache.txt), .git, node_modules and this script, whose patterns would match themselves.
@@ -74,6 +74,11 @@ foreach(file IN LISTS files)
   file(READ "${ROOT}/${file}" content)
   if(NOT content MATCHES "DESIGN\\.md|STYLE\\.md|\\.\\./shared")
     continue()
+  endif()
+  # A section broken onto the next line would escape the section check below, which reads line by line.
+  if(content MATCHES "docs/DESIGN\\.md[ \t]*\n[ \t]*(//|#|\\*)?[ \t]*§")
+    list(APPEND problems
+         "${file}: cites docs/DESIGN.md with its section on the next line: keep 'docs/DESIGN.md §N.M' on one line")
   endif()
   string(REPLACE ";" "${semicolon}" content "${content}")
   string(REPLACE "[" "${open_bracket}" content "${content}")
