@@ -1,7 +1,7 @@
 # The docs.references test (cmake -P): every reference to a document stays inside the repository, and
 # every section of docs/DESIGN.md that something cites exists. It fails, one line per reference, on:
-#   - DESIGN.md or STYLE.md cited other than as docs/DESIGN.md (a document a clone does not have); in a
-#     page under docs/, a Markdown link target (DESIGN.md#anchor) is docs/DESIGN.md too;
+#   - DESIGN.md cited other than as docs/DESIGN.md, and STYLE.md cited at all (documents a clone does not
+#     have); in a page under docs/, a Markdown link target (DESIGN.md#anchor) is docs/DESIGN.md too;
 #   - ../shared/ other than ../shared/testdata (the sample models, which the tests skip without);
 #   - docs/DESIGN.md §N or §N.M (also "docs/DESIGN.md §4.1, §4.2") where docs/DESIGN.md has no heading
 #     "## N." or "### N.M", or whose section is broken onto the next line, where it would go unchecked.
@@ -112,7 +112,8 @@ foreach(file IN LISTS files)
         string(REPLACE "§" "" number "${number}")
         math(EXPR citations "${citations} + 1")
         if(NOT number IN_LIST sections)
-          list(APPEND problems "${file}: cites docs/DESIGN.md §${number}, which docs/DESIGN.md does not have: ${excerpt}")
+          list(APPEND problems
+               "${file}: cites docs/DESIGN.md §${number}, which docs/DESIGN.md does not have: ${excerpt}")
         endif()
       endforeach()
     endforeach()
