@@ -1,4 +1,4 @@
-// `dqskin bake` as a library call (shared/DESIGN.md, the whole data flow): glTF files in, per-frame
+// `dqskin bake` as a library call (docs/DESIGN.md §1, the whole data flow): glTF files in, per-frame
 // meshes, vertex-animation textures, bone textures and a manifest out, every file written atomically.
 #pragma once
 
