@@ -1,6 +1,6 @@
 // `dqskin report INPUT… -o OUTDIR`: every animation of the inputs deformed with lbs, dqs and dib, measured
 // per joint, judged, and written as OUTDIR/<input name>/report.json with the contact sheets of each
-// animation's worst frames (README "dqskin report").
+// animation's worst frames (docs/commands/report.md).
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"

@@ -28,7 +28,7 @@ namespace {
 
 
 texture::TexelType bone_texel_type(const TextureOptions& o) {
-  // Bone textures are float or half; the PNG encodings are the VAT's (README "Texture profiles").
+  // Bone textures are float or half; the PNG encodings are the VAT's (docs/formats.md, "Encodings").
   return o.encoding == "half" ? texture::TexelType::kHalf : texture::TexelType::kFloat32;
 }
 

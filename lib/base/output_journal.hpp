@@ -1,7 +1,7 @@
-// What one input's outputs changed in the output folder, so that a failure can take it back (DESIGN.md
-// "Job": a failed input leaves no file behind; README "Bad input"): the folders it created, the files it
-// wrote, and, for files it replaced (--force), the old ones, kept aside under hidden names until the input
-// has succeeded.
+// What one input's outputs changed in the output folder, so that a failure can take it back
+// (docs/DESIGN.md §6.2: a failed input leaves no file behind; docs/SECURITY.md, "Outputs"): the folders it
+// created, the files it wrote, and, for files it replaced (--force), the old ones, kept aside under hidden
+// names until the input has succeeded.
 #pragma once
 
 #include <mutex>

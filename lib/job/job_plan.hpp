@@ -1,4 +1,4 @@
-// A job's plan (shared/DESIGN.md "Job"), decided before anything is deformed: the inputs, loaded, with
+// A job's plan (docs/DESIGN.md §2.6), decided before anything is deformed: the inputs, loaded, with
 // their scene, mesh instances and clips; per clip the frame times, the numbers and folder its files are
 // named by, and which units of work belong to this shard. Every command that walks inputs × clips ×
 // frames plans here, so bake, render and the commands to come agree on every frame, name and shard.

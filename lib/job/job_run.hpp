@@ -1,4 +1,4 @@
-// The per-input loop of a job (shared/DESIGN.md "Job"), written once for every command: inputs one after
+// The per-input loop of a job (docs/DESIGN.md §1.3), written once for every command: inputs one after
 // the other, each with a journal of what it writes; a failing input is reported and its files taken back
 // while the others go on; a cancel stops the job keeping the complete files; the GL context is made when
 // the first input needs one, and shared by all.

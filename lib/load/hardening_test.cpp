@@ -1,5 +1,5 @@
-// The loader against files made to attack it (README "Security"): reading outside the model's folder,
-// GLB headers whose sizes underflow, values the schema forbids, memory out of proportion to the file.
+// The loader against files made to attack it (docs/SECURITY.md): reading outside the model's folder, GLB
+// headers whose sizes underflow, values the schema forbids, memory out of proportion to the file.
 // The catalogue of malformed files (scripts/testdata/make_malformed.py) checks the messages through the command
 // line; these tests check the parts one by one, under the sanitizers in the sanitize build.
 #include "dqskin/error.hpp"

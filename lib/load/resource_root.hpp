@@ -1,4 +1,4 @@
-// Where a model's external files may come from (shared/DESIGN.md "Loading policy": external files
+// Where a model's external files may come from (docs/DESIGN.md §5.1: external files
 // resolve only inside the input's resource root): the model's own folder and the folders given with
 // --resource-root, compared by real path, symbolic links resolved (internal to the loader).
 #pragma once

@@ -15,7 +15,7 @@ namespace dqskin::gltf {
 // Checks `doc` (a glTF document) against every rule. A bad value in the structure, geometry, skins or
 // animation throws InputError naming it ("accessor 3: byteOffset -12 must be an integer of at least 0").
 // A bad value in appearance (materials, textures, samplers, and the references to them and to cameras and
-// lights) is removed from `doc` with a warning saying what happens instead (DESIGN.md "Loading policy":
+// lights) is removed from `doc` with a warning saying what happens instead (docs/DESIGN.md §5.3:
 // broken appearance is dropped with a warning); returns those warnings, ordered by where they are
 // (top-level array, index, property).
 std::vector<std::string> check_schema_values(nlohmann::json& doc);

@@ -1,4 +1,4 @@
-// The BoneTexture as an OpenEXR file with a JSON side file (shared/DESIGN.md "BoneTexture layout": the dq
+// The BoneTexture as an OpenEXR file with a JSON side file (docs/DESIGN.md §4.1: the dq
 // profile of lib/texture's bone writer), and the vertex order of vertex-animation textures.
 #include "texture_output.hpp"
 #include "bone_writer.hpp"

@@ -1,7 +1,7 @@
-// Texture outputs of `dqskin bake` (shared/DESIGN.md "DeformedFrames ──write──▶ vertex-animation textures,
-// bone textures"): the BoneTexture the compute shader reads, as an RGBA32F OpenEXR image with a JSON side
-// file (DESIGN.md "BoneTexture layout"), and the order in which a vertex-animation texture holds the
-// vertices (the VAT writers are lib/texture's). OpenImageIO stays out of this header.
+// Texture outputs of `dqskin bake` (docs/DESIGN.md §4.1, §4.3): the BoneTexture the compute shader reads,
+// as an RGBA32F OpenEXR image with a JSON side file (docs/DESIGN.md §4.1), and the order in which a
+// vertex-animation texture holds the vertices (the VAT writers are lib/texture's). OpenImageIO stays out of
+// this header.
 #pragma once
 
 #include "dqskin/atomic_file.hpp"

@@ -1,4 +1,4 @@
-// One baked frame as a static glTF 2.0 binary (shared/DESIGN.md "DeformedFrames ──write──▶ meshes"): every
+// One baked frame as a static glTF 2.0 binary (docs/DESIGN.md §1.1, write): every
 // deformed mesh instance, the scene's node hierarchy at the frame's time, and the source's appearance
 // (materials, textures, samplers, images, cameras, lights, UVs, colours). Skins, animations and morph
 // targets are removed: the file shows the frame as it is, in any viewer, without dqskin.

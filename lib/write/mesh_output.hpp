@@ -1,4 +1,4 @@
-// One frame's deformed meshes as one mesh, and its PLY and OBJ files (shared/DESIGN.md "write"): every
+// One frame's deformed meshes as one mesh, and its PLY and OBJ files (docs/DESIGN.md §2.5): every
 // primitive of every instance merged in scene order, vertices in glTF accessor order, each distinct vertex
 // once per instance (primitives that share vertex data add faces only: vertex_sharing.hpp gives the
 // order), faces from the triangle-mode primitives (strips and fans are turned into lists; points and lines

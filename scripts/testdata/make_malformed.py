@@ -895,7 +895,7 @@ def animation_channel_cases(cat, base):
     cat.write("valid_animation_pointer.gltf", edit(base, f).gltf_bytes())
     cat.valid.append("valid_animation_pointer.gltf")
 def texture_extension_cases(cat, base):
-    """Textures whose image an extension holds (README "dqskin render"): they load, with one warning when
+    """Textures whose image an extension holds (docs/commands/render.md): they load, with one warning when
     the extension's image cannot be drawn."""
     def with_textures(textures, used, required=()):
         a = base.copy()

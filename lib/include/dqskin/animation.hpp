@@ -1,4 +1,4 @@
-// Animation sampling (shared/DESIGN.md "sample"): a Clip at a time gives a Pose, and frame times say
+// Animation sampling (docs/DESIGN.md §2.2): a Clip at a time gives a Pose, and frame times say
 // which times a bake samples.
 #pragma once
 

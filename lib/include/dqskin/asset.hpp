@@ -1,4 +1,4 @@
-// The Asset: what dqskin keeps of a glTF 2.0 file (shared/DESIGN.md "load"). Plain data, no tinygltf
+// The Asset: what dqskin keeps of a glTF 2.0 file (docs/DESIGN.md §2.1). Plain data, no tinygltf
 // types; every index in it has been checked against the array it indexes, every float is finite.
 // Appearance (materials, textures, cameras) with a broken reference or value loads with a warning and
 // that part dropped: it does not change the deformation.

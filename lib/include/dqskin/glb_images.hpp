@@ -6,7 +6,7 @@
 
 namespace dqskin {
 
-// Where the images of .glb frames go (bake --glb-images, README "--format glb").
+// Where the images of .glb frames go (bake --glb-images, docs/formats.md, "Bake outputs").
 enum class GlbImages {
   kEmbed,   // in every frame's BIN chunk: each frame stands alone, and repeats every image
   kShared,  // once, as files beside the frames (GlbWriter::image_files), which every frame references by a

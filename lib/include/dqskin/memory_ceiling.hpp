@@ -1,5 +1,5 @@
 // --max-memory as a ceiling on what a command holds, whatever allocates it: the loader, the deformers,
-// the encoders, the reports and the libraries behind them (README "Security", "Limits").
+// the encoders, the reports and the libraries behind them (docs/SECURITY.md, "What dqskin reads").
 //
 // Every operator new of the process is counted when the binary links the counting allocator
 // (lib/base/counting_new.cpp, in the dqskin command line; not in the library, so that an application

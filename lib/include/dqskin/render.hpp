@@ -1,4 +1,4 @@
-// Rendering deformed frames into images (shared/DESIGN.md "DeformedFrames ──render──▶ images") as one job:
+// Rendering deformed frames into images (docs/DESIGN.md §1.1, draw) as one job:
 // `dqskin render` as a library call, which walks inputs × clips × frames, deforms each clip and draws its
 // frames with the camera (dqskin/camera.hpp), the renderer (dqskin/renderer.hpp) and the image files
 // (dqskin/image_output.hpp). Those layers have their own headers so that a part used alone (framing a
