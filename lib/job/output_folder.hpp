@@ -1,7 +1,7 @@
-// The output folder of a job (docs/DESIGN.md "Job"), owned by the job layer so that every command creates
-// and takes it back the same way: made, with its missing parents, before the job starts; removed again
-// when the job ends without a single input done, so that a failed or interrupted run leaves no empty
-// folder behind; a folder that was already there always stays.
+// The output folder of a job (docs/DESIGN.md §1.3, §6.2), owned by the job layer so that every command
+// creates and takes it back the same way: made, with its missing parents, before the job starts; removed
+// again when the job ends without a single input done, so that a failed or interrupted run leaves no
+// empty folder behind; a folder that was already there always stays.
 #pragma once
 
 #include "dqskin/job.hpp"
