@@ -135,8 +135,8 @@ Command add_report_command(CLI::App& app) {
                 "Also print the inputs' notices (a skinned mesh node's transform, which glTF ignores)");
   cmd->add_flag("--json-progress", s.json_progress, "Print progress and the final summary as JSON lines on standard output");
   cmd->footer(
-      "Outputs: OUTDIR/<input name>/report.json and worst_<animation>.png (README \"dqskin report\" defines every\n"
-      "figure and verdict). Existing files of a report are replaced.\n"
+      "Outputs: OUTDIR/<input name>/report.json and worst_<animation>.png (docs/commands/report.md defines\n"
+      "every figure and verdict). Existing files of a report are replaced.\n"
       "Exit status: 0 success, 1 some inputs failed (the others reported), 2 usage or input error, 3 no OpenGL context.\n"
       "Examples:\n"
       "  dqskin report Fox.glb -o reports\n"

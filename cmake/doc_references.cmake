@@ -91,7 +91,7 @@ foreach(file IN LISTS files)
     # Documents outside the repository.
     string(REPLACE "docs/DESIGN.md" "" rest "${line}")
     if(file MATCHES "^docs/")
-      string(REGEX REPLACE "${close_bracket}\\((\\./)?DESIGN\\.md" "" rest "${rest}")
+      string(REGEX REPLACE "${close_bracket}\\((\\./|\\.\\./)?DESIGN\\.md" "" rest "${rest}")
     endif()
     if(rest MATCHES "DESIGN\\.md")
       list(APPEND problems "${file}: cites DESIGN.md other than as docs/DESIGN.md: ${excerpt}")
