@@ -9,9 +9,9 @@
 #include "progress.hpp"
 
 #include "dqskin/bake.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../lib/base/byte_size.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/output_journal.hpp"
+#include "../lib/base/output_journal.hpp"
 #include "dqskin/version.hpp"
 
 #include <nlohmann/json.hpp>
@@ -190,13 +190,13 @@ Command add_bake_command(CLI::App& app) {
       ->type_name("embed|shared|none")
       ->capture_default_str();
   bake_cmd->add_option("--vat-profile", bake.textures.vat_profile,
-                       "Vertex-animation texture layout: dqskin (absolute positions, DESIGN.md), openvat (OpenVAT's "
-                       "Blender add-on and engine kits), houdini (SideFX Labs VAT 3, soft body)")
+                       "Vertex-animation texture layout: dqskin (absolute positions, docs/DESIGN.md §4.3), openvat "
+                       "(OpenVAT's Blender add-on and engine kits), houdini (SideFX Labs VAT 3, soft body)")
       ->type_name("NAME")
       ->capture_default_str();
   bake_cmd->add_option("--bones-profile", bake.textures.bones_profile,
-                       "Bone texture layout: dq (DESIGN.md), dq-cocos (Cocos Creator), mat3x4 (rows of the joint "
-                       "matrix, PlayCanvas), mat4 (columns, Babylon.js and three.js)")
+                       "Bone texture layout: dq (docs/DESIGN.md §4.1), dq-cocos (Cocos Creator), mat3x4 (rows of the "
+                       "joint matrix, PlayCanvas), mat4 (columns, Babylon.js and three.js)")
       ->type_name("NAME")
       ->capture_default_str();
   bake_cmd->add_option("--encoding", bake.textures.encoding,

@@ -3,7 +3,7 @@
 #include "exit_codes.hpp"
 
 #include "dqskin/error.hpp"
-#include "dqskin/stderr_lock.hpp"
+#include "../lib/base/stderr_lock.hpp"
 
 #include <algorithm>
 #include <iostream>

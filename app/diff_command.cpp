@@ -8,7 +8,7 @@
 #include "guarded_run.hpp"
 
 #include "dqskin/atomic_file.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../lib/base/byte_size.hpp"
 #include "dqskin/diff_report.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/geometry_diff.hpp"

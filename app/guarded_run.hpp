@@ -2,7 +2,7 @@
 // line on stderr and an exit status, never in an abort or an uncaught exception.
 #pragma once
 
-#include "dqskin/output_journal.hpp"
+#include "../lib/base/output_journal.hpp"
 
 #include <functional>
 

@@ -1,7 +1,7 @@
 // The flags of every command that reads glTF files (commands.hpp LoadSettings).
 #include "commands.hpp"
 
-#include "dqskin/byte_size.hpp"
+#include "../lib/base/byte_size.hpp"
 #include "dqskin/error.hpp"
 
 #include <filesystem>

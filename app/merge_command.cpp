@@ -6,7 +6,7 @@
 #include "exit_codes.hpp"
 #include "interrupt.hpp"
 
-#include "dqskin/byte_size.hpp"
+#include "../lib/base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "dqskin/verify.hpp"

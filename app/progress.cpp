@@ -3,7 +3,7 @@
 #include "console.hpp"
 
 #include "dqskin/error.hpp"
-#include "dqskin/stderr_lock.hpp"
+#include "../lib/base/stderr_lock.hpp"
 
 #include <nlohmann/json.hpp>
 #include <unistd.h>

@@ -9,7 +9,7 @@
 #include "progress.hpp"
 
 #include "dqskin/error.hpp"
-#include "dqskin/output_journal.hpp"
+#include "../lib/base/output_journal.hpp"
 #include "dqskin/render.hpp"
 
 #include <nlohmann/json.hpp>

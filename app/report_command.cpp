@@ -1,6 +1,6 @@
 // `dqskin report INPUT… -o OUTDIR`: every animation of the inputs deformed with lbs, dqs and dib, measured
 // per joint, judged, and written as OUTDIR/<input name>/report.json with the contact sheets of each
-// animation's worst frames (README "dqskin report").
+// animation's worst frames (docs/commands/report.md).
 #include "commands.hpp"
 #include "console.hpp"
 #include "exit_codes.hpp"
@@ -9,7 +9,7 @@
 #include "progress.hpp"
 
 #include "dqskin/error.hpp"
-#include "dqskin/output_journal.hpp"
+#include "../lib/base/output_journal.hpp"
 #include "dqskin/report.hpp"
 
 #include <nlohmann/json.hpp>

@@ -17,6 +17,19 @@ file(REMOVE_RECURSE "${PREFIX}" "${WORK_DIR}")
 
 run("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --config "${CONFIG}" --prefix "${PREFIX}")
 
+# Only the API is installed: the headers of load, asset, deform, bake, render, diff, lint, report, verify and
+# what they need, not the library's own plumbing (hashing, byte sizes, the output journal, the job loop).
+foreach(header load asset deformer bake render image_diff geometry_diff lint report verify)
+  if(NOT EXISTS "${PREFIX}/include/dqskin/${header}.hpp")
+    message(FATAL_ERROR "the public header dqskin/${header}.hpp was not installed")
+  endif()
+endforeach()
+foreach(header sha256 byte_size output_journal stderr_lock job_run job_plan mesh_output glb_output)
+  if(EXISTS "${PREFIX}/include/dqskin/${header}.hpp")
+    message(FATAL_ERROR "the internal header dqskin/${header}.hpp was installed")
+  endif()
+endforeach()
+
 # The consumer sees only the installed tree: same generator, compiler and flags (the sanitizer build
 # needs -fsanitize at link time), no user package registry.
 run("configuring the consumer" "${CMAKE_COMMAND}" -S "${SOURCE_DIR}/cmake/consumer" -B "${WORK_DIR}"

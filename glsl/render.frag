@@ -1,4 +1,4 @@
-// Fragment stage of `dqskin render` (lib/render/renderer.cpp). Writes linear color; the PNG writer
+// Fragment stage of `dqskin render` (lib/draw/renderer.cpp). Writes linear color; the PNG writer
 // converts to sRGB. SHADE_LIT, SHADE_NORMALS or SHADE_WEIGHTS is defined by the renderer.
 
 in vec3 world_position;

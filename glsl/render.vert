@@ -1,4 +1,4 @@
-// Vertex stage of `dqskin render` (lib/render/renderer.cpp): deformed vertices arrive in world space, so
+// Vertex stage of `dqskin render` (lib/draw/renderer.cpp): deformed vertices arrive in world space, so
 // only the camera's view-projection is applied. Compiled with "#version 430" prepended.
 
 layout(location = 0) in vec3 position;  // world space

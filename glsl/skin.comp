@@ -1,4 +1,4 @@
-// Skinning compute shader: one invocation per (vertex, frame). Reads the BoneTexture of DESIGN.md
+// Skinning compute shader: one invocation per (vertex, frame). Reads the BoneTexture of docs/DESIGN.md §4.1
 // (RGBA32F, row = frame, T texels per joint: real, dual [, the three rows of S]) with texelFetch and writes
 // the deformed positions, normals and tangents of every frame of the batch.
 //
@@ -8,7 +8,7 @@
 //   INFLUENCES             per vertex: 4 per JOINTS_n/WEIGHTS_n set, up to 32 (every set the file has)
 //   HAS_NORMALS, HAS_TANGENTS, MORPH_TARGETS (count, 0 for none)
 // Kavan et al., "Geometric Skinning with Approximate Dual Quaternion Blending" (2008): DLB (§4) with the
-// antipodality pivot of DESIGN.md, and two-phase skinning for scale: v' = DLB(rigid) applied to (Σ w S) v.
+// antipodality pivot of docs/DESIGN.md §3.5, and two-phase skinning for scale: v' = DLB(rigid) applied to (Σ w S) v.
 
 layout(local_size_x = 64, local_size_y = 1, local_size_z = 1) in;
 
@@ -115,7 +115,7 @@ void main() {
     t = a * t;
 #endif
 #else
-    // DLB with every influence flipped to the pivot's hemisphere (DESIGN.md antipodality).
+    // DLB with every influence flipped to the pivot's hemisphere (docs/DESIGN.md §3.5, antipodality).
     const vec4 pivot_real = bone(joint[pivot], 0, row);
     vec4 real = vec4(0.0), dual = vec4(0.0);
     mat3 s = mat3(0.0);

@@ -1,8 +1,8 @@
-// A dqskin bone texture (profile `dq`, DESIGN.md "BoneTexture layout") skinned in the vertex shader: the
+// A dqskin bone texture (profile `dq`, docs/DESIGN.md §4.1) skinned in the vertex shader: the
 // GPU-crowd runtime the texture is for. Texel (T·j + k, f) holds component k of joint j at frame f: the
 // real and dual parts of the joint's unit dual quaternion, then with T = 5 the rows of its scale/shear S.
 // Blending is DLB (Kavan et al. 2008, §4) with every influence flipped into the hemisphere of the one with
-// the largest weight (DESIGN.md "Antipodality") and, for scale, two-phase skinning: p' = DLB(rigid) applied
+// the largest weight (docs/DESIGN.md §3.5) and, for scale, two-phase skinning: p' = DLB(rigid) applied
 // to (Σ w S) p, the normal by the cofactor of Σ w S. The same formulas as bones_skinK.json's "decode" and
 // the compute shader's (glsl/skin.comp).
 import * as THREE from 'three';

@@ -1,4 +1,4 @@
-// The automatic camera of `dqskin render` (lib/render/camera.cpp, frame_camera), so that a frame here and
+// The automatic camera of `dqskin render` (lib/draw/camera.cpp, frame_camera), so that a frame here and
 // the same frame there are seen from the same place: it looks at the centre of the clip's bounding box from
 // a yaw/pitch direction and fits the box's eight corners into the view with a small margin. JavaScript
 // numbers are doubles, as the C++ computes in.

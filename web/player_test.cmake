@@ -96,7 +96,7 @@ endforeach()
 run("${NODE}" "${SOURCE_DIR}/web/capture.mjs" --root "${WORK}" --out "${WORK}/shots" --chromium "${CHROMIUM}"
     --size 256x256 ${captures})
 
-# The render's folder for the clip: bake and render name it alike (README "Outputs").
+# The render's folder for the clip: bake and render name it alike (docs/formats.md, "Bake outputs").
 file(GLOB clip_dirs LIST_DIRECTORIES true "${WORK}/render/${stem}/*")
 list(LENGTH clip_dirs count)
 if(NOT count EQUAL 1)

@@ -1,7 +1,7 @@
 // What every path draws: `dqskin render --shade normals` (glsl/render.frag), the world-space unit normal
 // as colour, 0.5 n + 0.5, or the triangle's own normal where the mesh has none. dqskin writes that linear
 // colour to an 8-bit sRGB PNG; here the canvas is 8-bit and three.js's colour management is off, so the
-// shader encodes to sRGB itself, with the same curve (IEC 61966-2-1, as lib/io/srgb.hpp).
+// shader encodes to sRGB itself, with the same curve (IEC 61966-2-1, as lib/base/srgb.hpp).
 const srgbGlsl = /* glsl */ `
 vec3 srgb_encode(vec3 c) {
   c = clamp(c, 0.0, 1.0);

@@ -1,6 +1,6 @@
-// Vertex-animation textures as the runtimes the profiles come from read them (README "Texture profiles";
-// each bake's vat.json names the files): the rest mesh's TEXCOORD_1 addresses frame 0, and the shader
-// steps down the texture by frames.
+// Vertex-animation textures as the runtimes the profiles come from read them (docs/formats.md, "Texture
+// profiles"; each bake's vat.json names the files): the rest mesh's TEXCOORD_1 addresses frame 0, and the
+// shader steps down the texture by frames.
 //   openvat: OpenVAT's engine decoders (its Godot shader): offset = Min + texel.rgb (Max - Min) from
 //            NAME-remap_info.json, in Blender's axes, added to the rest position; v steps 1 / height per
 //            frame; packed normals sit half the image lower, separate ones in NAME_vnrm at the same texel.

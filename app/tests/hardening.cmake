@@ -1,4 +1,4 @@
-# The command line against hostile inputs (README "Security"): what each of bake, render, diff and info does
+# The command line against hostile inputs (docs/SECURITY.md): what each of bake, render, diff and info does
 # with files made to read outside their folder, to leave outputs behind, to hang, to print terminal escapes
 # or to overflow; each test failed on the code before the hardening. Inputs are make_malformed.py's jobs/.
 set(hostile ${DQSKIN_MALFORMED_DIR}/jobs)

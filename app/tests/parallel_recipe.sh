@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
-# The README's GNU parallel recipe, run as written: 8 shards of a bake of a models/ folder on one machine,
-# then `dqskin merge out`; the folder must equal an unsharded bake of the same models byte for byte
-# (manifest.json included) and `dqskin verify out` must find nothing wrong. The recipe line is read from
-# README.md, so the test runs what the README says. Exits 77 (CTest's skip) with the reason when GNU
+# The GNU parallel recipe of docs/commands/bake.md ("Sharding"), run as written: 8 shards of a bake of a
+# models/ folder on one machine, then `dqskin merge out`; the folder must equal an unsharded bake of the
+# same models byte for byte (manifest.json included) and `dqskin verify out` must find nothing wrong. The
+# recipe line is read from that page, so the test runs what the page says. Exits 77 (CTest's skip) with the reason when GNU
 # parallel or the shared sample models are absent.
 #
-#   parallel_recipe.sh DQSKIN README SHARED_TESTDATA SCRATCH
+#   parallel_recipe.sh DQSKIN PAGE SHARED_TESTDATA SCRATCH
 #     DQSKIN           the dqskin binary
-#     README           the README.md holding the recipe (one line starting "parallel dqskin bake ")
+#     PAGE             the page holding the recipe (one line starting "parallel dqskin bake ")
 #     SHARED_TESTDATA  the shared sample models (Fox/Fox.glb, ...)
 #     SCRATCH          a folder of this test's own (emptied first)
 set -euo pipefail
 
 dqskin=$1
-readme=$2
+page=$2
 shared=$3
 scratch=$4
 models=(Fox/Fox.glb CesiumMan/CesiumMan.glb RiggedSimple/RiggedSimple.glb RiggedFigure/RiggedFigure.glb)
@@ -34,8 +34,8 @@ for model in "${models[@]}"; do
   fi
 done
 
-mapfile -t recipes < <(grep -E '^parallel dqskin bake ' "$readme" || true)
-[[ ${#recipes[@]} == 1 ]] || fail "expected one line starting 'parallel dqskin bake ' in $readme, found ${#recipes[@]}"
+mapfile -t recipes < <(grep -E '^parallel dqskin bake ' "$page" || true)
+[[ ${#recipes[@]} == 1 ]] || fail "expected one line starting 'parallel dqskin bake ' in $page, found ${#recipes[@]}"
 recipe=${recipes[0]}
 echo "recipe: $recipe"
 

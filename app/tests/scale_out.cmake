@@ -1,4 +1,4 @@
-# The README's scale-out recipes run as written. The Slurm recipe starts a one-node Slurm cluster of this
+# The scale-out recipes of docs/commands/bake.md ("Sharding") run as written. The Slurm recipe starts a one-node Slurm cluster of this
 # machine (scripts/check/slurm_cluster.sh) and bakes the shared models in 32 shards: minutes of every core, so
 # it has a label of its own, left out of the release and sanitize presets and run by `ctest --preset slurm`
 # (scripts/test.sh does). It skips (77) with the reason when the cluster cannot run here or the shared

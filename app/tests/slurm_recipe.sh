@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's Slurm recipe ("Scale-out"), run as written on a one-node Slurm cluster of this machine: an
+# The Slurm recipe of docs/commands/bake.md ("Sharding"), run as written on a one-node Slurm cluster of this machine: an
 # array job of 32 shards bakes shared models into one folder, `dqskin merge` joins the shards' manifests,
 # and the folder must equal an unsharded bake of the same models byte for byte (names and contents).
 #
@@ -54,7 +54,7 @@ unset SLURM_CONF $(compgen -v SBATCH_ || true)
 eval "$(grep '^export SLURM_CONF=' <<<"$started")"
 [ -n "${SLURM_CONF:-}" ] || fail "scripts/check/slurm_cluster.sh start printed no SLURM_CONF: $started"
 
-# The recipe's line as the README has it, run where models/ is (sbatch's default working folder is the
+# The recipe's line as the page has it, run where models/ is (sbatch's default working folder is the
 # submitting one); --output puts each shard's messages where a failure below can show them.
 cd "$scratch"
 PATH="$(dirname "$dqskin"):$PATH"

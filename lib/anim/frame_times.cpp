@@ -1,4 +1,4 @@
-// Frame times of a bake (shared/DESIGN.md "Determinism": frame i samples start + i / fps).
+// Frame times of a bake (docs/DESIGN.md §2.2: frame i samples start + i / fps).
 #include "dqskin/animation.hpp"
 
 #include "dqskin/error.hpp"

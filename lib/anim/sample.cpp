@@ -117,14 +117,4 @@ Pose sample_pose(const Asset& asset, const Clip* clip, double time) {
   return pose;
 }
 
-const char* target_path_name(TargetPath path) {
-  switch (path) {
-    case TargetPath::kTranslation: return "translation";
-    case TargetPath::kRotation: return "rotation";
-    case TargetPath::kScale: return "scale";
-    case TargetPath::kWeights: return "weights";
-  }
-  return "?";
-}
-
 }  // namespace dqskin

@@ -4,25 +4,25 @@
 
 #include "bake_plan.hpp"
 #include "bake_work.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "dqskin/frame_view.hpp"
-#include "dqskin/glb_output.hpp"
+#include "../write/glb_output.hpp"
 #include "dqskin/deformer.hpp"
-#include "dqskin/mesh_output.hpp"
-#include "dqskin/job_run.hpp"
-#include "dqskin/output_journal.hpp"
-#include "dqskin/sha256.hpp"
-#include "dqskin/texture_output.hpp"
+#include "../write/mesh_output.hpp"
+#include "../job/job_run.hpp"
+#include "../base/output_journal.hpp"
+#include "../base/sha256.hpp"
+#include "../texture/texture_output.hpp"
 #include "manifest.hpp"
 #include "bones_bake.hpp"
 #include "morph_bake.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "vat_bake.hpp"
 #include "vat_planner.hpp"
-#include "../concurrency/parallel_for.hpp"
+#include "../base/parallel_for.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -239,7 +239,8 @@ public:
       }
       ledger_.add_time(&BakeStageTimes::check, since(start));
       ledger_.record_files(names, committed);
-      if (const auto& c = vat->check()) ledger_.record_check(c->report(input_.path, clip.name, "vat"));
+      if (const auto& c = vat->check())
+        ledger_.record_check(bake_detail::texture_check(*c, input_.path, clip.name, "vat"));
     }
     return counted;
   }

@@ -1,7 +1,7 @@
 #include "bake_plan.hpp"
 #include "morph_bake.hpp"
 #include "vat_bake.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 
 namespace dqskin::bake_detail {
 

@@ -3,7 +3,11 @@
 #pragma once
 
 #include "dqskin/bake.hpp"
-#include "dqskin/job_plan.hpp"
+#include "../job/job_plan.hpp"
+
+namespace dqskin::texture {
+struct DecodeCheck;
+}
 
 namespace dqskin::bake_detail {
 
@@ -21,5 +25,9 @@ inline constexpr const char* kBonesMeshFile = "bones_mesh.glb";
 // The files one clip writes, relative to the output folder, for the formats (and texture profiles) asked
 // for. Throws InputError when a texture profile cannot hold the clip.
 std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
+
+// A decode-back check's figures as the bake reports them, for texture `texture` of `clip` of `input`.
+TextureCheck texture_check(const texture::DecodeCheck& check, const std::string& input, const std::string& clip,
+                           const std::string& texture);
 
 }  // namespace dqskin::bake_detail

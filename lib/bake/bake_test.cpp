@@ -6,8 +6,8 @@
 #include "dqskin/deformer.hpp"
 #include "dqskin/gpu_deform.hpp"
 #include "dqskin/load.hpp"
-#include "dqskin/sha256.hpp"
-#include "../io/ply_test_reader.hpp"
+#include "../base/sha256.hpp"
+#include "../test_support/ply_test_reader.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/read_file.hpp"
 
@@ -158,7 +158,7 @@ void check_bake_of(const std::string& input, const fs::path& out) {
                 ASSERT_EQ(ply.vertex_data[v * 8 + 3 + c], p.normals[(k * p.vertices + i) * 3 + c]);
               }
             }
-        // VAT texel of vertex v at frame f: (v mod wrap, f · rows + v / wrap), DESIGN.md.
+        // VAT texel of vertex v at frame f: (v mod wrap, f · rows + v / wrap), docs/DESIGN.md §4.3.
         const size_t vertices = v;
         ASSERT_GT(vat_width, 0);
         const size_t wrap = size_t(vat_width), rows_per_frame = (vertices + wrap - 1) / wrap;

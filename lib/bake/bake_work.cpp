@@ -2,11 +2,11 @@
 #include "morph_bake.hpp"
 #include "vat_bake.hpp"
 
-#include "dqskin/mesh_output.hpp"
-#include "dqskin/texture_output.hpp"
-#include "../io/file_kind.hpp"
-#include "../io/glb_appearance.hpp"
-#include "../io/saturating.hpp"
+#include "../write/mesh_output.hpp"
+#include "../texture/texture_output.hpp"
+#include "../base/file_kind.hpp"
+#include "../write/glb_appearance.hpp"
+#include "../base/saturating.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "dqskin/error.hpp"
 

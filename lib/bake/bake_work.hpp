@@ -4,7 +4,7 @@
 #pragma once
 
 #include "bake_plan.hpp"
-#include "dqskin/glb_output.hpp"
+#include "../write/glb_output.hpp"
 
 #include <cstdint>
 

@@ -1,7 +1,7 @@
 #include "bones_bake.hpp"
 
-#include "../concurrency/parallel_for.hpp"
-#include "../diff/diff_numbers.hpp"
+#include "../base/parallel_for.hpp"
+#include "../base/length_text.hpp"
 #include "../texture/bone_writer.hpp"
 #include "../texture/bones_mesh_glb.hpp"
 #include "../texture/vat_check.hpp"
@@ -21,7 +21,6 @@
 
 namespace dqskin::bake_detail {
 
-using diff_detail::length_text;  // "3.1 mm"
 
 using texture::ErrorHistogram;
 
@@ -29,7 +28,7 @@ namespace {
 
 
 texture::TexelType bone_texel_type(const TextureOptions& o) {
-  // Bone textures are float or half; the PNG encodings are the VAT's (README "Texture profiles").
+  // Bone textures are float or half; the PNG encodings are the VAT's (docs/formats.md, "Encodings").
   return o.encoding == "half" ? texture::TexelType::kHalf : texture::TexelType::kFloat32;
 }
 
@@ -197,7 +196,8 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
                            length_text(d.max_error) + " of the deformed mesh (--mode " + to_string(options.mode) +
                            "), over --max-error " + length_text(limit));
       }
-      result.checks.push_back(d.report(input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
+      result.checks.push_back(
+          texture_check(d, input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
     }
   }
   if (writers.empty()) return result;

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "bake_plan.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 
 #include "dqskin/deformer.hpp"
 

@@ -1,6 +1,6 @@
 #include "keyframe_reduction.hpp"
 
-#include "../concurrency/parallel_for.hpp"
+#include "../base/parallel_for.hpp"
 
 #include <algorithm>
 #include <utility>

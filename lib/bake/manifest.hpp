@@ -1,4 +1,4 @@
-// The bake manifest (shared/DESIGN.md "A bake writes manifest.json"): what was baked from what, and every
+// The bake manifest (docs/DESIGN.md §6.4): what was baked from what, and every
 // output with its size and SHA-256. It holds no timings, so equal bakes write equal manifests.
 #pragma once
 

@@ -1,10 +1,10 @@
 #include "morph_bake.hpp"
 
 #include "keyframe_reduction.hpp"
-#include "../concurrency/parallel_for.hpp"
-#include "../diff/diff_numbers.hpp"
-#include "../io/morph_glb.hpp"
-#include "../io/saturating.hpp"
+#include "../base/parallel_for.hpp"
+#include "../base/length_text.hpp"
+#include "../write/morph_glb.hpp"
+#include "../base/saturating.hpp"
 #include "dqskin/error.hpp"
 
 #include <algorithm>
@@ -18,7 +18,6 @@
 
 namespace dqskin::bake_detail {
 
-using diff_detail::length_text;  // "3.1 mm"
 
 namespace {
 

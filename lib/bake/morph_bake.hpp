@@ -1,14 +1,14 @@
 // One clip's morph-target animation in a bake (internal to lib/bake): the bake's pass hands every frame of
 // the clip in order; finish() chooses the keys (every frame, or under --max-error the fewest that keyframe
-// reduction needs), encodes animation.glb (io/morph_glb.hpp), and measures what it decodes to at every
+// reduction needs), encodes animation.glb (write/morph_glb.hpp), and measures what it decodes to at every
 // baked frame, interpolated between keys as a viewer does, against the deformed frames.
 #pragma once
 
 #include "bake_plan.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 
 #include "dqskin/frame_view.hpp"
-#include "dqskin/vertex_sharing.hpp"
+#include "../write/vertex_sharing.hpp"
 
 #include <string>
 #include <utility>

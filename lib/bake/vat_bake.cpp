@@ -1,22 +1,27 @@
 #include "vat_bake.hpp"
 
-#include "../diff/diff_numbers.hpp"
+#include "../base/length_text.hpp"
 #include "../texture/rest_glb.hpp"
 #include "../texture/texel_image.hpp"
 #include "../texture/vat_measure.hpp"
 #include "vat_planner.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/texture_output.hpp"
-#include "dqskin/vertex_sharing.hpp"
+#include "../texture/texture_output.hpp"
+#include "../write/vertex_sharing.hpp"
 
 #include <cmath>
 #include <cstdio>
 
 namespace dqskin::bake_detail {
 
-using diff_detail::length_text;  // "3.1 mm"
 
 using namespace texture;
+
+TextureCheck texture_check(const texture::DecodeCheck& c, const std::string& input, const std::string& clip,
+                           const std::string& texture) {
+  return {input, clip, texture, c.max_error, c.p99_error, c.max_midpoint_error, c.p99_midpoint_error,
+          c.max_normal_degrees, c.max_midpoint_normal_degrees, c.samples};
+}
 
 namespace {
 

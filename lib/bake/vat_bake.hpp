@@ -7,12 +7,12 @@
 #pragma once
 
 #include "bake_plan.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 #include "../texture/vat_check.hpp"
 #include "../texture/vat_writer.hpp"
 
 #include "dqskin/deformer.hpp"
-#include "dqskin/vertex_sharing.hpp"
+#include "../write/vertex_sharing.hpp"
 
 #include <memory>
 #include <optional>

@@ -1,14 +1,14 @@
 #include "vat_planner.hpp"
 
 #include "vat_bake.hpp"
-#include "../diff/diff_numbers.hpp"
+#include "../base/length_text.hpp"
 #include "../texture/vat_measure.hpp"
 #include "../texture/vat_side_files.hpp"
 
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/texture_output.hpp"
-#include "dqskin/vertex_sharing.hpp"
+#include "../texture/texture_output.hpp"
+#include "../write/vertex_sharing.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -19,7 +19,6 @@
 
 namespace dqskin::bake_detail {
 
-using diff_detail::length_text;  // "3.1 mm"
 
 using namespace texture;
 

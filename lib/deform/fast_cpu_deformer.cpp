@@ -1,4 +1,4 @@
-// The fast CPU deformer: DESIGN.md's stages on the CPU in float. Once per deformer, every primitive's rest
+// The fast CPU deformer: docs/DESIGN.md §1.1's stages on the CPU in float. Once per deformer, every primitive's rest
 // data goes into structure-of-arrays blocks (fast_rest_data.hpp); per batch, sample → palette runs in
 // parallel over frames, then the kernel over (frame, primitive, run of blocks), and the finished batch
 // goes to the sink on a thread of its own while the next one is computed. Every vertex of every frame is
@@ -7,8 +7,8 @@
 
 #include "dqskin/error.hpp"
 
-#include "../concurrency/ordered_worker.hpp"
-#include "../concurrency/parallel_for.hpp"
+#include "../base/ordered_worker.hpp"
+#include "../base/parallel_for.hpp"
 #include "fast_rest_data.hpp"
 
 #include <algorithm>

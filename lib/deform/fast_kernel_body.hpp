@@ -6,7 +6,7 @@
 // The arithmetic is glsl/skin.comp's, lane by lane (GCC vector extensions: one operator, kLanes vertices):
 // morph targets first (glTF 2.0 §3.7.2.2), then lbs, or dqs as DLB (Kavan et al. 2008, §4) with every
 // influence flipped into the hemisphere of the largest one, and the two-phase rule for scale
-// (shared/DESIGN.md): v' = DLB(rigid) applied to (Σ w S) v.
+// (docs/DESIGN.md §3.6): v' = DLB(rigid) applied to (Σ w S) v.
 #include "fast_kernel.hpp"
 
 #if defined(__AVX2__)

@@ -2,9 +2,9 @@
 // compared vertex by vertex (bake keeps each input's vertex order), textures texel by texel.
 #include "baked_file.hpp"
 #include "diff_numbers.hpp"
-#include "../io/saturating.hpp"
+#include "../base/saturating.hpp"
 
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/geometry_diff.hpp"
 #include "dqskin/job.hpp"

@@ -1,8 +1,8 @@
 #include "baked_file.hpp"
 #include "diff_side.hpp"
 #include "image_bands.hpp"
-#include "../io/oiio_message.hpp"
-#include "../io/saturating.hpp"
+#include "../base/oiio_message.hpp"
+#include "../base/saturating.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"

@@ -1,5 +1,5 @@
 #include "correspondence.hpp"
-#include "../concurrency/parallel_for.hpp"
+#include "../base/parallel_for.hpp"
 
 #include "dqskin/error.hpp"
 

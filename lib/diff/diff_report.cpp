@@ -2,7 +2,7 @@
 // (include/dqskin/diff_report.hpp). Formatting only: nothing here reads an image.
 #include "dqskin/diff_report.hpp"
 #include "diff_numbers.hpp"
-#include "../io/xml_escape.hpp"
+#include "../base/xml_escape.hpp"
 
 #include "dqskin/error.hpp"
 

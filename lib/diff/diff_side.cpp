@@ -1,9 +1,9 @@
 #include "diff_side.hpp"
 #include "clip_matching.hpp"
-#include "../io/saturating.hpp"
+#include "../base/saturating.hpp"
 
 #include "dqskin/animation.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "dqskin/triangles.hpp"

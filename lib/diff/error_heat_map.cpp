@@ -1,8 +1,8 @@
 #include "error_heat_map.hpp"
 #include "diff_numbers.hpp"
-#include "../render/bitmap_font.hpp"
-#include "../render/heat_color.hpp"
-#include "../render/image_label.hpp"
+#include "../draw/bitmap_font.hpp"
+#include "../draw/heat_color.hpp"
+#include "../draw/image_label.hpp"
 
 #include "dqskin/camera.hpp"
 #include "dqskin/image_output.hpp"

@@ -12,15 +12,15 @@
 #include "normal_comparison.hpp"
 #include "largest_errors.hpp"
 #include "surface_correspondence.hpp"
-#include "../concurrency/parallel_for.hpp"
-#include "../io/saturating.hpp"
+#include "../base/parallel_for.hpp"
+#include "../base/saturating.hpp"
 
 #include "dqskin/animation.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/image_output.hpp"
 #include "dqskin/job.hpp"
-#include "dqskin/job_run.hpp"
+#include "../job/job_run.hpp"
 #include "dqskin/memory_ceiling.hpp"
 
 #include <glm/geometric.hpp>

@@ -2,7 +2,7 @@
 #include "dqskin/geometry_report.hpp"
 #include "correspondence_pose.hpp"
 #include "diff_numbers.hpp"
-#include "../io/xml_escape.hpp"
+#include "../base/xml_escape.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,6 +1,6 @@
 #include "image_bands.hpp"
 
-#include "../io/saturating.hpp"
+#include "../base/saturating.hpp"
 
 #include <algorithm>
 #include <climits>

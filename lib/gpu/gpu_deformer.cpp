@@ -1,9 +1,9 @@
-// The GPU deformer: DESIGN.md's stages strung batch by batch. sample (Pose per frame) → palette and pack
-// (one BoneTexture per instance) on the CPU, then SkinKernel uploads, dispatches and reads back, with two
-// batches in flight and the sink on a thread of its own.
+// The GPU deformer: the stages of docs/DESIGN.md §1.1 strung batch by batch. sample (Pose per frame) →
+// palette and pack (one BoneTexture per instance) on the CPU, then SkinKernel uploads, dispatches and reads
+// back, with two batches in flight and the sink on a thread of its own.
 #include "dqskin/gpu_deform.hpp"
 
-#include "../concurrency/ordered_worker.hpp"
+#include "../base/ordered_worker.hpp"
 #include "skin_kernel.hpp"
 
 #include <algorithm>

@@ -28,7 +28,7 @@ struct Variant {
   bool operator<(const Variant& o) const { return key() < o.key(); }
 };
 
-// skin.comp specialised for one variant (DESIGN.md's texels per joint, influences, morph targets).
+// skin.comp specialised for one variant (docs/DESIGN.md §4.1: texels per joint, influences, morph targets).
 GLuint compile_program(const Gl& gl, const Variant& v) {
   std::string defines = v.mode == BlendMode::kLbs ? "#define MODE_LBS\n" : "#define MODE_DQS\n";
   defines += "#define TEXELS " + std::to_string(v.texels) + "\n";
@@ -108,7 +108,7 @@ struct SkinKernel::Impl {
     for (auto& [variant, program] : programs) gl.DeleteProgram(program);
   }
 
-  // A skin's bone texture is at least 2 texels a joint wide (DESIGN.md "BoneTexture layout"): one wider than
+  // A skin's bone texture is at least 2 texels a joint wide (docs/DESIGN.md §4.1): one wider than
   // the GPU's largest texture is refused now, before the caller has written anything, not at the first batch.
   void check_texture_width() {
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture_width);

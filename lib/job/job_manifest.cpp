@@ -1,8 +1,8 @@
 #include "job_manifest.hpp"
 
-#include "../io/leftover_files.hpp"
+#include "../base/leftover_files.hpp"
 #include "dqskin/atomic_file.hpp"
-#include "dqskin/sha256.hpp"
+#include "../base/sha256.hpp"
 
 #include <filesystem>
 #include <vector>

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "dqskin/job.hpp"
-#include "dqskin/job_plan.hpp"
+#include "job_plan.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,10 +1,10 @@
-#include "dqskin/job_plan.hpp"
+#include "job_plan.hpp"
 
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/memory_ceiling.hpp"
 #include "dqskin/load.hpp"
-#include "../io/file_kind.hpp"
+#include "../base/file_kind.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "dqskin/job_run.hpp"
+#include "job_run.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/memory_ceiling.hpp"

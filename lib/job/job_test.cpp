@@ -1,7 +1,7 @@
 // The job layer on the bundled rigs: shards split the plan's units between them exactly once, a failing
 // input takes no unit and fails alone, a cancel keeps the files written.
-#include "dqskin/job_plan.hpp"
-#include "dqskin/job_run.hpp"
+#include "job_plan.hpp"
+#include "job_run.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"

@@ -2,7 +2,7 @@
 // a Findings keyed by check id. Each check counts its cases and keeps the worst one (the largest score).
 #pragma once
 
-#include "../gltf/skin_data.hpp"
+#include "../load/skin_data.hpp"
 #include "dqskin/animation.hpp"
 #include "dqskin/lint.hpp"
 

@@ -12,13 +12,13 @@
 // Of channels of one animation that share a target (§3.11), the first is kept and the others removed.
 #include "dqskin/lint.hpp"
 
-#include "../gltf/fixed_glb.hpp"
-#include "../gltf/skin_data.hpp"
+#include "../load/fixed_glb.hpp"
+#include "../load/skin_data.hpp"
 #include "lint_checks.hpp"
 #include "nearest_point.hpp"
 #include "node_tree.hpp"
 #include "dqskin/atomic_file.hpp"
-#include "dqskin/byte_size.hpp"
+#include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"
 

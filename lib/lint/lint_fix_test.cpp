@@ -3,7 +3,7 @@
 // are sorted and cut; rotation keys are unit and in one hemisphere; the output is deterministic.
 #include "dqskin/lint.hpp"
 
-#include "../gltf/skin_data.hpp"
+#include "../load/skin_data.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"
 #include "../test_support/read_file.hpp"

@@ -3,7 +3,7 @@
 // results give the same bytes.
 #include "dqskin/lint.hpp"
 
-#include "../io/xml_escape.hpp"
+#include "../base/xml_escape.hpp"
 #include "dqskin/error.hpp"
 #include "lint_checks.hpp"
 

@@ -1,6 +1,6 @@
 // The scene checks of `dqskin lint`: joints outside the scene that draws their skin, and skinned mesh nodes
 // whose transform glTF ignores.
-#include "../gltf/skinned_node_transform.hpp"
+#include "../load/skinned_node_transform.hpp"
 #include "lint_checks.hpp"
 #include "node_tree.hpp"
 

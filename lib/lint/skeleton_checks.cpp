@@ -1,9 +1,9 @@
 // The per-joint checks of `dqskin lint`: the joints' hierarchy (glTF 2.0 §3.7.3.1 and the skin schema:
 // joints share a common root, and `skeleton` is that root or one of its ancestors), and the joint matrices
-// world · inverseBind at rest and at every key: scaled to zero, mirrored, and scaled (DESIGN.md "Non-rigid
-// joints": uniform scale survives DQS with the two-phase rule; shear and non-uniform scale need it, and plain
-// DQS runtimes distort them). Scale is measured against the skin's placement (SkinFrame::scale), so an
-// armature at 0.01 scale is not a scaled joint. Inverse bind matrices: bind_checks.cpp.
+// world · inverseBind at rest and at every key: scaled to zero, mirrored, and scaled
+// (docs/DESIGN.md §3.6: uniform scale survives DQS with the two-phase rule; shear and non-uniform scale
+// need it, and plain DQS runtimes distort them). Scale is measured against the skin's placement
+// (SkinFrame::scale), so an armature at 0.01 scale is not a scaled joint. Inverse bind matrices: bind_checks.cpp.
 #include "lint_checks.hpp"
 #include "node_tree.hpp"
 

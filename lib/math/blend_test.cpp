@@ -1,5 +1,5 @@
 // Property tests for blending rigid transformations: DLB, DIB, ScLERP, QLB and LBS [Kavan §4, appendix A],
-// with the antipodality rule of shared/DESIGN.md. Every test draws its poses from a fixed seed, so each
+// with the antipodality rule of docs/DESIGN.md §3.5. Every test draws its poses from a fixed seed, so each
 // run sees the same inputs.
 #include "dqskin/dual_quat.hpp"
 #include "test_support.hpp"
@@ -415,7 +415,7 @@ TEST(BlendDib, ConvergesToTheFixedPointAtDefaultPrecision) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Antipodality (shared/DESIGN.md): inputs are flipped to the hemisphere of the largest weight.
+// Antipodality (docs/DESIGN.md §3.5): inputs are flipped to the hemisphere of the largest weight.
 
 TEST(BlendAntipodality, OppositeSignsOfOnePoseBlendToThatPose) {
   Random rnd(501);

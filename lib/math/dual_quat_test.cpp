@@ -110,7 +110,7 @@ TEST(DualQuatConversion, RotationTranslationRoundTrip) {
     const DualQuat<double> q = from_rotation_translation(r, t);
     EXPECT_LE(glm::distance(translation(q), t), 1e-12 * 100);
     EXPECT_EQ(q.real, r);
-    // DESIGN.md: dual = 0.5 * quat(0, t) * r
+    // docs/DESIGN.md §3.1: dual = 0.5 * quat(0, t) * r
     EXPECT_DUALQUAT_NEAR(q, DualQuat<double>(r, Quat<double>(0, t.x, t.y, t.z) * r * 0.5), kDoubleTol * 100);
   }
 }

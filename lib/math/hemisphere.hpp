@@ -1,4 +1,4 @@
-// Antipodality helper shared by the interpolation and blending files (shared/DESIGN.md).
+// Antipodality helper shared by the interpolation and blending files (docs/DESIGN.md §3.5).
 #pragma once
 
 #include "dqskin/dual_quat.hpp"

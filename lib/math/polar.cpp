@@ -1,5 +1,5 @@
 // Split of a non-rigid joint matrix [A | t] into a rigid part [R | t] and a symmetric S with A = R S
-// (shared/DESIGN.md "Non-rigid joints"; Kavan et al. 2008, two-phase skinning: S is blended linearly,
+// (docs/DESIGN.md §3.6; Kavan et al. 2008, two-phase skinning: S is blended linearly,
 // the rigid parts with DLB).
 #include "dqskin/dual_quat.hpp"
 

@@ -51,7 +51,7 @@ TEST(JointSplit, RigidMatrixIsRigidWithIdentityScale) {
 }
 
 TEST(JointSplit, ScaleWithinToleranceCountsAsRigid) {
-  // DESIGN.md: non-rigid means scale or shear beyond 1e-5.
+  // docs/DESIGN.md §3.6: non-rigid means scale or shear beyond 1e-5.
   const Mat4<double> almost = glm::scale(Mat4<double>(1), Vec3<double>(1 + 5e-6, 1, 1 - 5e-6));
   EXPECT_TRUE(split_joint_matrix(almost).is_rigid);
   const Mat4<double> beyond = glm::scale(Mat4<double>(1), Vec3<double>(1 + 2e-5, 1, 1));

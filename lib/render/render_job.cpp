@@ -5,9 +5,9 @@
 
 #include "dqskin/error.hpp"
 #include "dqskin/deformer.hpp"
-#include "dqskin/job_run.hpp"
-#include "dqskin/output_journal.hpp"
-#include "../concurrency/ordered_worker.hpp"
+#include "../job/job_run.hpp"
+#include "../base/output_journal.hpp"
+#include "../base/ordered_worker.hpp"
 #include "render_manifest.hpp"
 
 #include <algorithm>

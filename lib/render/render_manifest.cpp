@@ -1,8 +1,8 @@
 #include "render_manifest.hpp"
 
-#include "../concurrency/parallel_for.hpp"
+#include "../base/parallel_for.hpp"
 #include "../job/job_manifest.hpp"
-#include "dqskin/sha256.hpp"
+#include "../base/sha256.hpp"
 #include "dqskin/version.hpp"
 
 #include <filesystem>

@@ -3,7 +3,7 @@
 // `dqskin verify` checks a render folder and `dqskin merge` joins a sharded render's manifests.
 #pragma once
 
-#include "dqskin/job_plan.hpp"
+#include "../job/job_plan.hpp"
 #include "dqskin/render.hpp"
 
 #include <string>

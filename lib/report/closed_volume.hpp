@@ -1,5 +1,5 @@
-// The volume of closed skinned meshes (internal to lib/report; README "dqskin report", "Volume"): which
-// triangles enclose a volume, and the signed volume they enclose at a frame.
+// The volume of closed skinned meshes (internal to lib/report; docs/commands/report.md, "Volume"):
+// which triangles enclose a volume, and the signed volume they enclose at a frame.
 #pragma once
 
 #include "skin_regions.hpp"

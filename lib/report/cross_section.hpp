@@ -1,5 +1,5 @@
-// The cross-section measure of `dqskin report` (internal to lib/report; README "dqskin report", "Cross-
-// section"): how much a slice of a joint's blend zone spreads around the joint's axis, so that a ring
+// The cross-section measure of `dqskin report` (internal to lib/report; docs/commands/report.md,
+// "Cross-section"): how much a slice of a joint's blend zone spreads around the joint's axis, so that a ring
 // collapsing onto the bone (lbs's candy wrapper) or swelling (a bulge) shows on open meshes as well.
 #pragma once
 

@@ -85,7 +85,7 @@ std::vector<JointFrame> JointMetrics::measure(const FrameInput& frame) const {
     m.dqs_dib_mean /= double(region.vertices.size());
 
     // Antipodal flips: DLB brings every influence into the hemisphere of the heaviest one, which is this
-    // region's joint (DESIGN.md "Antipodality"; Kavan et al. §3, "antipodal property").
+    // region's joint (docs/DESIGN.md §3.5; Kavan et al. §3, "antipodal property").
     const Quat<double> heaviest = joints.rigid[size_t(region.joint)].real;
     for (size_t v = 0; v < region.vertices.size(); ++v) {
       const uint32_t begin = influence_start_[r][v], end = influence_start_[r][v + 1];

@@ -1,4 +1,4 @@
-// Measuring one frame of a clip for every joint region (internal to lib/report; README "dqskin report"):
+// Measuring one frame of a clip for every joint region (internal to lib/report; docs/commands/report.md):
 // the three blends' positions compared vertex by vertex, the cross-section of each blend zone, the
 // joint's twist and bend, and the antipodal flips DLB makes. Frames are independent, so a chunk of them
 // is measured in parallel, each into its own FrameMeasure.

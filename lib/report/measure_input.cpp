@@ -3,11 +3,11 @@
 #include "closed_volume.hpp"
 #include "joint_metrics.hpp"
 #include "verdict.hpp"
-#include "../concurrency/parallel_for.hpp"
+#include "../base/parallel_for.hpp"
 
 #include "dqskin/deformer.hpp"
 #include "dqskin/error.hpp"
-#include "dqskin/sha256.hpp"
+#include "../base/sha256.hpp"
 
 #include <algorithm>
 #include <array>
@@ -34,7 +34,7 @@ size_t frames_per_chunk(size_t vertices) {
 
 // The blends the report compares, each on the double-precision CPU reference: dib has no other path,
 // and lbs and dqs run there too so that every difference measured is the blends', not float rounding's
-// (README "dqskin report"); with options.fast_cpu lbs and dqs run on the fast float deformer.
+// (docs/commands/report.md); with options.fast_cpu lbs and dqs run on the fast float deformer.
 constexpr BlendMode kModes[3] = {BlendMode::kLbs, BlendMode::kDqs, BlendMode::kDib};
 
 class Blends {

@@ -5,7 +5,7 @@
 
 #include "report_data.hpp"
 
-#include "dqskin/job_plan.hpp"
+#include "../job/job_plan.hpp"
 
 namespace dqskin::report_detail {
 

@@ -7,13 +7,13 @@
 #include "report_html.hpp"
 #include "report_json.hpp"
 #include "worst_frames_sheet.hpp"
-#include "../io/leftover_files.hpp"
+#include "../base/leftover_files.hpp"
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/image_output.hpp"
-#include "dqskin/job_plan.hpp"
-#include "dqskin/job_run.hpp"
+#include "../job/job_plan.hpp"
+#include "../job/job_run.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -70,7 +70,7 @@ struct InputData {
   Verdict verdict;
 };
 
-// The summary of a joint over every clip and frame (README "dqskin report", "Summary").
+// The summary of a joint over every clip and frame (docs/commands/report.md, "Summary").
 JointSummary summarize(const std::vector<std::vector<JointFrame>>& clips);
 
 }  // namespace dqskin::report_detail

@@ -3,8 +3,8 @@
 #include "report_numbers.hpp"
 #include "report_style.hpp"
 #include "svg_chart.hpp"
-#include "../io/base64.hpp"
-#include "../io/xml_escape.hpp"
+#include "../base/base64.hpp"
+#include "../base/xml_escape.hpp"
 
 #include <algorithm>
 #include <optional>

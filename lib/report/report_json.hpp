@@ -1,5 +1,5 @@
 // report.json (internal to lib/report): what one input's report holds, in the version-1 layout that the
-// HTML page reads (README "dqskin report", "report.json").
+// HTML page reads (docs/commands/report.md, "report.json").
 #pragma once
 
 #include "report_data.hpp"

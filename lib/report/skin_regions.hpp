@@ -1,7 +1,7 @@
 // The joints `dqskin report` measures and the vertices each one answers for (internal to lib/report): per
 // joint of a skin that the scene's instances use, its region (the vertices whose largest weight is that
 // joint), its parent joint (the nearest ancestor node that is a joint of the same skin), its bind-space
-// position and bone axes, and its blend zone with its parent (README "dqskin report").
+// position and bone axes, and its blend zone with its parent (docs/commands/report.md).
 #pragma once
 
 #include "dqskin/asset.hpp"

@@ -1,7 +1,7 @@
 // Line charts as inline SVG (svg_chart.hpp): ranges, round ticks, min/max decimation, relative path data.
 #include "svg_chart.hpp"
 #include "report_numbers.hpp"
-#include "../io/xml_escape.hpp"
+#include "../base/xml_escape.hpp"
 
 #include <algorithm>
 #include <charconv>

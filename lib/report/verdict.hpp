@@ -1,5 +1,6 @@
-// The verdicts of `dqskin report` (internal to lib/report; README "dqskin report", "Verdicts"): per joint,
-// which blend it needs and why, in words with the figures that decided; per asset, the joints to look at.
+// The verdicts of `dqskin report` (internal to lib/report; docs/commands/report.md, "Verdicts"): per
+// joint, which blend it needs and why, in words with the figures that decided; per asset, the joints to
+// look at.
 #pragma once
 
 #include "report_data.hpp"

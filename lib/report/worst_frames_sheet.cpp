@@ -1,7 +1,7 @@
 #include "worst_frames_sheet.hpp"
-#include "../render/bitmap_font.hpp"
-#include "../render/heat_color.hpp"
-#include "../render/image_label.hpp"
+#include "../draw/bitmap_font.hpp"
+#include "../draw/heat_color.hpp"
+#include "../draw/image_label.hpp"
 
 #include "dqskin/camera.hpp"
 #include "dqskin/deformer.hpp"

@@ -1,4 +1,4 @@
-// Packing JointTransforms into the BoneTexture layout of shared/DESIGN.md.
+// Packing JointTransforms into the BoneTexture layout of docs/DESIGN.md §4.1.
 #include "dqskin/bone_texture.hpp"
 
 #include <map>

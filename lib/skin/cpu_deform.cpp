@@ -1,5 +1,5 @@
 // The CPU reference deformer, in double precision: morph targets, then LBS, DQS (DLB with the two-phase
-// scale rule of shared/DESIGN.md; Kavan et al. 2008) or DIB (Kavan et al. §4).
+// scale rule of docs/DESIGN.md §3.6; Kavan et al. 2008) or DIB (Kavan et al. §4).
 #include "dqskin/skinning.hpp"
 
 #include <algorithm>

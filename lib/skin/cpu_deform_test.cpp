@@ -269,7 +269,7 @@ TEST(CpuDeformShared, BindPoseLeavesEveryVertexInPlace) {
 // ---------------------------------------------------------------------------------------------------
 // Vertices moved by one joint
 
-// How far joint matrix m is from rigid, as DESIGN.md measures it (largest entry of S − I in A = R S),
+// How far joint matrix m is from rigid, as docs/DESIGN.md §3.6 measures it (largest entry of S − I in A = R S),
 // to first order: half the largest entry of AᵀA − I.
 double rigidity_defect(const Mat4<double>& m) {
   const Mat3<double> a(m);
@@ -281,7 +281,7 @@ double rigidity_defect(const Mat4<double>& m) {
 }
 
 // At several frames of the first clip, vertices with one influence are placed identically by all modes.
-// A joint whose scale or shear is within DESIGN.md's 1e-5 counts as rigid, so DQS drops its S (at most
+// A joint whose scale or shear is within docs/DESIGN.md §3.6's 1e-5 counts as rigid, so DQS drops its S (at most
 // that far from I) where LBS keeps it: such vertices may differ by |(S − I) v| ≤ 3 ε |v|, and their
 // normals by a few ε; the generated rigs have ε ≈ 1e-16. Returns how many vertices were compared.
 size_t expect_single_influence_agreement(const Model& m) {
@@ -484,7 +484,7 @@ TEST(CpuDeformScale, NonUniformScaleUsesTwoPhaseBlending) {
   const Pose pose = sample_pose(m.asset, &clip, t);
   expect_scaled_joint_moves_its_vertices_by_its_matrix(m, pose);
 
-  // Shared/DESIGN.md by hand: the base joint is the identity; the scaled joint is T(p) R S T(−p), with
+  // docs/DESIGN.md §3.6 by hand: the base joint is the identity; the scaled joint is T(p) R S T(−p), with
   // R and S = diag(s) its sampled rotation and scale, so its rigid part is [R | p − R S p].
   const std::vector<double> s = channel_value(clip, skin.joints[1], TargetPath::kScale, t);
   const std::vector<double> r = channel_value(clip, skin.joints[1], TargetPath::kRotation, t);

@@ -1,5 +1,5 @@
 // Test support: decoding base64 (RFC 4648 section 4, padded), to read back what the library encoded
-// (io/base64.hpp) from data URIs. Returns false on anything that is not canonical padded base64.
+// (base/base64.hpp) from data URIs. Returns false on anything that is not canonical padded base64.
 #pragma once
 
 #include <cstdint>

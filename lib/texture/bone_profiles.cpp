@@ -7,7 +7,7 @@
 //   mat3x4    PlayCanvas's bone texture: three texels per bone, the rows of the 3×4 matrix.
 //   mat4      Babylon.js's VertexAnimationBaker: each frame's Skeleton.getTransformMatrices() as one row
 //             (bones + 1 matrices, the last the identity), four texels per matrix.
-// Dual quaternions as DESIGN.md: (x, y, z, w) with w scalar, dual = 0.5 (t, 0) real [Kavan eq. 1].
+// Dual quaternions as docs/DESIGN.md §3.1: (x, y, z, w) with w scalar, dual = 0.5 (t, 0) real [Kavan eq. 1].
 #include "bone_profiles.hpp"
 
 #include "dqskin/bone_texture.hpp"
@@ -228,7 +228,7 @@ Influences gather([[maybe_unused]] const BoneImage& image, std::span<const int> 
   return in;
 }
 
-// The project's DQS (DESIGN.md): DLB of the rigid parts, S blended linearly and applied first.
+// The project's DQS (docs/DESIGN.md §3.6): DLB of the rigid parts, S blended linearly and applied first.
 SkinnedVertex skin_dq(const BoneImage& image, size_t frame, const Influences& in, const Vec3<double>& p,
                       const Vec3<double>& n) {
   double sum = 0;

@@ -1,5 +1,5 @@
 // Bone-texture profiles: one skin's joint transforms, frame by frame, written in the layout a runtime's
-// shader reads (shared/DESIGN.md "BoneTexture layout", "profiles"), and read back as that shader reads it.
+// shader reads (docs/DESIGN.md §4.1, §4.2), and read back as that shader reads it.
 //
 //   dq        the project's own BoneTexture (pack_bone_texture): DQS with the two-phase scale rule.
 //   dq-cocos  Cocos Creator's baked dual-quaternion joint texture (skeletal-animation-utils.ts,

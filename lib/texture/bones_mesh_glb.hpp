@@ -4,7 +4,7 @@
 // its influences, and which texture each primitive reads.
 #pragma once
 
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 
 #include "dqskin/asset.hpp"
 #include "dqskin/skinning.hpp"

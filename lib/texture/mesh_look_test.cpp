@@ -4,7 +4,7 @@
 // also written there, for the Khronos glTF-Validator (CTest's rest_glb_validator).
 #include "rest_glb.hpp"
 #include "bones_mesh_glb.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/test_models.hpp"
 

@@ -2,7 +2,7 @@
 
 #include "single_mesh_glb.hpp"
 
-#include "dqskin/vertex_sharing.hpp"
+#include "../write/vertex_sharing.hpp"
 
 #include <cassert>
 #include <optional>

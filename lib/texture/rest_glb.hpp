@@ -5,7 +5,7 @@
 #pragma once
 
 #include "vat_format.hpp"
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 
 #include "dqskin/frame_view.hpp"
 #include "dqskin/skinning.hpp"

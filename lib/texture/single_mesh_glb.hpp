@@ -2,7 +2,7 @@
 // with no transform drawing one mesh, the source's primitives with their topology as the frames have it.
 #pragma once
 
-#include "../io/glb_appearance.hpp"
+#include "../write/glb_appearance.hpp"
 
 #include "dqskin/asset.hpp"
 

@@ -82,7 +82,8 @@ TEST(TexelEncoding, OctahedralRoundTripsEveryDirection) {
 }
 
 TEST(TexelEncoding, OctahedralQuantizedErrorIsBounded) {
-  // 2 × 8 and 2 × 16 bits: the worst angle over many directions stays under the bound the README states.
+  // 2 × 8 and 2 × 16 bits: the worst angle over many directions stays under the bound that docs/formats.md
+  // states.
   std::mt19937 rng(5);
   std::normal_distribution<double> g;
   for (const auto& [max, bound_degrees] : {std::pair{255u, 1.0}, std::pair{65535u, 0.005}}) {

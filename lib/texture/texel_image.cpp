@@ -1,7 +1,7 @@
 #include "texel_image.hpp"
 
-#include "../io/image_file.hpp"
-#include "../io/oiio_message.hpp"
+#include "../base/image_file.hpp"
+#include "../base/oiio_message.hpp"
 #include "dqskin/error.hpp"
 
 #include <Imath/half.h>
@@ -237,7 +237,7 @@ void TexelFileWriter::close() {
   }
   OIIO::ImageSpec spec(int(m.width), int(m.height), m.channels, oiio_type(m.type));
   // Data, not colour: no sRGB or gAMA chunk, so that no reader converts the values (engines must import
-  // these textures as linear data; README "Vertex-animation texture profiles").
+  // these textures as linear data; docs/formats.md, "Encodings").
   spec.attribute("oiio:ColorSpace", "");
   io::write_image_file(m.temporary, m.file->path(), "png", spec, oiio_type(m.type), m.png.data());
   m.png = TexelImage();

@@ -1,7 +1,7 @@
 // Vertex positions and normals to texels and back, for each VAT profile (internal to lib/texture and
 // lib/bake). The encoder fills the images a profile's files hold; the decoder reads texels exactly as the
-// profile's shader does (README "Vertex-animation texture profiles"), in float as a GPU computes, so the
-// decode-back check measures what a runtime will show.
+// profile's shader does (docs/formats.md, "Vertex-animation textures"), in float as a GPU computes, so
+// the decode-back check measures what a runtime will show.
 #pragma once
 
 #include "texel_image.hpp"

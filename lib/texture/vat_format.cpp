@@ -12,7 +12,7 @@ namespace dqskin::texture {
 
 namespace {
 
-// The widest row dqskin and houdini use when no --max-size is given: DESIGN.md's 8192.
+// The widest row dqskin and houdini use when no --max-size is given: 8192 (docs/DESIGN.md §4.7).
 constexpr size_t kDefaultWrap = 8192;
 
 size_t ceil_div(size_t a, size_t b) { return (a + b - 1) / b; }

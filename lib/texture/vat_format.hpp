@@ -1,8 +1,8 @@
 // The vertex-animation-texture (VAT) formats dqskin writes (internal to lib/texture and lib/bake): a
 // runtime's layout chosen by profile, the texel type, where normals go, and the geometry of the image,
-// texel by texel. README "Vertex-animation texture profiles" documents each with its reading shader.
+// texel by texel. docs/formats.md, "Vertex-animation textures", documents each with its reading shader.
 //
-//   dqskin   shared/DESIGN.md's layout: absolute world-space positions, frame-major rows.
+//   dqskin   docs/DESIGN.md §4.3: absolute world-space positions, frame-major rows.
 //   openvat  The OpenVAT Blender add-on and its engine kits (sharpen3d/openvat): offsets from the rest
 //            mesh in Blender's Z-up axes, remapped per axis to [0, 1] by the side file's Min and Max;
 //            one row per vertex wrap, frames down the rows of a wrap; normals n·0.5+0.5, packed into the

@@ -137,11 +137,6 @@ Json DecodeCheck::to_json() const {
           {"samples", samples}};
 }
 
-TextureCheck DecodeCheck::report(const std::string& input, const std::string& clip, const std::string& texture) const {
-  return {input, clip, texture, max_error, p99_error, max_midpoint_error, p99_midpoint_error, max_normal_degrees,
-          max_midpoint_normal_degrees, samples};
-}
-
 Box decimal_bounds(const Box& box) {
   if (box.empty()) return box;
   const glm::dvec3 range = box.hi - box.lo;

@@ -5,8 +5,7 @@
 
 #include "vat_codec.hpp"
 
-#include "dqskin/bake.hpp"
-#include "dqskin/texture_output.hpp"
+#include "texture_output.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -54,8 +53,6 @@ struct DecodeCheck {
   double max_midpoint_normal_degrees = 0;           // between frames (the normals interpolated, renormalized)
   size_t samples = 0;                               // vertex samples compared
   nlohmann::ordered_json to_json() const;
-  // The figures as the bake reports them, for texture `texture` of `clip` of `input`.
-  TextureCheck report(const std::string& input, const std::string& clip, const std::string& texture) const;
 };
 
 // Bounds for remapping that the shader reads back exactly: `box` widened outward to a decimal grid of

@@ -8,7 +8,7 @@
 #include "dqskin/animation.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
-#include "dqskin/texture_output.hpp"
+#include "texture_output.hpp"
 #include "../test_support/read_file.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/test_models.hpp"
@@ -589,7 +589,7 @@ TEST_P(VatRoundTrip, DecodesWithinTheEncodingsBound) {
 // in texel_encoding_test. Houdini's packed code: 50°. It keeps 5 bits of one spheremap coordinate (and the
 // decode divides by 1024 where the encoder multiplied by 1023); near the downward pole, the spheremap's
 // rim, a coordinate error of 1/31 turns the normal by up to about 45° (measured 47°). That is the format's,
-// and the README says so.
+// and docs/formats.md says so.
 INSTANTIATE_TEST_SUITE_P(
     Formats, VatRoundTrip,
     testing::Values(RoundTrip{{VatProfile::kDqskin, TexelType::kFloat32, NormalMode::kSeparate}, 1e-4},

@@ -1,10 +1,10 @@
 #include "folder_check.hpp"
 
-#include "../concurrency/parallel_for.hpp"
-#include "../io/leftover_files.hpp"
+#include "../base/parallel_for.hpp"
+#include "../base/leftover_files.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/job.hpp"
-#include "dqskin/sha256.hpp"
+#include "../base/sha256.hpp"
 
 #include <algorithm>
 #include <functional>

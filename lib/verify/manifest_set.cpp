@@ -1,6 +1,6 @@
 #include "manifest_set.hpp"
 
-#include "../io/leftover_files.hpp"
+#include "../base/leftover_files.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"

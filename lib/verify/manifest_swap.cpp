@@ -1,10 +1,10 @@
 #include "manifest_swap.hpp"
 
-#include "../io/pending_files.hpp"
+#include "../base/pending_files.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"
-#include "dqskin/output_journal.hpp"
+#include "../base/output_journal.hpp"
 
 #include <unistd.h>
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The scale-out benchmark on one machine: BrainStem baked to every format but obj (glb,ply,vat,bones,morph)
-# in one process, against the README's GNU parallel recipe (8 shards, -j nproc) followed by `dqskin merge`,
-# each run into a fresh folder, the two alternating, RUNS runs each; prints the medians and their ratio.
+# in one process, against the GNU parallel recipe of docs/commands/bake.md (8 shards, -j nproc) followed by
+# `dqskin merge`, each run into a fresh folder, the two alternating, RUNS runs each; prints the medians and
+# their ratio.
 # Then where the shards' time goes, from the last run of each: every shard's process seconds (parallel's
 # joblog) beside its own --json-progress summary (wall and per-stage thread-seconds) and the one-process
 # bake's. Every shard starts up, loads the model and plans the whole bake; the shard that gets the one
@@ -10,7 +11,7 @@
 # Usage: scripts/bench/shards.sh
 # Environment:
 #   RUNS       runs of each (default 3; the median is printed)
-#   SHARDS     shards (default 8, as in the README's recipe)
+#   SHARDS     shards (default 8, as in the recipe of docs/commands/bake.md)
 #   JOBS       shards run at once (default: nproc)
 #   BAKE_ARGS  extra arguments for every bake (e.g. "--fps 10" for a quicker run)
 #   BENCH_TMP  folder for the outputs (default build/bench); a run writes about 5 GB, deleted after it
@@ -66,8 +67,8 @@ cp "$ROOT/build/release/app/dqskin" "$WORK/dqskin"
 DQSKIN="$WORK/dqskin"
 OUT="$WORK/out"
 
-# One shard as parallel runs it, its --json-progress lines kept for the table (the README's recipe has
-# --quiet instead; both sides of the comparison print the same progress lines).
+# One shard as parallel runs it, its --json-progress lines kept for the table (the recipe of
+# docs/commands/bake.md has --quiet instead; both sides of the comparison print the same progress lines).
 cat >"$WORK/shard.sh" <<EOF
 #!/usr/bin/env bash
 exec "$DQSKIN" bake "$BRAINSTEM" -o "$OUT" --format $FORMATS --shard "\$1/$SHARDS" --json-progress ${EXTRA[*]} \

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# A single-node Slurm cluster on this machine, for trying and testing the scale-out recipes (README,
-# "Scale-out") without a real cluster and without systemd: munged, slurmctld and slurmd run as plain
-# background processes whose configuration, key, state, logs and pid files all live in STATE_DIR.
+# A single-node Slurm cluster on this machine, for trying and testing the scale-out recipes
+# (docs/commands/bake.md, "Sharding") without a real cluster and without systemd: munged, slurmctld and
+# slurmd run as plain background processes whose configuration, key, state, logs and pid files all live
+# in STATE_DIR.
 #
 #   scripts/check/slurm_cluster.sh start STATE_DIR    install slurm-wlm and munge when missing, start the three
 #                                               daemons, wait until the node is idle and print the

@@ -462,7 +462,7 @@ def cmd_rotate_key(model, args):
     norm = math.sqrt(sum(c * c for c in r))
     model.write_element(sampler["output"], element, encode([c / norm for c in r], out_accessor))
     model.refresh_bounds(sampler["output"])
-    # An unnamed clip is called what dqskin calls it (lib/gltf/load.cpp): "animation<index>".
+    # An unnamed clip is called what dqskin calls it (lib/load/load.cpp): "animation<index>".
     name = anim.get("name") or "animation%d" % clip
     print("clip %s joint %s key %d t = %.9g s" % (name, args.joint, key, times[key][0]))
 

@@ -19,8 +19,8 @@ elbow (0°, 45°, 0° at 0, 0.5, 1 s) and turns the spine. What varies is where 
 
 Legal (lint --werror exits 0): blender_armature_cm, blender_arms_down, fbx2gltf_armature_cm,
 fbx2gltf_vertices_cm, arms_down_metres, three_skinned_nodes (three skinned mesh nodes under a moved node:
-the notice glTF's ignored transform gets, once). Defects, one check each (README "lint"): ibm_not_affine,
-ibm_not_invertible, joint_zero_scale, joint_mirrored, joint_not_in_scene, blender_bone_moved.
+the notice glTF's ignored transform gets, once). Defects, one check each (docs/commands/lint.md):
+ibm_not_affine, ibm_not_invertible, joint_zero_scale, joint_mirrored, joint_not_in_scene, blender_bone_moved.
 
 Deterministic, byte for byte. Python 3 standard library only (and scripts/testdata/gltf_builder.py).
 """

@@ -241,7 +241,7 @@ COUNT = "an integer of at least 1"
 
 
 def schema_value_cases(cat, base):
-    """One case per rule of lib/gltf/schema_values.cpp: a value that glTF 2.0's schema forbids and that
+    """One case per rule of lib/load/schema_values.cpp: a value that glTF 2.0's schema forbids and that
     tinygltf would read past (a fraction, a negative number, an index beyond 32 bits that it truncates, a
     string, a value not in the enum). Structure, geometry, skins and animation fail the input with a line
     naming the value; appearance loads with a warning saying what happens instead."""
@@ -895,7 +895,7 @@ def animation_channel_cases(cat, base):
     cat.write("valid_animation_pointer.gltf", edit(base, f).gltf_bytes())
     cat.valid.append("valid_animation_pointer.gltf")
 def texture_extension_cases(cat, base):
-    """Textures whose image an extension holds (README "dqskin render"): they load, with one warning when
+    """Textures whose image an extension holds (docs/commands/render.md): they load, with one warning when
     the extension's image cannot be drawn."""
     def with_textures(textures, used, required=()):
         a = base.copy()

@@ -1,4 +1,4 @@
-// Animation sampling (shared/DESIGN.md "sample"): a Clip at a time gives a Pose, and frame times say
+// Animation sampling (docs/DESIGN.md §2.2): a Clip at a time gives a Pose, and frame times say
 // which times a bake samples.
 #pragma once
 
@@ -9,9 +9,6 @@
 #include <vector>
 
 namespace dqskin {
-
-// The path as glTF spells it ("translation", "rotation", "scale", "weights"), for messages.
-const char* target_path_name(TargetPath path);
 
 // Every node's world matrix and morph weights at one time.
 struct Pose {

@@ -1,4 +1,4 @@
-// The Asset: what dqskin keeps of a glTF 2.0 file (shared/DESIGN.md "load"). Plain data, no tinygltf
+// The Asset: what dqskin keeps of a glTF 2.0 file (docs/DESIGN.md §2.1). Plain data, no tinygltf
 // types; every index in it has been checked against the array it indexes, every float is finite.
 // Appearance (materials, textures, cameras) with a broken reference or value loads with a warning and
 // that part dropped: it does not change the deformation.
@@ -97,6 +97,8 @@ struct Skin {
 };
 
 enum class TargetPath { kTranslation, kRotation, kScale, kWeights };
+// The path as glTF spells it ("translation", "rotation", "scale", "weights"), for messages.
+const char* target_path_name(TargetPath path);
 enum class Interpolation { kStep, kLinear, kCubicSpline };
 
 // One animation channel with its sampler's data. times are strictly increasing. values holds, per key,
@@ -194,7 +196,7 @@ struct Scene {
   std::vector<int> roots;
 };
 
-// What the .glb writer copies from the file besides the Asset (lib/gltf/source_document.hpp: the checked
+// What the .glb writer copies from the file besides the Asset (lib/asset/source_document.hpp: the checked
 // JSON, TEXCOORD_n and COLOR_n); opaque here, so that no JSON type appears in the Asset.
 struct SourceDocument;
 

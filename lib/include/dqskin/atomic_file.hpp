@@ -1,5 +1,5 @@
-// Writing a file so that it appears complete or not at all (shared/DESIGN.md "Every output is written to
-// a temporary name in the destination folder and renamed when complete").
+// Writing a file so that it appears complete or not at all (docs/DESIGN.md §6.1: every output
+// is written to a temporary name in the destination folder and renamed when complete).
 #pragma once
 
 #include <cstdio>

@@ -1,11 +1,11 @@
-// `dqskin bake` as a library call (shared/DESIGN.md, the whole data flow): glTF files in, per-frame
+// `dqskin bake` as a library call (docs/DESIGN.md §1, the whole data flow): glTF files in, per-frame
 // meshes, vertex-animation textures, bone textures and a manifest out, every file written atomically.
 #pragma once
 
 #include "dqskin/animation.hpp"
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/deformer.hpp"
-#include "dqskin/glb_output.hpp"
+#include "dqskin/glb_images.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/job.hpp"
 #include "dqskin/load.hpp"
@@ -24,8 +24,8 @@ enum class BakeFormat : unsigned { kGlb = 1, kPly = 2, kObj = 4, kVat = 8, kBone
 // "glb,ply" → the formats' bits. Throws InputError naming an unknown format.
 unsigned parse_bake_formats(const std::string& list);
 
-// How textures are laid out and checked (README "Texture profiles"). Names are checked when the bake
-// starts (InputError for unknown ones or combinations a profile cannot write).
+// How textures are laid out and checked (docs/formats.md, "Texture profiles"). Names are checked when the
+// bake starts (InputError for unknown ones or combinations a profile cannot write).
 struct TextureOptions {
   std::string vat_profile = "dqskin";  // dqskin, openvat, houdini
   std::string bones_profile = "dq";    // dq, dq-cocos, mat3x4, mat4
@@ -43,8 +43,8 @@ struct TextureOptions {
   bool check = true;                   // read every texture back and decode it (the decode-back check)
 };
 
-// The morph-target animation (README "--format morph"). Its keyframe budget is TextureOptions::max_error:
-// one --max-error bounds whatever a clip's outputs decode to.
+// The morph-target animation (docs/formats.md, "Morph-target animations"). Its keyframe budget is
+// TextureOptions::max_error: one --max-error bounds whatever a clip's outputs decode to.
 struct MorphOptions {
   bool quantize = false;  // KHR_mesh_quantization: positions on a 15-bit grid, normals as normalized SHORT
 };
@@ -57,15 +57,15 @@ struct BakeOptions {
   BlendMode mode = BlendMode::kDqs;
   unsigned formats = unsigned(BakeFormat::kGlb);
   // Where the glb frames' images go. Shared by default: a clip's frames are used together, from their
-  // folder, and one copy of the images beside them keeps the folder at the size of its geometry (README
-  // "--format glb").
+  // folder, and one copy of the images beside them keeps the folder at the size of its geometry
+  // (docs/formats.md, "Bake outputs").
   GlbImages glb_images = GlbImages::kShared;
   TextureOptions textures;
   MorphOptions morph;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   int scene = -1;  // choose_scene
-  Shard shard;  // this process bakes the shard's units of the plan (dqskin/job_plan.hpp)
+  Shard shard;  // this process bakes the shard's units of the plan (lib/job/job_plan.hpp)
   unsigned jobs = 0;  // encoder threads; 0: one per core
   bool dry_run = false;  // plan and list, write nothing, start no GPU
   Overwrite overwrite = Overwrite::kRefuseDifferent;

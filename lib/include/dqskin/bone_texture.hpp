@@ -1,4 +1,4 @@
-// The "pack" stage of shared/DESIGN.md: every frame's JointTransforms of one skin packed into the
+// The "pack" stage of docs/DESIGN.md §1.1: every frame's JointTransforms of one skin packed into the
 // BoneTexture that the compute shader reads and `dqskin bake --format bones` writes.
 #pragma once
 
@@ -10,7 +10,7 @@
 
 namespace dqskin {
 
-// The BoneTexture of DESIGN.md: RGBA32F, one row per frame, T texels per joint (T = 2: real, dual;
+// The BoneTexture of docs/DESIGN.md §4.1: RGBA32F, one row per frame, T texels per joint (T = 2: real, dual;
 // T = 5 when any joint of any frame is non-rigid: real, dual, then the three rows of S with w = 0).
 // Texel (T·j + k, f) is component k of joint j at frame f, joints in the skin's order.
 struct BoneTexture {

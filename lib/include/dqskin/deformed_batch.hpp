@@ -1,4 +1,4 @@
-// What the "deform" stage of shared/DESIGN.md hands to the writers and the renderer, whichever deformer
+// What the "deform" stage of docs/DESIGN.md §2.5 hands to the writers and the renderer, whichever deformer
 // (GPU or CPU reference) made it: the deformed vertices of consecutive frames, as float arrays.
 #pragma once
 

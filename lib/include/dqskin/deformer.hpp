@@ -1,4 +1,4 @@
-// The "deform" stage of shared/DESIGN.md as one interface: callers ask for a clip at some times in one
+// The "deform" stage of docs/DESIGN.md §2.4 as one interface: callers ask for a clip at some times in one
 // blend mode and receive DeformedBatches in frame order, whichever implementation runs (the compute shader
 // on a headless GL context, the vectorized float CPU deformer, or the double-precision CPU reference).
 // Which one runs is decided here, once, from the backend, the mode and the context.

@@ -10,7 +10,7 @@
 //   [Kenwright]  Kenwright: Dual-Quaternion Interpolation.
 //   [Pennestri]  Pennestri, Valentini: Dual Quaternions as a Tool for Rigid Body Motion Analysis.
 //
-// Conventions (shared/DESIGN.md): quaternions are GLM's (x, y, z, w) with w the scalar part. A unit dual
+// Conventions (docs/DESIGN.md §3.1): quaternions are GLM's (x, y, z, w) with w the scalar part. A unit dual
 // quaternion for "rotate by r, then translate by t" is (r, 0.5 * (0, t) * r), which is GLM's
 // tdualquat(r, t) constructor.
 #pragma once
@@ -109,7 +109,7 @@ template <typename T> struct DualMat3 {
 template <typename T> DualMat3<T> line_transform(const DualQuat<T>& q);
 
 // ---------------------------------------------------------------------------------------------------
-// Non-rigid joint matrices (shared/DESIGN.md "Non-rigid joints").
+// Non-rigid joint matrices (docs/DESIGN.md §3.6).
 
 // A joint matrix [A | t] split as A = R S: a rigid part [R | t] and a symmetric 3×3 S applied first,
 // so that m p = R (S p) + t.
@@ -123,7 +123,7 @@ struct JointSplit {
 // Polar decomposition A = R S with R the rotation nearest to A (the maximiser of tr(Rᵀ A)), which for
 // det A > 0 is the polar factor and S is symmetric positive definite. Mirrored joints (det A < 0) keep
 // R a rotation and give S a negative eigenvalue; singular A (a zero scale) gives a singular S. Never
-// produces NaN for finite input. The default tolerance is DESIGN.md's 1e-5.
+// produces NaN for finite input. The default tolerance is docs/DESIGN.md §3.6's 1e-5.
 template <typename T> JointSplit<T> split_joint_matrix(const Mat4<T>& m, T tolerance = T(1e-5));
 
 // The rotation nearest to M in the Frobenius norm (maximising tr(Rᵀ M)), as a unit quaternion with
@@ -188,7 +188,7 @@ template <typename T> DualQuat<T> ken_lerp(const DualQuat<T>& p, const DualQuat<
 // Blending of n poses with weights. All spans have the same, non-zero size. Weights need not be convex
 // (Pennestri §6 uses Lagrange weights), but skinning passes convex ones.
 
-// DLB(w; q1..qn) = Σ wᵢ qᵢ / ||Σ wᵢ qᵢ|| [Kavan §4; Pennestri eq. 33]. Antipodality (DESIGN.md): each qᵢ
+// DLB(w; q1..qn) = Σ wᵢ qᵢ / ||Σ wᵢ qᵢ|| [Kavan §4; Pennestri eq. 33]. Antipodality (docs/DESIGN.md §3.5): each qᵢ
 // is first flipped to the hemisphere of the one with the largest weight. With non-negative weights the
 // sum's real part cannot vanish.
 template <typename T> DualQuat<T> blend_dlb(std::span<const DualQuat<T>> q, std::span<const T> w);

@@ -1,4 +1,4 @@
-// One deformed frame as the writers see it (shared/DESIGN.md "DeformedFrames ──write──▶"): float arrays
+// One deformed frame as the writers see it (docs/DESIGN.md §2.5): float arrays
 // per primitive of every mesh instance, whichever deformer produced them. The GPU path hands out
 // DeformedBatches (many frames, float); the CPU reference DeformedFrames (one frame, double) are
 // converted once, so every writer has one input type.

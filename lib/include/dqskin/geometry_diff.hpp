@@ -1,6 +1,6 @@
 // Comparing two glTF files by what they do, not what they store: both are deformed at the same times and
 // their surfaces compared over every frame, so that an optimizer's or exporter's changes to tracks,
-// quantization and vertex order are measured where they show (shared/DESIGN.md "diff"). A of the
+// quantization and vertex order are measured where they show (docs/DESIGN.md §7.3). A of the
 // reference, B the candidate. The reports are dqskin/geometry_report.hpp's.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Headless OpenGL contexts (shared/DESIGN.md: "The GPU context (EGL or OSMesa) is a resource that deform
-// and render borrow; nothing above them knows which backend runs"). No EGL, OSMesa or GL type appears here.
+// Headless OpenGL contexts (docs/DESIGN.md §1.4: the GPU context (EGL or OSMesa) is a resource that deform
+// and render borrow; nothing above them knows which backend runs). No EGL, OSMesa or GL type appears here.
 #pragma once
 
 #include <memory>

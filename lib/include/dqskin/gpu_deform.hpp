@@ -1,4 +1,4 @@
-// GPU deformation (shared/DESIGN.md "deform"): the compute shader glsl/skin.comp reads a BoneTexture
+// GPU deformation (docs/DESIGN.md §2.4): the compute shader glsl/skin.comp reads a BoneTexture
 // (bone_texture.hpp) and deforms every vertex of every frame of a batch in one dispatch, handing out
 // DeformedBatches (deformed_batch.hpp). Library users never touch GL.
 #pragma once

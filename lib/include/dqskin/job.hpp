@@ -1,4 +1,4 @@
-// The vocabulary of a job (shared/DESIGN.md "Job"): what every command that walks inputs × clips × frames
+// The vocabulary of a job (docs/DESIGN.md §2.6): what every command that walks inputs × clips × frames
 // (bake, render, and the commands to come) reports per input, how it reports progress, and how it stops.
 #pragma once
 
@@ -27,8 +27,8 @@ struct JobProgress {
   std::string input, clip;  // what is being worked on now
 };
 
-// Which part of a job this process does: the units of work u with u mod count == index (shared/DESIGN.md
-// "Job"), so that N processes started with 0/N … N-1/N together do the whole job once.
+// Which part of a job this process does: the units of work u with u mod count == index
+// (docs/DESIGN.md §6.5), so that N processes started with 0/N … N-1/N together do the whole job once.
 struct Shard {
   size_t index = 0, count = 1;
   bool owns(size_t unit) const { return unit % count == index; }

@@ -29,7 +29,7 @@ struct LintOptions {
   // size).
   double bind_tolerance = 1e-3;
   // Scale or shear of joint matrices relative to the skin's placement scale: entries of S − I or S − sI
-  // (A = R S) beyond this; a smallest scale below it is a zero scale. Looser than DESIGN.md's 1e-5: float
+  // (A = R S) beyond this; a smallest scale below it is a zero scale. Looser than docs/DESIGN.md §9.3's 1e-5: float
   // matrices composed down a chain of joints carry about 1e-5 of rounding.
   double scale_tolerance = 1e-4;
   // Rotation keys whose length differs from 1 by more than this.

@@ -1,4 +1,4 @@
-// Loading glTF 2.0 files into an Asset (shared/DESIGN.md "load").
+// Loading glTF 2.0 files into an Asset (docs/DESIGN.md §5).
 #pragma once
 
 #include "dqskin/asset.hpp"

@@ -1,8 +1,8 @@
 // --max-memory as a ceiling on what a command holds, whatever allocates it: the loader, the deformers,
-// the encoders, the reports and the libraries behind them (README "Security", "Limits").
+// the encoders, the reports and the libraries behind them (docs/SECURITY.md, "What dqskin reads").
 //
 // Every operator new of the process is counted when the binary links the counting allocator
-// (lib/memory/counting_new.cpp, in the dqskin command line; not in the library, so that an application
+// (lib/base/counting_new.cpp, in the dqskin command line; not in the library, so that an application
 // linking dqskin keeps its own allocator). Under a ceiling, an allocation that would take the bytes in
 // use past it throws std::bad_alloc before anything is allocated, so the limit holds for every allocation
 // that grows with the input, not only for those an estimate foresaw. Memory that C libraries take with
@@ -64,7 +64,7 @@ uint64_t memory_peak();
 // next input's message is its own.
 std::string out_of_memory_message();
 
-// What lib/memory/counting_new.cpp calls; nothing else should.
+// What lib/base/counting_new.cpp calls; nothing else should.
 namespace memory_detail {
 // Counts `bytes` about to be allocated; false (nothing counted) when they would pass the ceiling, unless
 // `always` (then they are counted whatever the ceiling).

@@ -1,4 +1,4 @@
-// Rendering deformed frames into images (shared/DESIGN.md "DeformedFrames ──render──▶ images") as one job:
+// Rendering deformed frames into images (docs/DESIGN.md §1.1, draw) as one job:
 // `dqskin render` as a library call, which walks inputs × clips × frames, deforms each clip and draws its
 // frames with the camera (dqskin/camera.hpp), the renderer (dqskin/renderer.hpp) and the image files
 // (dqskin/image_output.hpp). Those layers have their own headers so that a part used alone (framing a
@@ -37,7 +37,7 @@ struct RenderOptions {
   BlendMode mode = BlendMode::kDqs;  // lbs or dqs: the geometry drawn (mode-diff deforms with both)
   Backend backend = Backend::kAuto;  // draws on its context; cpu: deformed on the CPU reference
   int scene = -1;
-  Shard shard;  // this process renders the shard's frames of the plan (dqskin/job_plan.hpp)
+  Shard shard;  // this process renders the shard's frames of the plan (lib/job/job_plan.hpp)
   RendererOptions renderer;
   CameraOptions camera;
   // --camera: the node (by name) whose glTF camera the frames are seen through, following its animation;

@@ -1,4 +1,4 @@
-// The rasterizer of `dqskin render` (shared/DESIGN.md "DeformedFrames ──render──▶ images"): deformed frames
+// The rasterizer of `dqskin render` (docs/DESIGN.md §1.1, draw): deformed frames
 // drawn through a camera into an offscreen multisampled framebuffer of the borrowed headless context, and
 // read back as linear float images. The one layer of rendering that needs a GPU context, so it is kept
 // apart from the camera math and the image files. No GL type appears here.

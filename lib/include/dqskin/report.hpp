@@ -1,8 +1,8 @@
 // `dqskin report` as a library call: every clip of the inputs deformed with lbs, dqs and dib (the exact
 // reference), measured per joint region and frame (displacement between the blends, cross-section area
 // around the joint's axis, volume of closed meshes, twist and bend, antipodal flips), judged per joint and
-// per asset, and written as report.json with a contact sheet of each clip's worst frames. README
-// "dqskin report" defines every figure. No JSON, GL or tinygltf type appears here.
+// per asset, and written as report.json with a contact sheet of each clip's worst frames. The page
+// docs/commands/report.md defines every figure. No JSON, GL or tinygltf type appears here.
 #pragma once
 
 #include "dqskin/animation.hpp"
@@ -17,7 +17,7 @@
 
 namespace dqskin {
 
-// The thresholds of the verdicts (README "dqskin report", "Verdicts").
+// The thresholds of the verdicts (docs/commands/report.md, "Verdicts").
 struct ReportThresholds {
   // lbs-fine: lbs–dib max at most this; a fraction of the rest-pose diagonal when tolerance_relative,
   // else scene units (--tolerance 0.5% or 0.002).
@@ -39,7 +39,7 @@ struct ReportOptions {
   int worst_frames = 3;      // frames per contact sheet
   Backend backend = Backend::kAuto;  // the context that draws the contact sheets
   // lbs and dqs on the fast float CPU deformer instead of the double reference (dib always runs there):
-  // faster, and the figures move by float rounding (README "dqskin report").
+  // faster, and the figures move by float rounding (docs/commands/report.md).
   bool fast_cpu = false;
   const std::atomic<bool>* cancel = nullptr;
 };

@@ -1,4 +1,4 @@
-// Joint transforms and the CPU reference deformer (shared/DESIGN.md "palette" and "deform"). The CPU
+// Joint transforms and the CPU reference deformer (docs/DESIGN.md §2.3, §3.7). The CPU
 // deformer runs in double precision: it is the oracle every GPU path is compared with.
 #pragma once
 
@@ -15,12 +15,12 @@ struct JointTransforms {
   std::vector<Mat4<double>> matrices;   // joint matrix world(joint) · inverseBind(joint)
   std::vector<DualQuat<double>> rigid;  // its rigid part [R | t] (unit, w ≥ 0 as from_rigid_matrix)
   std::vector<Mat3<double>> scale;      // its symmetric S (A = R S); identity for rigid joints
-  bool any_non_rigid = false;           // some joint has scale or shear beyond 1e-5 (DESIGN.md)
+  bool any_non_rigid = false;           // some joint has scale or shear beyond 1e-5 (docs/DESIGN.md §3.6)
 };
 
 JointTransforms joint_transforms(const Skin& skin, const Pose& pose);
 
-// The blend modes of DESIGN.md: lbs (linear blend of matrices), dqs (DLB with the two-phase scale
+// The blend modes of docs/DESIGN.md §3.5: lbs (linear blend of matrices), dqs (DLB with the two-phase scale
 // rule), dib (iterative dual-quaternion blending, exact).
 enum class BlendMode { kLbs, kDqs, kDib };
 const char* to_string(BlendMode mode);
@@ -36,7 +36,7 @@ struct MeshInstance {
 std::vector<MeshInstance> mesh_instances(const Asset& asset, int scene);
 
 // The "palette" of one mesh instance at `pose`: its skin's joint transforms, or for a rigid instance
-// those of a one-joint skin whose joint matrix is the node's world matrix (DESIGN.md "Asset vocabulary").
+// those of a one-joint skin whose joint matrix is the node's world matrix (docs/DESIGN.md §2.1).
 JointTransforms instance_joint_transforms(const Asset& asset, const MeshInstance& instance, const Pose& pose);
 
 // The scene a command works on: `requested` when ≥ 0, else the file's default scene, else scene 0;
