@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes for SECONDS seconds in all: configures the "sanitize" preset (clang, ASan + UBSan; it holds the
-# libFuzzer targets too) and builds its "fuzz" build preset (the targets alone), makes seed corpora under build/fuzz/, checks every truncated prefix of the loader's seeds, then
-# runs, with the glTF dictionary, dqskin_fuzz_load (the loader, half the time), then for an eighth each
+# libFuzzer targets too) and builds its "fuzz" build preset (the targets alone, in build/sanitize/fuzz/),
+# makes seed corpora under build/fuzz/, checks every truncated prefix of the loader's seeds, then runs,
+# with the glTF dictionary, dqskin_fuzz_load (the loader, half the time), then for an eighth each
 # dqskin_fuzz_cli (the command line's info, lint and bake on the fuzzed file), dqskin_fuzz_manifest (verify
 # and merge on a fuzzed manifest), dqskin_fuzz_exr (diff on a fuzzed EXR) and dqskin_fuzz_bake_folder (diff
 # of a bake folder with one file fuzzed). Exits non-zero on any finding: crash,
