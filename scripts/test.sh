@@ -49,7 +49,11 @@ bash scripts/install/deps.sh
 # The glTF tools and three.js of the tests, once: the sanitize build uses the release build's copy.
 bash scripts/install/node_tools.sh build/release/tools
 mkdir -p build/sanitize
-[ -e build/sanitize/tools ] || ln -s ../release/tools build/sanitize/tools
+if [ -d build/sanitize/tools ] && [ ! -L build/sanitize/tools ]; then
+  bash scripts/install/node_tools.sh build/sanitize/tools  # a copy of its own from an older checkout: kept current
+else
+  ln -sfn ../release/tools build/sanitize/tools
+fi
 
 stage "release build"
 cmake --preset release >/dev/null
