@@ -66,7 +66,7 @@ stage slurm
 ctest --preset slurm
 
 # One clang build with AddressSanitizer and UndefinedBehaviorSanitizer for the tests and the fuzz
-# targets (fuzz/CMakeLists.txt adds libFuzzer's coverage to the library).
+# targets (DQSKIN_FUZZ adds libFuzzer's coverage to every object: CMakeLists.txt).
 stage "sanitize build"
 cmake --preset sanitize >/dev/null
 cmake --build --preset sanitize -j "$jobs"
