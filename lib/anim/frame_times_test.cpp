@@ -13,8 +13,8 @@ Clip clip_with_keys(std::vector<float> times) {
   ch.components = 3;
   ch.values.assign(times.size() * 3, 0.0f);
   clip.channels.push_back(ch);
-  clip.first_key = times.front();
-  clip.last_key = times.back();
+  clip.first_key = double(times.front());
+  clip.last_key = double(times.back());
   return clip;
 }
 

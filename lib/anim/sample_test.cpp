@@ -50,8 +50,10 @@ TEST(SampleChannel, CubicSplineReproducesACubic) {
   auto p = [](double t) { return t * t * t - t; };
   auto dp = [](double t) { return 3 * t * t - 1; };
   std::vector<float> times = {0, 0.5f, 2}, values;
-  for (float t : times)
+  for (float key : times) {
+    const double t = double(key);
     for (double v : {dp(t), p(t), dp(t)}) values.insert(values.end(), {float(v), 0, 0});
+  }
   const Channel ch = channel(TargetPath::kTranslation, Interpolation::kCubicSpline, times, values);
   for (double t : {0.0, 0.1, 0.25, 0.5, 0.9, 1.3, 2.0}) EXPECT_NEAR(sample_channel(ch, t)[0], p(t), 1e-6) << t;
 }

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -283,7 +284,7 @@ TEST_F(BakeTest, TextureProfilesAreDeterministicAndShardsUnionToTheWhole) {
 double rest_size(const Asset& asset) {
   const DeformedFrame rest =
       deform_frame(asset, mesh_instances(asset, choose_scene(asset, -1)), sample_pose(asset, nullptr, 0), BlendMode::kDqs);
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const DeformedPrimitive& p : rest.primitives)
     for (const Vec3<double>& v : p.positions) lo = glm::min(lo, v), hi = glm::max(hi, v);
   return glm::length(hi - lo);

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 namespace dqskin::diff_detail {
@@ -25,7 +26,7 @@ TEST(ClosestPointWeights, MatchesDenseSamplingInEveryRegion) {
     EXPECT_GE(std::min({w.x, w.y, w.z}), -1e-12);
     const double found = glm::length(point_of(w, a, b, c) - p);
     // No point of a 400 x 400 barycentric grid is closer (the grid's spacing bounds what it can miss).
-    double sampled = INFINITY;
+    double sampled = std::numeric_limits<double>::infinity();
     for (int i = 0; i <= 400; ++i)
       for (int j = 0; i + j <= 400; ++j)
         sampled = std::min(sampled, glm::length(point_of({1 - (i + j) / 400.0, i / 400.0, j / 400.0}, a, b, c) - p));
@@ -60,7 +61,7 @@ TEST(SurfaceIndex, FindsTheSameDistanceAsEveryTriangle) {
   std::uniform_real_distribution<double> coordinate(-0.5, 2.5);
   for (int q = 0; q < 500; ++q) {
     const glm::dvec3 p(coordinate(random), coordinate(random), coordinate(random) - 1.0);
-    double brute = INFINITY;
+    double brute = std::numeric_limits<double>::infinity();
     for (size_t t = 0; t < triangles.size(); t += 3) {
       const glm::dvec3 a = positions[triangles[t]], b = positions[triangles[t + 1]], c = positions[triangles[t + 2]];
       brute = std::min(brute, glm::length(point_of(closest_point_weights(p, a, b, c), a, b, c) - p));

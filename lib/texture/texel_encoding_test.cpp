@@ -59,7 +59,7 @@ TEST(TexelEncoding, HalfRoundsToNearestAndRefusesOverflow) {
   for (int i = 0; i < 100000; ++i) {
     const float x = u(rng);
     ASSERT_TRUE(to_half(x, r));
-    ASSERT_LE(std::abs(double(r) - double(x)), half_ulp(x) / 2) << x;
+    ASSERT_LE(std::abs(double(r) - double(x)), half_ulp(double(x)) / 2) << x;
   }
   EXPECT_EQ(half_ulp(1.0), std::ldexp(1.0, -10));
   EXPECT_EQ(half_ulp(1000.0), 0.5);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Fuzzes for SECONDS seconds in all: configures and builds the "fuzz" preset (clang, libFuzzer, ASan +
-# UBSan), makes seed corpora under build/fuzz/, checks every truncated prefix of the loader's seeds, then
-# runs, with the glTF dictionary, dqskin_fuzz_load (the loader, half the time), then for an eighth each
+# Fuzzes for SECONDS seconds in all: configures the "sanitize" preset (clang, ASan + UBSan; it holds the
+# libFuzzer targets too) and builds its "fuzz" build preset (the targets alone, in build/sanitize/fuzz/),
+# makes seed corpora under build/fuzz/, checks every truncated prefix of the loader's seeds, then runs,
+# with the glTF dictionary, dqskin_fuzz_load (the loader, half the time), then for an eighth each
 # dqskin_fuzz_cli (the command line's info, lint and bake on the fuzzed file), dqskin_fuzz_manifest (verify
 # and merge on a fuzzed manifest), dqskin_fuzz_exr (diff on a fuzzed EXR) and dqskin_fuzz_bake_folder (diff
 # of a bake folder with one file fuzzed). Exits non-zero on any finding: crash,
@@ -23,11 +24,12 @@ fi
 seconds=$1
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 cd "$root"
-build=$root/build/fuzz
+build=$root/build/fuzz          # seeds, corpora, logs and findings
+bin=$root/build/sanitize        # the instrumented programs (CMakePresets.json)
 
-cmake --preset fuzz >/dev/null
+cmake --preset sanitize >/dev/null
 cmake --build --preset fuzz -j "${FUZZ_JOBS:-1}"
-fuzzer=$build/fuzz/dqskin_fuzz_load
+fuzzer=$bin/fuzz/dqskin_fuzz_load
 
 # Seed corpus of the loader and the command line: the valid files of the malformed catalogue (the compressed ones too, so that the meshopt and
 # Draco decoders are reached) and the project's test data, each at most 1 MiB.
@@ -71,7 +73,7 @@ run_target() {
   local status=0
   # -rss_limit_mb also sets -malloc_limit_mb: one allocation of more than 2 GiB is an out-of-memory finding.
   # shellcheck disable=SC2086
-  "$build/fuzz/dqskin_fuzz_$name" "$target_corpus" "$seeds" \
+  "$bin/fuzz/dqskin_fuzz_$name" "$target_corpus" "$seeds" \
     -dict="$root/fuzz/glTF.dict" \
     -max_total_time="$target_seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
     -max_len="${FUZZ_MAX_LEN:-262144}" -print_final_stats=1 \
@@ -82,7 +84,7 @@ run_target() {
   echo "fuzz $name: ${executions:-unknown} executions in ${target_seconds} s; log: $log"
   if [ "$status" -ne 0 ]; then
     echo "fuzz $name: FINDING (libFuzzer exit status $status); reproduce with:" \
-      "$build/fuzz/dqskin_fuzz_$name <the input written above>" >&2
+      "$bin/fuzz/dqskin_fuzz_$name <the input written above>" >&2
   fi
   return "$status"
 }
@@ -94,8 +96,8 @@ file_seeds=$build/file-seeds
 rm -rf "$file_seeds"
 mkdir -p "$file_seeds/manifest" "$file_seeds/exr" "$file_seeds/bake_folder"
 bake_flags=(--format ply,obj,glb,vat --frames 0:1 --backend cpu -j 1 --quiet)
-"$build/app/dqskin" bake "$root/testdata/twisted_cylinder.gltf" -o "$file_seeds/bake" "${bake_flags[@]}"
-"$build/app/dqskin" bake "$root/testdata/twisted_cylinder.gltf" -o "$file_seeds/shard" "${bake_flags[@]}" --shard 0/2
+"$bin/app/dqskin" bake "$root/testdata/twisted_cylinder.gltf" -o "$file_seeds/bake" "${bake_flags[@]}"
+"$bin/app/dqskin" bake "$root/testdata/twisted_cylinder.gltf" -o "$file_seeds/shard" "${bake_flags[@]}" --shard 0/2
 cp "$file_seeds/bake/manifest.json" "$file_seeds/shard/manifest.shard-0-of-2.json" "$file_seeds/manifest/"
 find "$file_seeds/bake" -type f -size -1025k -exec cp --backup=numbered {} "$file_seeds/bake_folder/" \;
 find "$file_seeds/bake" -name '*.exr' -exec cp --backup=numbered {} "$file_seeds/exr/" \;
