@@ -1,9 +1,9 @@
 // dqskin's `mat4` bone texture (docs/formats.md, "Bone textures") played by Babylon.js's baked vertex
-// animation, as a Babylon.js application plays a texture made by its own VertexAnimationBaker: the mesh
-// has a skeleton of the skin's joints (only so that Babylon declares the influences; its bones are never
-// posed), a BakedVertexAnimationManager holds the texture as the RawTexture the baker makes
-// (textureFromBakedVertexData: RGBA float, (bones + 1) · 4 texels wide, one row per frame, nearest), and
-// the frame comes from the manager's time and setAnimationParameters. The vertex shader is ours only in
+// animation, as a Babylon.js application plays a texture made by its own VertexAnimationBaker: the EXR
+// read by Babylon's own EXR decoder, the mesh with a skeleton of the skin's joints (only so that Babylon
+// declares the influences; its bones are never posed), a BakedVertexAnimationManager holding the texture
+// the baker makes of the texels (textureFromBakedVertexData: RGBA float, (bones + 1) · 4 texels wide, one
+// row per frame, nearest), and the frame coming from the manager's time and setAnimationParameters. The vertex shader is ours only in
 // what it does with the result: it includes Babylon's own bonesDeclaration,
 // bakedVertexAnimationDeclaration (readMatrixFromRawSamplerVAT) and bakedVertexAnimation (the frame
 // from the time, the weighted sum of the joints' matrices into finalWorld) chunks, then draws normals as
@@ -14,9 +14,6 @@ import { Mesh } from '@babylonjs/core/Meshes/mesh.js';
 import { VertexData } from '@babylonjs/core/Meshes/mesh.vertexData.js';
 import { VertexBuffer } from '@babylonjs/core/Buffers/buffer.js';
 import { ShaderMaterial } from '@babylonjs/core/Materials/shaderMaterial.js';
-import { RawTexture } from '@babylonjs/core/Materials/Textures/rawTexture.js';
-import { Texture } from '@babylonjs/core/Materials/Textures/texture.js';
-import { Constants } from '@babylonjs/core/Engines/constants.js';
 import { Skeleton } from '@babylonjs/core/Bones/skeleton.js';
 import { Bone } from '@babylonjs/core/Bones/bone.js';
 import { Matrix } from '@babylonjs/core/Maths/math.vector.js';
@@ -24,12 +21,29 @@ import { Color4 } from '@babylonjs/core/Maths/math.color.js';
 import { FreeCamera } from '@babylonjs/core/Cameras/freeCamera.js';
 import { Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 import { BakedVertexAnimationManager } from '@babylonjs/core/BakedVertexAnimation/bakedVertexAnimationManager.js';
+import { VertexAnimationBaker } from '@babylonjs/core/BakedVertexAnimation/vertexAnimationBaker.js';
+import { ReadExrDataAsync } from '@babylonjs/core/Materials/Textures/Loaders/exrTextureLoader.js';
+import { ExrLoaderGlobalConfiguration } from '@babylonjs/core/Materials/Textures/Loaders/EXR/exrLoader.configuration.js';
 // The shader chunks the material includes (they register themselves in Babylon's ShaderStore).
 import '@babylonjs/core/Shaders/ShadersInclude/bonesDeclaration.js';
 import '@babylonjs/core/Shaders/ShadersInclude/bakedVertexAnimationDeclaration.js';
 import '@babylonjs/core/Shaders/ShadersInclude/bakedVertexAnimation.js';
 import { readBonesMesh } from './glb_mesh.js';
 import { cameraMatrices, canvasSize, fault, finish, loadBones, normalsFragmentBody, openClip, showError } from './page.js';
+
+// Babylon's EXR reader loads its zlib decoder (fflate) as a script from a CDN for ZIP-compressed files; the
+// same version, installed by scripts/install/node_tools.sh, comes from disk here.
+ExrLoaderGlobalConfiguration.FFLATEUrl = '/node_modules/fflate/umd/index.js';
+
+// The EXR as Babylon.js reads it (ReadExrDataAsync: the decoder its .exr texture loader uses, float
+// output): { data, width, height } with row 0 the texel row 0 Babylon uploads.
+async function decodeExrWithBabylon(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
+  const { data, width, height } = await ReadExrDataAsync(await response.arrayBuffer());
+  if (!data) throw new Error(`${url}: Babylon.js could not read it`);
+  return { data, width, height };
+}
 
 const vertexSource = /* glsl */ `
 precision highp float;
@@ -93,15 +107,13 @@ async function main() {
   const managers = new Map();  // bone texture name → BakedVertexAnimationManager
   for (const [i, p] of primitives.entries()) {
     if (!managers.has(p.bones)) {
-      const bones = await loadBones(clip.folder, p.bones, 'mat4', wrong);
+      const bones = await loadBones(clip.folder, p.bones, 'mat4', wrong, decodeExrWithBabylon);
       // The skeleton the baker would have baked: one bone per joint, and so (bones + 1) · 4 texels a row.
       const skeleton = new Skeleton(p.bones, p.bones, scene);
       for (const name of bones.side.joints) new Bone(name, skeleton, null, Matrix.Identity());
-      // VertexAnimationBaker.textureFromBakedVertexData's texture, from dqskin's texels.
-      const texture = RawTexture.CreateRGBATexture(bones.data, bones.width, bones.height, scene, false, false,
-        Texture.NEAREST_NEAREST, Constants.TEXTURETYPE_FLOAT);
+      // The texels as a Babylon.js application gives baked data to the manager: the baker's own texture.
       const manager = new BakedVertexAnimationManager(scene);
-      manager.texture = texture;
+      manager.texture = new VertexAnimationBaker(scene, skeleton).textureFromBakedVertexData(bones.data);
       // Frames 0 to N−1 of the texture at the clip's rate; the time picks the frame (below).
       manager.setAnimationParameters(0, bones.height - 1, 0, clip.clip.fps || 30);
       managers.set(p.bones, { manager, skeleton, frames: bones.height, fps: clip.clip.fps || 30 });

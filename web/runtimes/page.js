@@ -68,19 +68,33 @@ export async function openClip() {
   return { folder: `${bake}/${clip.folder}`, clip, frames, index, hasVat: files.has(`${clip.folder}/vat.json`) };
 }
 
-// A bone texture (bones_skinK.json and its EXR) as { side, data: Float32Array RGBA, width, height }, row 0
-// the file's first row (frame 0), checked against the profile the page's runtime reads. A fault rewrites
-// the texels the runtime will read (the runtime's shader is never changed).
-export async function loadBones(folder, name, profile, wrong) {
+// three.js's EXRLoader (web/exr_texture.js), with the rows put back in the file's order: row 0 is the
+// file's first row. For a runtime without an EXR reader of its own (PlayCanvas).
+export async function decodeExrInFileOrder(url) {
+  const texture = await loadExrTexture(url);
+  return { data: texture.image.data, width: texture.image.width, height: texture.image.height };
+}
+
+// A bone texture (bones_skinK.json and its EXR) as { side, data: Float32Array RGBA, width, height },
+// decoded by `decode` (url → { data, width, height }, row 0 the texel row 0 the runtime uploads), checked
+// against the profile the page's runtime reads. A fault rewrites the texels the runtime will read (the
+// runtime's shader is never changed).
+export async function loadBones(folder, name, profile, wrong, decode = decodeExrInFileOrder) {
   const side = await fetchJson(`${folder}/${name}.json`);
   if (side.profile !== profile)
     throw new Error(`${name}.json: profile '${side.profile}'; this page plays --bones-profile ${profile}`);
-  const texture = await loadExrTexture(`${folder}/${side.file}`, { fault: wrong === 'row-order' ? 'row-order' : undefined });
-  const { width, height } = texture.image;
-  const data = texture.image.data;
+  const { data, width, height } = await decode(`${folder}/${side.file}`);
   const t = side.texels_per_joint, joints = side.joints.length;
   if (width !== side.width || height !== side.height || width < t * joints)
     throw new Error(`${side.file}: ${width}×${height}, its side file says ${side.width}×${side.height}`);
+  if (wrong === 'row-order') {  // the rows upside down: frame f reads frame N − 1 − f
+    const stride = 4 * width;
+    for (let top = 0, bottom = height - 1; top < bottom; ++top, --bottom) {
+      const row = data.slice(top * stride, (top + 1) * stride);
+      data.copyWithin(top * stride, bottom * stride, (bottom + 1) * stride);
+      data.set(row, bottom * stride);
+    }
+  }
   for (let row = 0; row < height; ++row) {
     const at = (x, c) => 4 * (row * width + x) + c;
     if (wrong === 'transpose') {
