@@ -261,11 +261,12 @@ TEST(BoneProfiles, Mat4TexelsAreColumnsWithATrailingIdentity) {
   EXPECT_EQ(image.height, 2u);
   EXPECT_EQ(image.texels_per_joint, 4);
   EXPECT_EQ(image.rgba.size(), 12u * 2u * 4u);
+  // Bottom-up: frame 1 in row 0, frame 0 in the last row (Babylon's EXR reader flips them back).
   const Mat4<double>& m11 = frames[1].matrices[1];
-  EXPECT_EQ(texel(image, 4 * 1 + 3, 1), as_float(DVec4(0.5, -1.5, 2.5, 1)));  // translation, w = 1
+  EXPECT_EQ(texel(image, 4 * 1 + 3, 0), as_float(DVec4(0.5, -1.5, 2.5, 1)));  // translation, w = 1
   for (int k = 0; k < 4; ++k) {
-    EXPECT_EQ(texel(image, 4 * 1 + size_t(k), 1), as_float(m11[k])) << "column " << k;
-    EXPECT_EQ(texel(image, size_t(k), 0), as_float(frames[0].matrices[0][k])) << "column " << k;
+    EXPECT_EQ(texel(image, 4 * 1 + size_t(k), 0), as_float(m11[k])) << "column " << k;
+    EXPECT_EQ(texel(image, size_t(k), 1), as_float(frames[0].matrices[0][k])) << "column " << k;
   }
   for (size_t f = 0; f < 2; ++f)
     for (int k = 0; k < 4; ++k) EXPECT_EQ(texel(image, 8 + size_t(k), f), Mat4<double>(1.0)[k]) << "identity, frame " << f;
