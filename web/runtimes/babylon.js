@@ -1,12 +1,12 @@
 // dqskin's `mat4` bone texture (docs/formats.md, "Bone textures") played by Babylon.js's baked vertex
-// animation, as a Babylon.js application plays a texture made by its own VertexAnimationBaker: the EXR
-// read by Babylon's own EXR decoder, the mesh with a skeleton of the skin's joints (only so that Babylon
-// declares the influences; its bones are never posed), a BakedVertexAnimationManager holding the texture
+// animation, as a Babylon.js application plays a texture made by its own VertexAnimationBaker: the EXR read
+// by Babylon's own EXR decoder; the mesh with a skeleton of the skin's joints (only so that Babylon
+// declares the influences; its bones are never posed); a BakedVertexAnimationManager holding the texture
 // the baker makes of the texels (textureFromBakedVertexData: RGBA float, (bones + 1) · 4 texels wide, one
-// row per frame, nearest), and the frame coming from the manager's time and setAnimationParameters. The vertex shader is ours only in
-// what it does with the result: it includes Babylon's own bonesDeclaration,
-// bakedVertexAnimationDeclaration (readMatrixFromRawSamplerVAT) and bakedVertexAnimation (the frame
-// from the time, the weighted sum of the joints' matrices into finalWorld) chunks, then draws normals as
+// row per frame, nearest); the frame from the manager's time and setAnimationParameters. The vertex shader
+// is ours only in what it does with the result: it includes Babylon's own bonesDeclaration,
+// bakedVertexAnimationDeclaration (readMatrixFromRawSamplerVAT) and bakedVertexAnimation (the frame from
+// the time, the weighted sum of the joints' matrices into finalWorld) chunks, then draws normals as
 // `dqskin render --shade normals`, with the camera `dqskin render` frames the clip with.
 import { Engine } from '@babylonjs/core/Engines/engine.js';
 import { Scene } from '@babylonjs/core/scene.js';
