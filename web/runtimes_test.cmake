@@ -1,5 +1,6 @@
 # One model through another runtime's own bone-texture reader (web/CMakeLists.txt), at test time:
-#   1. bakes MODEL's clip CLIP at FPS with --mode lbs (these runtimes blend linearly) into WORK/bake:
+#   1. bakes MODEL's clip CLIP (with COMBINED, every clip into one texture: --combine-clips) at FPS with
+#      --mode lbs (these runtimes blend linearly) into WORK/bake:
 #      --format bones in RUNTIME's profile (babylon: mat4, playcanvas: mat3x4), and a VAT only for its
 #      vat.json, whose clip bounds both renderers frame;
 #   2. renders the same frames with `dqskin render --mode lbs --shade normals --size 256x256` into WORK/render;
@@ -10,12 +11,12 @@
 #      (player_test.cmake's thresholds): `dqskin diff` must pass (or warn) with --fail ${pixel}
 #      --failpercent ${percent}; and each of FAULTS (frame:fault, a deliberately wrong read of the texture:
 #      row-order, transpose, joint-order,
-#      texel-offset: web/runtimes/page.js) must fail it.
+#      texel-offset, clip-offset: web/runtimes/page.js) must fail it.
 # Prints "runtimes: SKIPPED: <why>" (CTest's SKIP_REGULAR_EXPRESSION) when something it needs is missing.
 #
 #   cmake -DDQSKIN=dqskin -DNODE=node -DCHROMIUM=chromium -DSOURCE_DIR=repo -DMODULES=tools/node_modules
 #         -DRUNTIME=babylon|playcanvas -DMODEL=m.glb -DCLIP=name -DFPS=30 -DFRAMES=4,15
-#         -DFAULTS=4:transpose,15:row-order -DWORK=dir -P runtimes_test.cmake
+#         -DFAULTS=4:transpose,15:row-order [-DCOMBINED=1] -DWORK=dir -P runtimes_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
 # The three.js player's thresholds (player_test.cmake, where they are explained): a pixel is over when a
@@ -58,7 +59,13 @@ endfunction()
 
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
-run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/bake" --anim "${CLIP}" --fps ${FPS} --format bones,vat
+# COMBINED: every clip in one texture (--combine-clips); the page finds CLIP through the clip table.
+if(COMBINED)
+  set(clips --anim all --combine-clips)
+else()
+  set(clips --anim "${CLIP}")
+endif()
+run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/bake" ${clips} --fps ${FPS} --format bones,vat
     --bones-profile ${profile} --mode lbs -q)
 run("${DQSKIN}" render "${MODEL}" -o "${WORK}/render" --anim "${CLIP}" --fps ${FPS} --mode lbs --shade normals
     --size 256x256 -q)
@@ -75,8 +82,8 @@ foreach(frame IN LISTS frames)
 endforeach()
 set(expect_fail "")
 foreach(fault IN LISTS faults)
-  if(NOT fault MATCHES "^([0-9]+):(row-order|transpose|joint-order|texel-offset)$")
-    message(FATAL_ERROR "FAULTS: '${fault}' is not frame:row-order|transpose|joint-order|texel-offset")
+  if(NOT fault MATCHES "^([0-9]+):(row-order|transpose|joint-order|texel-offset|clip-offset)$")
+    message(FATAL_ERROR "FAULTS: '${fault}' is not frame:row-order|transpose|joint-order|texel-offset|clip-offset")
   endif()
   set(name fault_${CMAKE_MATCH_2}_${CMAKE_MATCH_1})
   list(APPEND captures "${name}=${RUNTIME}.html?bake=/bake/bake&clip=${CLIP}&frame=${CMAKE_MATCH_1}&fault=${CMAKE_MATCH_2}")

@@ -29,7 +29,7 @@ import '@babylonjs/core/Shaders/ShadersInclude/bonesDeclaration.js';
 import '@babylonjs/core/Shaders/ShadersInclude/bakedVertexAnimationDeclaration.js';
 import '@babylonjs/core/Shaders/ShadersInclude/bakedVertexAnimation.js';
 import { readBonesMesh } from './glb_mesh.js';
-import { cameraMatrices, canvasSize, fault, finish, loadBones, normalsFragmentBody, openClip, showError } from './page.js';
+import { cameraMatrices, canvasSize, clipEntry, fault, finish, loadBones, normalsFragmentBody, openClip, showError } from './page.js';
 
 // Babylon's EXR reader loads its zlib decoder (fflate) as a script from a CDN for ZIP-compressed files; the
 // same version, installed by scripts/install/node_tools.sh, comes from disk here.
@@ -114,9 +114,12 @@ async function main() {
       // The texels as a Babylon.js application gives baked data to the manager: the baker's own texture.
       const manager = new BakedVertexAnimationManager(scene);
       manager.texture = new VertexAnimationBaker(scene, skeleton).textureFromBakedVertexData(bones.data);
-      // Frames 0 to N−1 of the texture at the clip's rate; the time picks the frame (below).
-      manager.setAnimationParameters(0, bones.height - 1, 0, clip.clip.fps || 30);
-      managers.set(p.bones, { manager, skeleton, frames: bones.height, fps: clip.clip.fps || 30 });
+      // The clip's frames in the texture (all of it, or its range in a --combine-clips texture, from the
+      // clip table) at the clip's rate: Babylon's animation range; the time picks the frame (below).
+      const entry = clipEntry(bones.side, clip.clip, `${p.bones}.json`, wrong);
+      const fps = entry.fps || clip.clip.fps || 30;
+      manager.setAnimationParameters(entry.first_frame, entry.first_frame + entry.frame_count - 1, 0, fps);
+      managers.set(p.bones, { manager, skeleton, fps });
     }
     const { manager, skeleton } = managers.get(p.bones);
     const influences = 4 * p.joints.length;
@@ -149,8 +152,9 @@ async function main() {
     mesh.material = material;
   }
 
-  // Frame index i at time (i + ½) / fps: Babylon's bakedVertexAnimation chunk floors
-  // fract(time · fps / N) · N, so the half frame keeps the floor off a rounding edge.
+  // The clip's frame i at time (i + ½) / fps: Babylon's bakedVertexAnimation chunk takes frame
+  // from + floor(fract(time · fps / N) · N) of the range's N, so the half frame keeps the floor off a
+  // rounding edge.
   const show = (index) => { for (const m of managers.values()) m.manager.time = (index + 0.5) / m.fps; };
   await scene.whenReadyAsync();
   if (clip.index !== undefined) {

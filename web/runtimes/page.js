@@ -8,15 +8,17 @@
 //   box=x0,y0,z0,x1,y1,z1   what the camera frames (default: the clip's bounds from its vat.json)
 //   yaw, pitch, fov   dqskin render's camera (defaults 35, 20, 35); size=WxH canvas pixels
 //   capture=1    after drawing, put the canvas as a PNG data URL into <pre id="capture"> (tests)
-//   fault=row-order|transpose|joint-order|texel-offset   a deliberately wrong texture read, for the tests
-//                that show a wrong decode fails: the rows bottom-up (a wrong frame row), each joint's
-//                matrix transposed (its 3×3 part for mat3x4), joint j reading joint j + 1's texels, or
-//                every texel read one texel to the right (an addressing off by one)
+//   fault=row-order|transpose|joint-order|texel-offset|clip-offset   a deliberately wrong texture read,
+//                for the tests that show a wrong decode fails: the rows upside down (a wrong frame row),
+//                each joint's matrix transposed (its 3×3 part for mat3x4), joint j reading joint j + 1's
+//                texels, every texel read one texel to the right (an addressing off by one), or a clip of
+//                a combined texture (--combine-clips) played from the texture's first frame, its clip
+//                table ignored
 import { loadExrTexture } from '../exr_texture.js';
 import { frameCamera } from '../camera.js';
 
 export const params = new URLSearchParams(location.search);
-const faults = ['row-order', 'transpose', 'joint-order', 'texel-offset'];
+const faults = ['row-order', 'transpose', 'joint-order', 'texel-offset', 'clip-offset'];
 
 export function numbers(text, count, name) {
   const values = text.split(',').map(Number);
@@ -57,15 +59,26 @@ export async function openClip() {
   if (!clip)
     throw new Error(`${input.output_folder}: no clip ${wanted ?? ''} (clips: ${clips.map((c) => c.name).join(', ')})`);
   const files = new Set(manifest.outputs.map((o) => o.path));
-  if (!files.has(`${clip.folder}/bones_mesh.glb`))
-    throw new Error(`${clip.folder}: no bones_mesh.glb (bake with --format bones)`);
+  // With --combine-clips the textures are the input's, in its folder, and their clip table finds the clip.
+  const folder = [clip.folder, input.output_folder].find((f) => files.has(`${f}/bones_mesh.glb`));
+  if (!folder) throw new Error(`${clip.folder}: no bones_mesh.glb (bake with --format bones)`);
   const frames = clip.frame_numbers;
   let index;
   if (params.has('frame')) {
     index = frames.indexOf(Number(params.get('frame')));
     if (index < 0) throw new Error(`frame=${params.get('frame')}: the clip has frames ${frames[0]} to ${frames[frames.length - 1]}`);
   }
-  return { folder: `${bake}/${clip.folder}`, clip, frames, index, hasVat: files.has(`${clip.folder}/vat.json`) };
+  return { folder: `${bake}/${folder}`, clip, frames, index, hasVat: files.has(`${folder}/vat.json`) };
+}
+
+// The clip's entry in a texture's clip table (docs/formats.md, "Several clips in one texture"): its
+// first_frame is where its frames start in the texture (0 for a texture of one clip).
+export function clipEntry(side, clip, file, wrong) {
+  const entry = (side.clips ?? []).find((c) => c.name === clip.name);
+  if (!entry) throw new Error(`${file}: no clip ${clip.name} in its clip table`);
+  if (entry.frame_count !== clip.frame_numbers.length)
+    throw new Error(`${file}: clip ${clip.name} has ${entry.frame_count} frames, the manifest ${clip.frame_numbers.length}`);
+  return wrong === 'clip-offset' ? { ...entry, first_frame: 0 } : entry;
 }
 
 // three.js's EXRLoader (web/exr_texture.js), with the rows put back in the file's order: row 0 is the
@@ -125,7 +138,8 @@ export async function cameraMatrices(clip, aspect) {
     const b = numbers(params.get('box'), 6, 'box');
     box = { min: b.slice(0, 3), max: b.slice(3) };
   } else if (clip.hasVat) {
-    box = (await fetchJson(`${clip.folder}/vat.json`)).bounds;
+    const side = await fetchJson(`${clip.folder}/vat.json`);
+    box = (side.clips ?? []).find((c) => c.name === clip.clip.name)?.bounds ?? side.bounds;
   } else {
     throw new Error('box= is needed: the bake has no vat.json whose bounds the camera would frame');
   }

@@ -11,7 +11,7 @@
 // weighted sum) and draws normals as `dqskin render --shade normals`, with dqskin render's camera.
 import * as pc from 'playcanvas';
 import { readBonesMesh } from './glb_mesh.js';
-import { cameraMatrices, canvasSize, fault, finish, loadBones, normalsFragmentBody, openClip, showError } from './page.js';
+import { cameraMatrices, canvasSize, clipEntry, fault, finish, loadBones, normalsFragmentBody, openClip, showError } from './page.js';
 
 const vertexGLSL = /* glsl */ `
 #include "transformCoreVS"
@@ -83,6 +83,8 @@ async function main() {
   for (const p of primitives) {
     if (!textures.has(p.bones)) textures.set(p.bones, await loadBones(clip.folder, p.bones, 'mat3x4', wrong));
     const bones = textures.get(p.bones);
+    // The clip's frames in the texture: all of it, or its range in a --combine-clips texture.
+    const first = clipEntry(bones.side, clip.clip, `${p.bones}.json`, wrong).first_frame;
     if (p.joints.length > 1) throw new Error('bones_mesh.glb: PlayCanvas skins with at most 4 influences');
     const count = p.positions.length / 3;
     const mesh = new pc.Mesh(app.graphicsDevice);
@@ -101,7 +103,8 @@ async function main() {
     // PlayCanvas writes the palette from the bones' world matrices here; this page writes frame f's row.
     instance.updateMatrices = () => {};
     instance.updateMatrixPalette = function updateMatrixPalette() {
-      const row = bones.data.subarray(4 * bones.width * frame, 4 * bones.width * frame + 12 * joints);
+      const at = 4 * bones.width * (first + frame);
+      const row = bones.data.subarray(at, at + 12 * joints);
       this.matrixPalette.set(row);
       this.uploadBones(app.graphicsDevice);
     };
