@@ -28,7 +28,8 @@ LocalPose sample_local_pose(const Asset& asset, const Clip* clip, double time) {
     pose.local[i] = asset.nodes[i].local;
     const int mesh = asset.nodes[i].mesh;
     if (mesh < 0) continue;
-    const std::vector<float>& w = asset.nodes[i].weights.empty() ? asset.meshes[size_t(mesh)].weights : asset.nodes[i].weights;
+    const std::vector<float>& w =
+        asset.nodes[i].weights.empty() ? asset.meshes[size_t(mesh)].weights : asset.nodes[i].weights;
     pose.weights[i].assign(w.begin(), w.end());
   }
   if (!clip) return pose;

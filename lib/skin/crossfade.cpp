@@ -46,7 +46,8 @@ DeformedFrame vat_crossfade(const DeformedFrame& a, const DeformedFrame& b, doub
   if (a.primitives.size() != b.primitives.size())
     throw std::invalid_argument("vat_crossfade: the two frames have different primitives");
   DeformedFrame out;
-  for (size_t p = 0; p < a.primitives.size(); ++p) out.primitives.push_back(vat_crossfade(a.primitives[p], b.primitives[p], w));
+  for (size_t p = 0; p < a.primitives.size(); ++p)
+    out.primitives.push_back(vat_crossfade(a.primitives[p], b.primitives[p], w));
   return out;
 }
 

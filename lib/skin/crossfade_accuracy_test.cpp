@@ -130,7 +130,8 @@ void run_case(const Case& c) {
               "mean %.5g normals %.2f deg; "
               "DQ / VAT: max %.3f (asserted < %.2f), mean %.3f (asserted < %.2f)\n",
               worst_vat.max, 100 * worst_vat.max / diagonal, worst_vat.mean(), worst_vat.normal_degrees, worst_dq.max,
-              100 * worst_dq.max / diagonal, worst_dq.mean(), worst_dq.normal_degrees, worst_dq.max / worst_vat.max, c.max_margin,
+              100 * worst_dq.max / diagonal, worst_dq.mean(), worst_dq.normal_degrees, worst_dq.max / worst_vat.max,
+              c.max_margin,
               worst_dq.mean() / worst_vat.mean(), c.mean_margin);
   std::fflush(stdout);
   EXPECT_LT(worst_dq.max, c.max_margin * worst_vat.max) << c.name;
@@ -161,7 +162,8 @@ TEST(CrossfadeAccuracy, FoxWalkRun) {
   if (!fs::is_regular_file(fox))
     GTEST_SKIP() << "SKIPPED: the shared Fox model is not present at " << fox.string()
                  << " (DQSKIN_SHARED_TESTDATA_DIR); the project's walk/run legs were checked instead";
-  run_case({"Fox walk/run", fox, "Walk", "Run", {{0.0, 0.0}, {0.25, 0.25}, {0.5, 0.5}, {0.125, 0.375}, {0.75, 0.25}}, 0.85, 0.6});
+  run_case({"Fox walk/run", fox, "Walk", "Run", {{0.0, 0.0}, {0.25, 0.25}, {0.5, 0.5}, {0.125, 0.375}, {0.75, 0.25}},
+            0.85, 0.6});
 }
 
 }  // namespace
