@@ -141,5 +141,29 @@ TEST(DqCrossfade, FrameAtTheEndsIsTheDeformedPose) {
   }
 }
 
+// A mesh without a skin follows its node's world matrix: the DQ crossfade blends that matrix like a joint's.
+TEST(DqCrossfade, RigidInstanceBlendsItsNodeMatrix) {
+  Asset asset;
+  asset.nodes.resize(1);
+  asset.nodes[0].mesh = 0;
+  asset.meshes.resize(1);
+  asset.meshes[0].primitives.resize(1);
+  asset.meshes[0].primitives[0].positions = {{1, 0, 0}, {0, 0, 1}};
+  asset.meshes[0].primitives[0].normals = {{1, 0, 0}, {0, 0, 1}};
+  const std::vector<MeshInstance> instances = {{0, 0, -1}};
+  Pose a, b;
+  a.world = {to_rigid_matrix(turn({0, 1, 0}, 20, {0, 0, 0}))};
+  b.world = {to_rigid_matrix(turn({0, 1, 0}, 80, {0, 0, 0}))};
+  a.weights = b.weights = {{}};
+  const DeformedFrame got = dq_crossfade_frame(asset, instances, a, b, 0.5, BlendMode::kDqs);
+  Pose mid = a;
+  mid.world = {to_rigid_matrix(turn({0, 1, 0}, 50, {0, 0, 0}))};
+  const DeformedFrame expect = deform_frame(asset, instances, mid, BlendMode::kDqs);
+  for (size_t v = 0; v < 2; ++v) {
+    EXPECT_LT(glm::length(got.primitives[0].positions[v] - expect.primitives[0].positions[v]), 1e-12);
+    EXPECT_LT(glm::length(got.primitives[0].normals[v] - expect.primitives[0].normals[v]), 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace dqskin
