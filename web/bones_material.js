@@ -36,7 +36,8 @@ mat3 cofactor(mat3 a) { return mat3(cross(a[1], a[2]), cross(a[2], a[0]), cross(
 vec4 texel(int joint, int k, int r) { return texelFetch(bones, ivec2(TEXELS * joint + k, r), 0); }
 mat3 scale_at(int joint, int r) {
 #if TEXELS == 5
-  return mat3(texel(joint, 2, r).xyz, texel(joint, 3, r).xyz, texel(joint, 4, r).xyz);  // symmetric: rows are columns
+  // symmetric: rows are columns
+  return mat3(texel(joint, 2, r).xyz, texel(joint, 3, r).xyz, texel(joint, 4, r).xyz);
 #else
   return mat3(1.0);
 #endif
@@ -54,7 +55,9 @@ vec4 bone(int joint, int k) {
   vec4 dual = (wa * texel(joint, 1, row) + wb * texel(joint, 1, blend_row)) / len;
   return dual - dot(real, dual) * real;
 }
-mat3 bone_scale(int joint) { return (1.0 - blend_weight) * scale_at(joint, row) + blend_weight * scale_at(joint, blend_row); }
+mat3 bone_scale(int joint) {
+  return (1.0 - blend_weight) * scale_at(joint, row) + blend_weight * scale_at(joint, blend_row);
+}
 #else
 vec4 bone(int joint, int k) { return texel(joint, k, row); }
 mat3 bone_scale(int joint) { return scale_at(joint, row); }

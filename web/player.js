@@ -111,7 +111,8 @@ function blendEntry(side, blend, file, fault) {
   try {
     return clipEntry(side, blend.clip, file, fault);
   } catch (error) {
-    throw new Error(`blend=: ${error.message}; a crossfade reads both clips from one texture (bake --combine-clips)`);
+    throw new Error(`blend=: ${error.message}; a crossfade reads both clips from one texture ` +
+      '(bake --combine-clips)');
   }
 }
 
@@ -170,7 +171,8 @@ async function bonesPath(bake, fault) {
     // Row r is frame r of the texture: the clip's frames start at its first.
     const other = bake.blend && blendEntry(side, bake.blend, `${name}.json`, fault);
     if (bake.blend) mesh.material.uniforms.blend_weight.value = bake.blend.weight;
-    materials.push({ material: mesh.material, first: clipEntry(side, bake.clip, `${name}.json`, fault).first_frame, other });
+    const first = clipEntry(side, bake.clip, `${name}.json`, fault).first_frame;
+    materials.push({ material: mesh.material, first, other });
   }
   const blend = bake.blend;
   return {
