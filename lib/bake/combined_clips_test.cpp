@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -203,6 +204,30 @@ TEST_F(CombinedClipsTest, OpenVatListsEveryClipInItsAnimationList) {
     EXPECT_EQ(listed["endFrame"].get<size_t>(), clip["first_frame"].get<size_t>() + clip["frame_count"].get<size_t>());
   }
   EXPECT_EQ(remap["os-remap"]["Frames"], vat["frame_count"]);
+}
+
+// Every file under `dir` but the manifests, relative path → bytes.
+std::map<std::string, std::string> files_under(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && e.path().filename().string().rfind("manifest", 0) != 0)
+      out[fs::relative(e.path(), dir).string()] = read_file(e.path());
+  return out;
+}
+
+TEST_F(CombinedClipsTest, ShardsTogetherWriteTheWholeBakesCombinedTextureOnce) {
+  const unsigned formats = kTextures | unsigned(BakeFormat::kPly);
+  ASSERT_FALSE(bake({rig("interpolation_modes.gltf")}, options("whole", formats, true)).any_failed());
+  size_t textures = 0;
+  for (unsigned i = 0; i < 3; ++i) {
+    BakeOptions o = options("sharded", formats, true);
+    o.plan.shard = {i, 3};
+    const BakeReport report = bake({rig("interpolation_modes.gltf")}, o);
+    ASSERT_FALSE(report.any_failed()) << report.inputs[0].error;
+    for (const BakeOutput& out : report.outputs) textures += out.path == "interpolation_modes/vat.json";
+  }
+  EXPECT_EQ(textures, 1u) << "one shard writes the combined texture";
+  EXPECT_TRUE(files_under(root_ / "whole") == files_under(root_ / "sharded"));
 }
 
 TEST_F(CombinedClipsTest, ProfilesWhoseRuntimesPlayOneClipPerTextureAreRefused) {
