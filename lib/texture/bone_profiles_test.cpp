@@ -272,6 +272,26 @@ TEST(BoneProfiles, Mat4TexelsAreColumnsWithATrailingIdentity) {
     for (int k = 0; k < 4; ++k) EXPECT_EQ(texel(image, 8 + size_t(k), f), Mat4<double>(1.0)[k]) << "identity, frame " << f;
 }
 
+// Bottom-up frames keep a clip's rows together: frames 0 … a−1 then a … n−1 in one image are the second
+// clip's own image above the first's, bit for bit, so a combined texture's clip starts at image row
+// n − first_frame − frame_count (bone_writer.cpp's clip table).
+TEST(BoneProfiles, Mat4ClipsStackBottomUp) {
+  const std::vector<JointTransforms> all = random_frames(7, 3);
+  const size_t split = 5;
+  const std::span<const JointTransforms> frames(all);
+  const BoneImage whole = pack_bones(BoneProfile::kMat4, frames);
+  const BoneImage first = pack_bones(BoneProfile::kMat4, frames.first(split));
+  const BoneImage second = pack_bones(BoneProfile::kMat4, frames.subspan(split));
+  ASSERT_EQ(whole.height, first.height + second.height);
+  const size_t row = 4 * whole.width;  // floats a row
+  const auto rows = [&](size_t y, size_t count) {
+    const auto begin = whole.rgba.begin() + std::ptrdiff_t(y * row);
+    return std::vector<float>(begin, begin + std::ptrdiff_t(count * row));
+  };
+  EXPECT_EQ(rows(whole.height - split, split), first.rgba);  // the first clip at the bottom
+  EXPECT_EQ(rows(0, second.height), second.rgba);
+}
+
 TEST(BoneProfiles, Mat3x4TexelsAreRows) {
   const std::vector<JointTransforms> frames = two_by_two();
   const BoneImage image = pack_bones(BoneProfile::kMat3x4, frames);
