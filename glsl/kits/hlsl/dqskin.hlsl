@@ -177,7 +177,8 @@ void dqskin_dq_skin(Texture2D bones, float texels, float4 joints, float4 weights
 
 // ---- mat3x4 and mat4 bone textures (docs/DESIGN.md §4.2) ----------------------------------------------
 // mat3x4 (texels = 3): texel (3j + k, row) is row k of the joint's affine matrix; mat4 (texels = 4): texel
-// (4j + k, row) is column k of its 4x4 matrix. Linear blend skinning, as those runtimes do; a crossfade
+// (4j + k, row) is column k of its 4x4 matrix. Linear blend skinning with the weights as given (PlayCanvas and
+// Babylon.js do not renormalize them); the normal by the blended 3x3 itself, as they transform it; a crossfade
 // lerps the matrices.
 
 void dqskin_matrix_joint(Texture2D bones, float texels, float joint, float row, out float4 m0, out float4 m1,
@@ -208,7 +209,7 @@ void dqskin_matrix_skin(Texture2D bones, float texels, float4 joints, float4 wei
   skinned_normal = normal;
   if (sum <= 0.0) return;
   [unroll] for (int i = 0; i < 4; ++i) {
-    float w = max(weights[i], 0.0) / sum;
+    float w = max(weights[i], 0.0);
     if (w <= 0.0) continue;
     float4 a0, a1, a2, b0, b1, b2;
     dqskin_matrix_joint(bones, texels, joints[i], row_a, a0, a1, a2);
