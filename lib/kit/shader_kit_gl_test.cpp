@@ -110,16 +110,17 @@ std::vector<JointTransforms> random_frames(test::Random& random, size_t joints, 
   return out;
 }
 
+// Up to eight influences; with four, the last four have no weight.
 struct Vertex {
-  std::array<int, 4> joints;
-  std::array<float, 4> weights;
+  std::array<int, 8> joints{};
+  std::array<float, 8> weights{};
   Vec3<double> position, normal;
 };
 
-std::vector<Vertex> random_vertices(test::Random& random, size_t count, size_t joints) {
+std::vector<Vertex> random_vertices(test::Random& random, size_t count, size_t joints, int influences = 4) {
   std::vector<Vertex> out(count);
   for (Vertex& v : out) {
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < influences; ++k) {
       v.joints[size_t(k)] = int(random.uniform(0, double(joints) - 1e-9));
       v.weights[size_t(k)] = random.uniform(0, 1) < 0.2 ? 0.0f : float(random.uniform(0.05, 1));
     }
@@ -130,20 +131,26 @@ std::vector<Vertex> random_vertices(test::Random& random, size_t count, size_t j
 }
 
 // The skin functions of the kit on `image`, from row_a to row_b by `blend`, for every vertex.
+// With eight influences through the functions' 8 variants, else the four-influence ones.
 std::vector<SkinnedVertex> kit_skin(GpuContext& context, const BoneImage& image, const std::vector<Vertex>& vertices,
-                                    float row_a, float row_b, float blend) {
+                                    float row_a, float row_b, float blend, int influences = 4) {
   std::vector<Vec4> inputs;
   for (const Vertex& v : vertices) {
-    inputs.push_back({float(v.joints[0]), float(v.joints[1]), float(v.joints[2]), float(v.joints[3])});
-    inputs.push_back(v.weights);
+    for (int set = 0; set < 2; ++set) {
+      const size_t k = size_t(4 * set);
+      inputs.push_back({float(v.joints[k]), float(v.joints[k + 1]), float(v.joints[k + 2]), float(v.joints[k + 3])});
+      inputs.push_back({v.weights[k], v.weights[k + 1], v.weights[k + 2], v.weights[k + 3]});
+    }
     inputs.push_back({float(v.position.x), float(v.position.y), float(v.position.z), 0.0f});
     inputs.push_back({float(v.normal.x), float(v.normal.y), float(v.normal.z), 0.0f});
   }
   const bool dq = image.profile == BoneProfile::kDq;
-  const std::string call = std::string(dq ? "dqskin_dq_skin" : "dqskin_matrix_skin") + "(image, " +
-                           std::to_string(image.texels_per_joint) + ".0, inputs[4 * i], inputs[4 * i + 1], " +
-                           std::to_string(row_a) + ", " + std::to_string(row_b) + ", " + std::to_string(blend) +
-                           ", inputs[4 * i + 2].xyz, inputs[4 * i + 3].xyz, p, n);";
+  const std::string call = std::string(dq ? "dqskin_dq_skin" : "dqskin_matrix_skin") +
+                           (influences == 8 ? "8(image, " : "(image, ") + std::to_string(image.texels_per_joint) +
+                           ".0, inputs[6 * i], inputs[6 * i + 1], " +
+                           (influences == 8 ? "inputs[6 * i + 2], inputs[6 * i + 3], " : "") + std::to_string(row_a) +
+                           ", " + std::to_string(row_b) + ", " + std::to_string(blend) +
+                           ", inputs[6 * i + 4].xyz, inputs[6 * i + 5].xyz, p, n);";
   const std::vector<Vec4> out = run_kit(context, "  vec3 p;\n  vec3 n;\n  " + call +
                                                      "\n  outputs[2 * i] = vec4(p, 1.0);\n  outputs[2 * i + 1] = vec4(n, 0.0);",
                                         inputs, vertices.size(), 2, image.rgba, int(image.width), int(image.height));
@@ -162,6 +169,7 @@ constexpr double kPositionTolerance = 2e-5, kNormalTolerance = 1e-5;
 struct ProfileCase {
   BoneProfile profile;
   bool scaled;
+  int influences;
 };
 
 class KitSkin : public testing::TestWithParam<ProfileCase> {};
@@ -174,31 +182,34 @@ TEST_P(KitSkin, MatchesTheCpuDecodeAndCrossfadesBetweenRows) {
   const BoneImage image = pack_bones(GetParam().profile, frames);
   ASSERT_EQ(image.texels_per_joint, GetParam().profile == BoneProfile::kDq ? (GetParam().scaled ? 5 : 2)
                                     : GetParam().profile == BoneProfile::kMat3x4 ? 3 : 4);
-  const std::vector<Vertex> vertices = random_vertices(random, 256, 6);
+  const int influences = GetParam().influences;
+  const std::vector<Vertex> vertices = random_vertices(random, 256, 6, influences);
   // Each row alone, then crossfades at their ends: blend 0 is row A, blend 1 row B.
   for (const auto& [row_a, row_b, blend, expected_row] :
        std::vector<std::tuple<int, int, float, size_t>>{{0, 0, 0.0f, 0}, {2, 2, 0.0f, 2}, {1, 2, 0.0f, 1}, {0, 2, 1.0f, 2}}) {
-    const std::vector<SkinnedVertex> gpu = kit_skin(*context, image, vertices, float(row_a), float(row_b), blend);
+    const std::vector<SkinnedVertex> gpu = kit_skin(*context, image, vertices, float(row_a), float(row_b), blend, influences);
     double worst_p = 0, worst_n = 0;
     for (size_t i = 0; i < vertices.size(); ++i) {
       const SkinnedVertex cpu = cpu_skin(image, expected_row, vertices[i]);
       worst_p = std::max(worst_p, distance(gpu[i].position, cpu.position));
       worst_n = std::max(worst_n, distance(gpu[i].normal, cpu.normal));
     }
-    std::printf("%s%s rows %d to %d by %.1f: largest position difference %.3g, normal %.3g\n", to_string(GetParam().profile),
-                GetParam().scaled ? " (scaled)" : "", row_a, row_b, double(blend), worst_p, worst_n);
+    std::printf("%s%s, %d influences, rows %d to %d by %.1f: largest position difference %.3g, normal %.3g\n", to_string(GetParam().profile),
+                GetParam().scaled ? " (scaled)" : "", influences, row_a, row_b, double(blend), worst_p, worst_n);
     EXPECT_LT(worst_p, kPositionTolerance) << "rows " << row_a << " to " << row_b << " by " << blend;
     EXPECT_LT(worst_n, kNormalTolerance) << "rows " << row_a << " to " << row_b << " by " << blend;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Profiles, KitSkin,
-                         testing::Values(ProfileCase{BoneProfile::kDq, false}, ProfileCase{BoneProfile::kDq, true},
-                                         ProfileCase{BoneProfile::kMat3x4, false}, ProfileCase{BoneProfile::kMat4, true}),
+                         testing::Values(ProfileCase{BoneProfile::kDq, false, 4}, ProfileCase{BoneProfile::kDq, true, 4},
+                                         ProfileCase{BoneProfile::kMat3x4, false, 4}, ProfileCase{BoneProfile::kMat4, true, 4},
+                                         ProfileCase{BoneProfile::kDq, true, 8}, ProfileCase{BoneProfile::kMat4, false, 8}),
                          [](const testing::TestParamInfo<ProfileCase>& param_info) {
                            std::string name = to_string(param_info.param.profile);
                            std::erase(name, '-');
-                           return name + (param_info.param.scaled ? "_scaled" : "");
+                           return name + (param_info.param.scaled ? "_scaled" : "") + "_" +
+                                  std::to_string(param_info.param.influences);
                          });
 
 // Halfway between two rows: the dq kit blends each joint (B into A's hemisphere, real, dual and S lerped)

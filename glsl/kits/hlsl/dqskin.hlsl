@@ -127,34 +127,39 @@ void dqskin_dq_joint(Texture2D bones, float texels, float joint, float row_a, fl
   }
 }
 
-// Dual-quaternion skinning of one vertex with four influences (glTF JOINTS_0 / WEIGHTS_0; bones_mesh.glb's
-// _JOINTS_0 / _WEIGHTS_0): DLB (Kavan et al. 2008, §4) with every influence flipped into the hemisphere of
-// the heaviest (docs/DESIGN.md §3.5), and two-phase scale: p' = DLB(rigid) applied to (Σ w S) p, the normal
-// by the cofactor of Σ w S. Crossfade: each joint's dual quaternion is first blended between row_a and
-// row_b (dqskin_dq_joint); without one pass row_b = row_a and blend = 0.
-void dqskin_dq_skin(Texture2D bones, float texels, float4 joints, float4 weights, float row_a, float row_b,
-                    float blend, float3 position, float3 normal, out float3 skinned_position, out float3 skinned_normal)
+// Influence k of eight: k < 4 from the first set (glTF JOINTS_0 / WEIGHTS_0), else the second (JOINTS_1 / WEIGHTS_1).
+float dqskin_pick(float4 first, float4 second, int k) { return k < 4 ? first[k & 3] : second[k & 3]; }
+
+// Dual-quaternion skinning of one vertex with up to eight influences (bones_mesh.glb's _JOINTS_0 /
+// _WEIGHTS_0 and _JOINTS_1 / _WEIGHTS_1): DLB (Kavan et al. 2008, §4) with every influence flipped into the
+// hemisphere of the heaviest (docs/DESIGN.md §3.5), and two-phase scale: p' = DLB(rigid) applied to
+// (Σ w S) p, the normal by the cofactor of Σ w S. Crossfade: each joint's dual quaternion is first blended
+// between row_a and row_b (dqskin_dq_joint); without one pass row_b = row_a and blend = 0.
+void dqskin_dq_skin8(Texture2D bones, float texels, float4 joints0, float4 weights0, float4 joints1, float4 weights1,
+                     float row_a, float row_b, float blend, float3 position, float3 normal, out float3 skinned_position,
+                     out float3 skinned_normal)
 {
   skinned_position = position;
   skinned_normal = normal;
   float sum = 0.0;
   int pivot = 0;
-  [unroll] for (int k = 0; k < 4; ++k) {
-    sum += max(weights[k], 0.0);
-    if (max(weights[k], 0.0) > max(weights[pivot], 0.0)) pivot = k;
+  [unroll] for (int k = 0; k < 8; ++k) {
+    sum += max(dqskin_pick(weights0, weights1, k), 0.0);
+    if (max(dqskin_pick(weights0, weights1, k), 0.0) > max(dqskin_pick(weights0, weights1, pivot), 0.0)) pivot = k;
   }
   if (sum <= 0.0) return;
   float4 pivot_real, unused_dual;
   float3 u0, u1, u2;
-  dqskin_dq_joint(bones, texels, joints[pivot], row_a, row_b, blend, pivot_real, unused_dual, u0, u1, u2);
+  dqskin_dq_joint(bones, texels, dqskin_pick(joints0, joints1, pivot), row_a, row_b, blend, pivot_real, unused_dual,
+                  u0, u1, u2);
   float4 real = float4(0.0, 0.0, 0.0, 0.0), dual = float4(0.0, 0.0, 0.0, 0.0);
   float3 s0 = float3(0.0, 0.0, 0.0), s1 = float3(0.0, 0.0, 0.0), s2 = float3(0.0, 0.0, 0.0);
-  [unroll] for (int i = 0; i < 4; ++i) {
-    float weight = max(weights[i], 0.0);
+  [unroll] for (int i = 0; i < 8; ++i) {
+    float weight = max(dqskin_pick(weights0, weights1, i), 0.0);
     if (weight <= 0.0) continue;
     float4 r, d;
     float3 j0, j1, j2;
-    dqskin_dq_joint(bones, texels, joints[i], row_a, row_b, blend, r, d, j0, j1, j2);
+    dqskin_dq_joint(bones, texels, dqskin_pick(joints0, joints1, i), row_a, row_b, blend, r, d, j0, j1, j2);
     float w = (dot(r, pivot_real) < 0.0 ? -weight : weight) / sum;
     real += w * r;
     dual += w * d;
@@ -173,6 +178,15 @@ void dqskin_dq_skin(Texture2D bones, float texels, float4 joints, float4 weights
   }
   skinned_position = dqskin_quat_rotate(real, p) + dqskin_dq_translation(real, dual);
   skinned_normal = dqskin_quat_rotate(real, n);
+}
+
+// The same with four influences (glTF JOINTS_0 / WEIGHTS_0).
+void dqskin_dq_skin(Texture2D bones, float texels, float4 joints, float4 weights, float row_a, float row_b,
+                    float blend, float3 position, float3 normal, out float3 skinned_position, out float3 skinned_normal)
+{
+  float4 none = float4(0.0, 0.0, 0.0, 0.0);
+  dqskin_dq_skin8(bones, texels, joints, weights, none, none, row_a, row_b, blend, position, normal, skinned_position,
+                  skinned_normal);
 }
 
 // ---- mat3x4 and mat4 bone textures (docs/DESIGN.md §4.2) ----------------------------------------------
@@ -198,22 +212,22 @@ void dqskin_matrix_joint(Texture2D bones, float texels, float joint, float row, 
   }
 }
 
-void dqskin_matrix_skin(Texture2D bones, float texels, float4 joints, float4 weights, float row_a, float row_b,
-                        float blend, float3 position, float3 normal, out float3 skinned_position,
-                        out float3 skinned_normal)
+void dqskin_matrix_skin8(Texture2D bones, float texels, float4 joints0, float4 weights0, float4 joints1,
+                         float4 weights1, float row_a, float row_b, float blend, float3 position, float3 normal,
+                         out float3 skinned_position, out float3 skinned_normal)
 {
   float4 m0 = float4(0.0, 0.0, 0.0, 0.0), m1 = m0, m2 = m0;
   float sum = 0.0;
-  [unroll] for (int k = 0; k < 4; ++k) sum += max(weights[k], 0.0);
+  [unroll] for (int k = 0; k < 8; ++k) sum += max(dqskin_pick(weights0, weights1, k), 0.0);
   skinned_position = position;
   skinned_normal = normal;
   if (sum <= 0.0) return;
-  [unroll] for (int i = 0; i < 4; ++i) {
-    float w = max(weights[i], 0.0);
+  [unroll] for (int i = 0; i < 8; ++i) {
+    float w = max(dqskin_pick(weights0, weights1, i), 0.0);
     if (w <= 0.0) continue;
     float4 a0, a1, a2, b0, b1, b2;
-    dqskin_matrix_joint(bones, texels, joints[i], row_a, a0, a1, a2);
-    dqskin_matrix_joint(bones, texels, joints[i], row_b, b0, b1, b2);
+    dqskin_matrix_joint(bones, texels, dqskin_pick(joints0, joints1, i), row_a, a0, a1, a2);
+    dqskin_matrix_joint(bones, texels, dqskin_pick(joints0, joints1, i), row_b, b0, b1, b2);
     m0 += w * lerp(a0, b0, blend);
     m1 += w * lerp(a1, b1, blend);
     m2 += w * lerp(a2, b2, blend);
@@ -221,6 +235,15 @@ void dqskin_matrix_skin(Texture2D bones, float texels, float4 joints, float4 wei
   float4 p = float4(position, 1.0);
   skinned_position = float3(dot(m0, p), dot(m1, p), dot(m2, p));
   skinned_normal = float3(dot(m0.xyz, normal), dot(m1.xyz, normal), dot(m2.xyz, normal));
+}
+
+void dqskin_matrix_skin(Texture2D bones, float texels, float4 joints, float4 weights, float row_a, float row_b,
+                        float blend, float3 position, float3 normal, out float3 skinned_position,
+                        out float3 skinned_normal)
+{
+  float4 none = float4(0.0, 0.0, 0.0, 0.0);
+  dqskin_matrix_skin8(bones, texels, joints, weights, none, none, row_a, row_b, blend, position, normal,
+                      skinned_position, skinned_normal);
 }
 
 // ---- Sockets (sockets.exr, sockets.json) --------------------------------------------------------------

@@ -32,10 +32,13 @@ void main() {
   dqskin_vat_crossfade(positions, normals, uv1, frame, last, frame_b, last_b, 0.5, 2.0, pc, nc);
   dqskin_dq_skin(bones, 5.0, joints, weights, frame, frame_b, 0.5, position, normal, ps, ns);
   dqskin_matrix_skin(bones, 4.0, joints, weights, frame, frame_b, 0.5, position, normal, pm, nm);
+  vec3 p8, n8, pm8, nm8;
+  dqskin_dq_skin8(bones, 5.0, joints, weights, weights, joints, frame, frame_b, 0.5, position, normal, p8, n8);
+  dqskin_matrix_skin8(bones, 3.0, joints, weights, weights, joints, frame, frame_b, 0.5, position, normal, pm8, nm8);
   dqskin_socket(sockets, 2.0, frame, last, sp, sr);
   dqskin_socket_crossfade(sockets, 2.0, frame, last, frame_b, last_b, 0.25, spc, src);
   dqskin_socket_matrix(sockets, 2.0, frame, last, r0, r1, r2);
   vec4 sum = vec4(p + pc + ps + pm + sp + spc + sr.xyz + src.xyz, 1.0);
   gl_Position = vec4(dot(r0, sum), dot(r1, sum), dot(r2, sum), 1.0);
-  world_normal = n + nc + ns + nm;
+  world_normal = n + nc + ns + nm + p8 + n8 + pm8 + nm8;
 }

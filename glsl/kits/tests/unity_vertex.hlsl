@@ -39,6 +39,9 @@ VertexOut main(float3 position : POSITION, float3 normal : NORMAL, float2 uv1 : 
   DqskinVatCrossfade_float(tex, nrm, uv1, 0.0, frame, last, frame_b, last_b, 0.5, 2.0, pc, nc);
   DqskinDqSkin_float(tex, 5.0, joints, weights, frame, frame_b, 0.5, position, normal, ps, ns);
   DqskinMatrixSkin_float(tex, 4.0, joints, weights, frame, frame_b, 0.5, position, normal, pm, nm);
+  float3 p8, n8, pm8, nm8;
+  DqskinDqSkin8_float(tex, 5.0, joints, weights, weights, joints, frame, frame_b, 0.5, position, normal, p8, n8);
+  DqskinMatrixSkin8_float(tex, 3.0, joints, weights, weights, joints, frame, frame_b, 0.5, position, normal, pm8, nm8);
   DqskinSocket_float(tex, 1.0, frame, last, sp, sr);
   DqskinSocketCrossfade_float(tex, 1.0, frame, last, frame_b, last_b, 0.5, spc, src);
   DqskinSocketMatrix_float(tex, 1.0, frame, last, sm);
@@ -52,6 +55,9 @@ VertexOut main(float3 position : POSITION, float3 normal : NORMAL, float2 uv1 : 
   DqskinVatCrossfade_half(tex, nrm, uv1, 0.0, hf, hl, hf, hl, 0.5, 2.0, hpc, hnc);
   DqskinDqSkin_half(tex, 2.0, joints, weights, hf, hf, 0.0, position, normal, hps, hns);
   DqskinMatrixSkin_half(tex, 3.0, joints, weights, hf, hf, 0.0, position, normal, hpm, hnm);
+  half3 hp8, hn8, hpm8, hnm8;
+  DqskinDqSkin8_half(tex, 2.0, joints, weights, weights, joints, hf, hf, 0.0, position, normal, hp8, hn8);
+  DqskinMatrixSkin8_half(tex, 4.0, joints, weights, weights, joints, hf, hf, 0.0, position, normal, hpm8, hnm8);
   DqskinSocket_half(tex, 0.0, hf, hl, hsp, hsr);
   DqskinSocketCrossfade_half(tex, 0.0, hf, hl, hf, hl, 0.5, hspc, hsrc);
   DqskinSocketMatrix_half(tex, 0.0, hf, hl, hsm);
@@ -59,6 +65,6 @@ VertexOut main(float3 position : POSITION, float3 normal : NORMAL, float2 uv1 : 
   VertexOut o;
   float3 sum = p + pc + ps + pm + sp + spc + sr.xyz + src.xyz + hp + hpc + hps + hpm + hsp + hspc + hsr.xyz + hsrc.xyz;
   o.position = mul(sm, float4(sum, 1.0)) + mul(float4x4(hsm), float4(sum, 1.0));
-  o.normal = n + nc + ns + nm + hn + hnc + hns + hnm;
+  o.normal = n + nc + ns + nm + hn + hnc + hns + hnm + p8 + n8 + pm8 + nm8 + hp8 + hn8 + hpm8 + hnm8;
   return o;
 }

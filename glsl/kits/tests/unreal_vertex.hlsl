@@ -25,12 +25,15 @@ VertexOut main(float3 position : POSITION, float3 normal : NORMAL, float2 uv1 : 
   dqskin_vat_crossfade(Positions, Normals, uv1, frame, last, frame_b, last_b, 0.5, 2.0, pc, nc);
   dqskin_dq_skin(Bones, 5.0, joints, weights, frame, frame_b, 0.5, position, normal, ps, ns);
   dqskin_matrix_skin(Bones, 3.0, joints, weights, frame, frame_b, 0.5, position, normal, pm, nm);
+  float3 p8, n8, pm8, nm8;
+  dqskin_dq_skin8(Bones, 5.0, joints, weights, weights, joints, frame, frame_b, 0.5, position, normal, p8, n8);
+  dqskin_matrix_skin8(Bones, 3.0, joints, weights, weights, joints, frame, frame_b, 0.5, position, normal, pm8, nm8);
   dqskin_socket(Sockets, 2.0, frame, last, sp, sr);
   dqskin_socket_crossfade(Sockets, 2.0, frame, last, frame_b, last_b, 0.25, spc, src);
   dqskin_socket_matrix(Sockets, 2.0, frame, last, r0, r1, r2);
   VertexOut o;
   float4 sum = float4(p + pc + ps + pm + sp + spc + sr.xyz + src.xyz, 1.0);
   o.position = float4(dot(r0, sum), dot(r1, sum), dot(r2, sum), 1.0);
-  o.normal = n + nc + ns + nm;
+  o.normal = n + nc + ns + nm + p8 + n8 + pm8 + nm8;
   return o;
 }

@@ -1,7 +1,8 @@
 // dqskin shader kit for Unity Shader Graph (10 and later): entry points for Custom Function nodes in File
 // mode, Source = this file, Name = one of DqskinClipFrame, DqskinVat, DqskinVatCrossfade, DqskinDqSkin,
-// DqskinMatrixSkin, DqskinSocket, DqskinSocketCrossfade, DqskinSocketMatrix (Shader Graph appends _float or
-// _half). Declare the node's ports in the order of the parameters below (inputs, then the `out` ones):
+// DqskinDqSkin8, DqskinMatrixSkin, DqskinMatrixSkin8, DqskinSocket, DqskinSocketCrossfade, DqskinSocketMatrix
+// (Shader Graph appends _float or _half; set the node's precision to Single: frame and row numbers past 2048
+// do not survive half). Declare the node's ports in the order of the parameters below (inputs, then the `out` ones):
 // Texture2D ports for the textures (they arrive as UnityTexture2D), Vector 1 to 4 for the others,
 // Matrix 4 for DqskinSocketMatrix. The math is in Dqskin.hlsl (docs/formats.md, "Shader kits").
 //
@@ -52,6 +53,22 @@ void DqskinMatrixSkin_float(UnityTexture2D Bones, float Texels, float4 Joints, f
 {
   dqskin_matrix_skin(Bones.tex, Texels, Joints, Weights, RowA, RowB, Blend, Position, Normal, SkinnedPosition,
                      SkinnedNormal);
+}
+
+void DqskinDqSkin8_float(UnityTexture2D Bones, float Texels, float4 Joints0, float4 Weights0, float4 Joints1,
+                         float4 Weights1, float RowA, float RowB, float Blend, float3 Position, float3 Normal,
+                         out float3 SkinnedPosition, out float3 SkinnedNormal)
+{
+  dqskin_dq_skin8(Bones.tex, Texels, Joints0, Weights0, Joints1, Weights1, RowA, RowB, Blend, Position, Normal,
+                  SkinnedPosition, SkinnedNormal);
+}
+
+void DqskinMatrixSkin8_float(UnityTexture2D Bones, float Texels, float4 Joints0, float4 Weights0, float4 Joints1,
+                             float4 Weights1, float RowA, float RowB, float Blend, float3 Position, float3 Normal,
+                             out float3 SkinnedPosition, out float3 SkinnedNormal)
+{
+  dqskin_matrix_skin8(Bones.tex, Texels, Joints0, Weights0, Joints1, Weights1, RowA, RowB, Blend, Position, Normal,
+                      SkinnedPosition, SkinnedNormal);
 }
 
 void DqskinSocket_float(UnityTexture2D Sockets, float Socket, float Frame, float LastFrame, out float3 Position,
@@ -118,6 +135,27 @@ void DqskinMatrixSkin_half(UnityTexture2D Bones, half Texels, half4 Joints, half
 {
   float3 p, n;
   DqskinMatrixSkin_float(Bones, Texels, Joints, Weights, RowA, RowB, Blend, Position, Normal, p, n);
+  SkinnedPosition = half3(p);
+  SkinnedNormal = half3(n);
+}
+
+void DqskinDqSkin8_half(UnityTexture2D Bones, half Texels, half4 Joints0, half4 Weights0, half4 Joints1,
+                        half4 Weights1, half RowA, half RowB, half Blend, half3 Position, half3 Normal,
+                        out half3 SkinnedPosition, out half3 SkinnedNormal)
+{
+  float3 p, n;
+  DqskinDqSkin8_float(Bones, Texels, Joints0, Weights0, Joints1, Weights1, RowA, RowB, Blend, Position, Normal, p, n);
+  SkinnedPosition = half3(p);
+  SkinnedNormal = half3(n);
+}
+
+void DqskinMatrixSkin8_half(UnityTexture2D Bones, half Texels, half4 Joints0, half4 Weights0, half4 Joints1,
+                            half4 Weights1, half RowA, half RowB, half Blend, half3 Position, half3 Normal,
+                            out half3 SkinnedPosition, out half3 SkinnedNormal)
+{
+  float3 p, n;
+  DqskinMatrixSkin8_float(Bones, Texels, Joints0, Weights0, Joints1, Weights1, RowA, RowB, Blend, Position, Normal,
+                          p, n);
   SkinnedPosition = half3(p);
   SkinnedNormal = half3(n);
 }
