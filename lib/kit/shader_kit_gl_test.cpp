@@ -212,8 +212,9 @@ INSTANTIATE_TEST_SUITE_P(Profiles, KitSkin,
                                   std::to_string(param_info.param.influences);
                          });
 
-// Halfway between two rows: the dq kit blends each joint (B into A's hemisphere, real, dual and S lerped)
-// before DLB; that equals the CPU decode of an image whose row holds those blended texels. The matrix kit
+// Halfway between two rows: the dq kit blends each joint (docs/DESIGN.md §3.10: B into A's hemisphere, real
+// and dual lerped and normalized, S lerped) before DLB; that equals the CPU decode of an image whose row
+// holds those blended texels. The matrix kit
 // lerps the matrices: the CPU decode of the lerped row.
 TEST(KitSkin, CrossfadeHalfwayIsTheDecodeOfTheBlendedJoints) {
   const auto context = testing_support::context_or_null();
@@ -231,8 +232,14 @@ TEST(KitSkin, CrossfadeHalfwayIsTheDecodeOfTheBlendedJoints) {
       const float* b = &image.rgba[4 * (image.width + t * j)];
       float sign = 1.0f;
       if (profile == BoneProfile::kDq && a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] < 0) sign = -1.0f;
-      for (size_t c = 0; c < 4 * t; ++c)
-        blended.rgba[4 * t * j + c] = 0.5f * a[c] + 0.5f * (profile == BoneProfile::kDq && c < 8 ? sign : 1.0f) * b[c];
+      float* out = &blended.rgba[4 * t * j];
+      for (size_t c = 0; c < 4 * t; ++c) out[c] = 0.5f * a[c] + 0.5f * (profile == BoneProfile::kDq && c < 8 ? sign : 1.0f) * b[c];
+      if (profile == BoneProfile::kDq) {  // a unit dual quaternion: real of length 1, dual orthogonal to it
+        const float length = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
+        for (size_t c = 0; c < 8; ++c) out[c] /= length;
+        const float along = out[0] * out[4] + out[1] * out[5] + out[2] * out[6] + out[3] * out[7];
+        for (size_t c = 0; c < 4; ++c) out[4 + c] -= along * out[c];
+      }
     }
     const std::vector<Vertex> vertices = random_vertices(random, 128, 5);
     const std::vector<SkinnedVertex> gpu = kit_skin(*context, image, vertices, 0.0f, 1.0f, 0.5f);

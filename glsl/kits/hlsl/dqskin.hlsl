@@ -25,6 +25,13 @@ float4 dqskin_load(Texture2D tex, int x, int y)
 
 int dqskin_int(float v) { return int(floor(v + 0.5)); }
 
+int dqskin_height(Texture2D tex)
+{
+  uint width, height;
+  tex.GetDimensions(width, height);
+  return int(height);
+}
+
 // ---- Clip table (docs/DESIGN.md §4.9) ----------------------------------------------------------------
 
 // The texture's fractional frame of a clip at `time` seconds: first_frame + time · fps, clamped to the
@@ -64,6 +71,13 @@ float3 dqskin_mul_cofactor(float3 a0, float3 a1, float3 a2, float3 v)
   return dqskin_mul_columns(cross(a1, a2), cross(a2, a0), cross(a0, a1), v);
 }
 
+// n normalized, or `fallback` where it vanishes (two opposite normals lerped halfway): docs/DESIGN.md §3.10.
+float3 dqskin_normalize_or(float3 n, float3 fallback)
+{
+  float len = length(n);
+  return len > 0.0 ? n / len : fallback;
+}
+
 // ---- dqskin VAT (docs/DESIGN.md §4.3) -----------------------------------------------------------------
 // texel0: the rest mesh's TEXCOORD_1, the integer texel of the vertex in frame 0; rows_per_frame: vat.json's
 // rows_per_frame. Positions are absolute (world space of the bake), normals world-space; float or half EXR,
@@ -84,12 +98,12 @@ void dqskin_vat(Texture2D positions, Texture2D normals, float2 texel0, float fra
   int2 t0 = dqskin_vat_texel(texel0, f0, rows_per_frame);
   int2 t1 = dqskin_vat_texel(texel0, f1, rows_per_frame);
   position = lerp(dqskin_load(positions, t0.x, t0.y).xyz, dqskin_load(positions, t1.x, t1.y).xyz, s);
-  float3 n = lerp(dqskin_load(normals, t0.x, t0.y).xyz, dqskin_load(normals, t1.x, t1.y).xyz, s);
-  normal = n / max(length(n), 1e-20);
+  float3 n0 = dqskin_load(normals, t0.x, t0.y).xyz;
+  normal = dqskin_normalize_or(lerp(n0, dqskin_load(normals, t1.x, t1.y).xyz, s), n0);
 }
 
-// Crossfade between clip A at frame_a and clip B at frame_b of one texture: p = lerp(A, B, blend) per
-// vertex, normals lerped and renormalized.
+// Crossfade between clip A at frame_a and clip B at frame_b of one texture (docs/DESIGN.md §3.10):
+// p = lerp(A, B, blend) per vertex, normals lerped and renormalized (A's where the lerp vanishes).
 void dqskin_vat_crossfade(Texture2D positions, Texture2D normals, float2 texel0, float frame_a, float last_frame_a,
                           float frame_b, float last_frame_b, float blend, float rows_per_frame,
                           out float3 position, out float3 normal)
@@ -98,16 +112,17 @@ void dqskin_vat_crossfade(Texture2D positions, Texture2D normals, float2 texel0,
   dqskin_vat(positions, normals, texel0, frame_a, last_frame_a, rows_per_frame, pa, na);
   dqskin_vat(positions, normals, texel0, frame_b, last_frame_b, rows_per_frame, pb, nb);
   position = lerp(pa, pb, blend);
-  float3 n = lerp(na, nb, blend);
-  normal = n / max(length(n), 1e-20);
+  normal = dqskin_normalize_or(lerp(na, nb, blend), na);
 }
 
 // ---- dq bone texture (docs/DESIGN.md §4.1) ------------------------------------------------------------
 // Texel (T·j + k, row) holds component k of joint j: real, dual, then with T = 5 the rows of S (.xyz).
 // `texels` is bones_skinK.json's texels_per_joint; `row` the frame's row (a clip's first_frame + frame).
 
-// One joint's dual quaternion and scale/shear rows, crossfaded between row_a and row_b by `blend`: B is
-// flipped into A's hemisphere, then real and dual lerped (the blend normalizes later, as DLB does); S lerped.
+// One joint's dual quaternion and scale/shear rows, crossfaded between row_a and row_b by `blend`
+// (docs/DESIGN.md §3.10, as web/bones_material.js): B is flipped into A's hemisphere, real and dual lerped
+// and divided by the real part's length, the dual part made orthogonal to it (a unit dual quaternion);
+// S lerped. With blend = 0 the texels of row_a as they are.
 void dqskin_dq_joint(Texture2D bones, float texels, float joint, float row_a, float row_b, float blend,
                      out float4 real, out float4 dual, out float3 s0, out float3 s1, out float3 s2)
 {
@@ -115,8 +130,15 @@ void dqskin_dq_joint(Texture2D bones, float texels, float joint, float row_a, fl
   float4 ra = dqskin_load(bones, x, ya), da = dqskin_load(bones, x + 1, ya);
   float4 rb = dqskin_load(bones, x, yb), db = dqskin_load(bones, x + 1, yb);
   float sign_b = dot(ra, rb) < 0.0 ? -1.0 : 1.0;
-  real = (1.0 - blend) * ra + blend * sign_b * rb;
-  dual = (1.0 - blend) * da + blend * sign_b * db;
+  real = ra;
+  dual = da;
+  if (blend != 0.0) {
+    real = (1.0 - blend) * ra + blend * sign_b * rb;
+    float len = length(real);
+    real /= len;
+    dual = ((1.0 - blend) * da + blend * sign_b * db) / len;
+    dual -= dot(real, dual) * real;
+  }
   s0 = float3(1.0, 0.0, 0.0);
   s1 = float3(0.0, 1.0, 0.0);
   s2 = float3(0.0, 0.0, 1.0);
@@ -191,7 +213,8 @@ void dqskin_dq_skin(Texture2D bones, float texels, float4 joints, float4 weights
 
 // ---- mat3x4 and mat4 bone textures (docs/DESIGN.md §4.2) ----------------------------------------------
 // mat3x4 (texels = 3): texel (3j + k, row) is row k of the joint's affine matrix; mat4 (texels = 4): texel
-// (4j + k, row) is column k of its 4x4 matrix. Linear blend skinning with the weights as given (PlayCanvas and
+// (4j + k, height − 1 − row) is column k of its 4x4 matrix (mat4 stores its frames bottom-up, as Babylon.js
+// reads them). Linear blend skinning with the weights as given (PlayCanvas and
 // Babylon.js do not renormalize them); the normal by the blended 3x3 itself, as they transform it; a crossfade
 // lerps the matrices.
 
@@ -200,6 +223,7 @@ void dqskin_matrix_joint(Texture2D bones, float texels, float joint, float row, 
 {
   int t = dqskin_int(texels), x = t * dqskin_int(joint), y = dqskin_int(row);
   if (t == 4) {
+    y = dqskin_height(bones) - 1 - y;
     float4 c0 = dqskin_load(bones, x, y), c1 = dqskin_load(bones, x + 1, y);
     float4 c2 = dqskin_load(bones, x + 2, y), c3 = dqskin_load(bones, x + 3, y);
     m0 = float4(c0.x, c1.x, c2.x, c3.x);
