@@ -37,6 +37,7 @@ struct BakeSettings {
   size_t gpu_memory_mb = 512;
   bool dry_run = false, quiet = false, json_progress = false, force = false, verbose = false;
   TextureOptions textures;
+  std::string shader_kit;
   std::string max_error;  // "0.001" (scene units) or "0.1%" (of the clip's bounding-box diagonal)
   std::string max_bytes;  // "64M"
   bool no_check = false;
@@ -64,6 +65,7 @@ BakeOptions to_options(const BakeSettings& s) {
   o.dry_run = s.dry_run;
   o.overwrite = s.force ? Overwrite::kReplace : Overwrite::kRefuseDifferent;
   o.textures = s.textures;
+  o.shader_kit = s.shader_kit;
   o.textures.check = !s.no_check;
   o.morph.quantize = s.morph_quantize;
   o.glb_images = parse_glb_images(s.glb_images);
@@ -206,6 +208,10 @@ Command add_bake_command(CLI::App& app) {
                      "vat, bones: one texture of every clip of an input (in OUTDIR/<input>/, the clips' frames one "
                      "after another, a clip table in the side file) instead of one per clip; not for the houdini "
                      "and dq-cocos profiles, whose runtimes play one clip per texture");
+  bake_cmd->add_option("--shader-kit", bake.shader_kit,
+                       "Write the reading shaders of the bake's layouts for these engines into OUTDIR/shader_kit/: "
+                       "any of unity,unreal,godot,three (comma-separated), or all")
+      ->type_name("LIST");
   bake_cmd->add_option("--max-error", bake.max_error,
                        "Fail a clip whose textures decode further than this from the deformed mesh, at a frame or "
                        "between two: a length in scene units, or a percentage of the clip's bounding-box diagonal. "

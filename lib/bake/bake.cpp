@@ -24,6 +24,7 @@
 #include "vat_bake.hpp"
 #include "vat_planner.hpp"
 #include "../base/parallel_for.hpp"
+#include "../kit/shader_kit.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -419,6 +420,11 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
                        "clip; bake the dq-cocos profile one texture per clip");
   }
 
+  // The shader kits' files (docs/formats.md, "Shader kits"): once per bake, by its first shard.
+  const std::vector<std::string> kits = kit::parse_shader_kits(options.shader_kit);  // checked on every shard
+  const std::vector<kit::KitFile> kit_files =
+      options.plan.shard.index == 0 ? kit::shader_kit_files(kits) : std::vector<kit::KitFile>{};
+
   std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
   for (const InputPlan& plan : plans) {
     for (const ClipPlan& clip : plan.clips) report.frames_total += frames_to_deform(clip, per_clip_formats(options)).size();
@@ -484,6 +490,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
         for (const TextureClips& set : texture_clip_sets(plan, true))
           for (std::string& file : planned_texture_files(plan, set, options)) report.outputs.push_back({std::move(file), 0, {}, false});
     }
+    for (const kit::KitFile& file : kit_files) report.outputs.push_back({file.path, 0, {}, false});
     std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
     report.wall_seconds = since(start);
     return report;
@@ -508,6 +515,16 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   if (path != DeformPath::kGpu) report.gpu = cpu_deformer_info(path);
   else if (context.info()) report.gpu = *context.info();
   if (!report.gpu.backend.empty()) report.deformer = describe(path);
+  // The shader kits, when the bake has something to record (docs/formats.md, "Shader kits").
+  if (!kit_files.empty() &&
+      std::any_of(report.inputs.begin(), report.inputs.end(), [](const InputResult& r) { return r.error.empty(); })) {
+    OutputJournal journal;
+    for (const kit::KitFile& file : kit_files) {
+      journal.make_folders(ledger.absolute(std::filesystem::path(file.path).parent_path().string()));
+      ledger.write(file.path, std::string(file.bytes), journal);
+    }
+    journal.keep();
+  }
   std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
   std::sort(report.checks.begin(), report.checks.end(), [](const TextureCheck& a, const TextureCheck& b) {
     return std::tie(a.input, a.clip, a.texture) < std::tie(b.input, b.clip, b.texture);

@@ -28,6 +28,7 @@ MAY_INCLUDE = {
     "texture": ["write", "deform", "skin", "anim", "asset", "base", "math"],
     "draw": ["gpu", "deform", "skin", "anim", "asset", "base", "math"],
     "job": ["load", "deform", "gpu", "skin", "anim", "asset", "base", "math"],
+    "kit": ["base"],  # the shader kits `bake --shader-kit` writes: embedded text, nothing of the pipeline
     "test_support": None,  # test helpers: anything but a command
 }
 # The commands: each may include every folder above, never another command, and nothing includes them but

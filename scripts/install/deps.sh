@@ -19,6 +19,7 @@ packages=(
   python3                                      # generators of the test inputs (scripts/make_*.py)
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
   chromium                                     # headless WebGL2 (SwiftShader) for the player's tests (web/)
+  glslang-tools                                # glslangValidator: the shader kits' compile test (glsl/kits/)
   slurm-wlm                                    # the scale-out recipes' tests: Slurm's daemons and sbatch (scripts/check/slurm_cluster.sh)
   munge                                        # the scale-out recipes' tests: the authentication Slurm's daemons use
   parallel                                     # the scale-out recipes' tests: GNU parallel

@@ -65,6 +65,10 @@ struct BakeOptions {
   GlbImages glb_images = GlbImages::kShared;
   TextureOptions textures;
   MorphOptions morph;
+  // Shader kits written beside the bake, in OUTDIR/shader_kit/<engine>/ (docs/formats.md, "Shader kits"):
+  // any of unity,unreal,godot,three, or all; empty: none. Written once per bake (by shard 0 when sharded);
+  // an unknown name is an InputError when the bake starts.
+  std::string shader_kit;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   unsigned jobs = 0;  // encoder threads; 0: one per core
