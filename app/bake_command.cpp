@@ -222,6 +222,10 @@ Command add_bake_command(CLI::App& app) {
       ->type_name("TEXELS")
       ->check(CLI::Range(size_t(1), size_t(1) << 20));
   bake_cmd->add_flag("--pot", bake.textures.pot, "Pad textures to power-of-two sizes");
+  bake_cmd->add_flag("--combine-clips", bake.textures.combine_clips,
+                     "vat, bones: one texture of every clip of an input (in OUTDIR/<input>/, the clips' frames one "
+                     "after another, a clip table in the side file) instead of one per clip; not for the houdini "
+                     "and dq-cocos profiles, whose runtimes play one clip per texture");
   bake_cmd->add_option("--max-error", bake.max_error,
                        "Fail a clip whose textures decode further than this from the deformed mesh, at a frame or "
                        "between two: a length in scene units, or a percentage of the clip's bounding-box diagonal. "

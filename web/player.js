@@ -14,7 +14,8 @@
 //   size=WxH      canvas pixels (default: the window); background=R,G,B (0 to 1, sRGB; default 0.2)
 //   shade=material   morph only: the glb's own materials under a key and fill light, instead of normals
 //   capture=1     after drawing, put the canvas as a PNG data URL into <pre id="capture"> (tests)
-//   fault=row-order|lbs   a deliberately wrong decode, for the tests that show a wrong decode fails
+//   fault=row-order|lbs|offset   a deliberately wrong decode, for the tests that show a wrong decode fails
+//                 (offset: a clip's frames read from the texture's first, its clip table ignored)
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { frameCamera } from './camera.js';
@@ -59,17 +60,31 @@ async function openBake() {
   const clip = wanted ? clips.find((c) => c.name === wanted || c.folder.endsWith(`/${wanted}`)) : clips[0];
   if (!clip)
     throw new Error(`${input.output_folder}: no clip ${wanted ?? ''} (clips: ${clips.map((c) => c.name).join(', ')})`);
-  const files = new Set(manifest.outputs.map((o) => o.path).filter((p) => p.startsWith(`${clip.folder}/`))
-    .map((p) => p.slice(clip.folder.length + 1)));
+  const filesIn = (folder) => new Set(manifest.outputs.map((o) => o.path).filter((p) => p.startsWith(`${folder}/`))
+    .map((p) => p.slice(folder.length + 1)).filter((p) => !p.includes('/')));
+  const files = filesIn(clip.folder);
+  // With --combine-clips the textures are the input's, in its folder, and their clip table finds the clip.
+  const inputFiles = filesIn(input.output_folder);
   const available = [];
   if (files.has('animation.glb')) available.push('morph');
-  if (files.has('vat.json')) available.push('vat');
-  if (files.has('bones_mesh.glb')) available.push('bones');
+  if (files.has('vat.json') || inputFiles.has('vat.json')) available.push('vat');
+  if (files.has('bones_mesh.glb') || inputFiles.has('bones_mesh.glb')) available.push('bones');
   const path = params.get('path') ?? available[0];
   if (!available.includes(path))
     throw new Error(`${clip.folder}: no ${path ?? 'playable'} output (it has: ${available.join(', ') || 'none'}; ` +
       'bake with --format morph, vat or bones)');
-  return { folder: `${bake}/${clip.folder}`, input, clip, files, path };
+  const own = { vat: 'vat.json', bones: 'bones_mesh.glb', morph: 'animation.glb' }[path];
+  const folder = files.has(own) ? clip.folder : input.output_folder;
+  return { folder: `${bake}/${folder}`, input, clip, files: files.has(own) ? files : inputFiles, path };
+}
+
+// The clip's entry in a texture's clip table (docs/formats.md, "Several clips in one texture").
+function clipEntry(side, clip, file, fault) {
+  const entry = (side.clips ?? []).find((c) => c.name === clip.name);
+  if (!entry) throw new Error(`${file}: no clip ${clip.name} in its clip table`);
+  if (entry.frame_count !== clip.frame_times.length)
+    throw new Error(`${file}: clip ${clip.name} has ${entry.frame_count} frames, the manifest ${clip.frame_times.length}`);
+  return fault === 'offset' ? { ...entry, first_frame: 0 } : entry;
 }
 
 // Each path returns { object, showFrame(index, fractional), box? }.
@@ -82,10 +97,13 @@ async function vatPath(bake, fault) {
   const gltf = await gltfLoader.loadAsync(`${bake.folder}/${side.files.rest_mesh}`);
   const material = vatMaterial(side, profileFile, textures);
   gltf.scene.traverse((node) => { if (node.isMesh) node.material = material; });
+  // The clip's frames in the texture, and between them no step past its last into the next clip's.
+  const entry = clipEntry(side, bake.clip, 'vat.json', fault);
+  material.uniforms.last_frame.value = entry.first_frame + entry.frame_count - 1;
   return {
     object: gltf.scene,
-    box: side.bounds,
-    showFrame(index, fraction = 0) { material.uniforms.frame.value = index + fraction; },
+    box: entry.bounds ?? side.bounds,
+    showFrame(index, fraction = 0) { material.uniforms.frame.value = entry.first_frame + index + fraction; },
   };
 }
 
@@ -106,12 +124,13 @@ async function bonesPath(bake, fault) {
     mesh.material = bonesMaterial(texture, side, mesh.geometry, { fault });
     // three.js culls by the bind-pose bounds; the skinned mesh is elsewhere.
     mesh.frustumCulled = false;
-    materials.push(mesh.material);
+    // Row r is frame r of the texture: the clip's frames start at its first.
+    materials.push({ material: mesh.material, first: clipEntry(side, bake.clip, `${name}.json`, fault).first_frame });
   }
   return {
     object: gltf.scene,
     // Runtimes that sample bone textures show the frame at or before the time (Babylon.js floors).
-    showFrame(index) { for (const m of materials) m.uniforms.row.value = index; },
+    showFrame(index) { for (const m of materials) m.material.uniforms.row.value = m.first + index; },
   };
 }
 
@@ -142,7 +161,10 @@ async function cameraBox(bake, played) {
     return { min: b.slice(0, 3), max: b.slice(3) };
   }
   if (played.box) return played.box;
-  if (bake.files.has('vat.json')) return (await fetchJson(`${bake.folder}/vat.json`)).bounds;
+  if (bake.files.has('vat.json')) {
+    const side = await fetchJson(`${bake.folder}/vat.json`);
+    return (side.clips ?? []).find((c) => c.name === bake.clip.name)?.bounds ?? side.bounds;
+  }
   return objectBox(played.object);
 }
 
@@ -155,7 +177,7 @@ function showError(error) {
 
 async function main() {
   const fault = params.get('fault') ?? undefined;
-  if (fault && fault !== 'row-order' && fault !== 'lbs') throw new Error(`fault=${fault}: row-order or lbs`);
+  if (fault && !['row-order', 'lbs', 'offset'].includes(fault)) throw new Error(`fault=${fault}: row-order, lbs or offset`);
   const bake = await openBake();
   const paths = { vat: vatPath, bones: bonesPath, morph: morphPath };
   const played = await paths[bake.path](bake, fault);

@@ -13,7 +13,7 @@
 #
 #   cmake -DDQSKIN=dqskin -DNODE=node -DCHROMIUM=chromium -DSOURCE_DIR=repo -DTHREE_DIR=node_modules/three
 #         -DMODEL=m.glb -DCLIP=name -DFPS=30 -DFRAMES=4,15 [-DFAULTS=n=openvat:vat:4:row-order,…]
-#         [-DOPENVAT_FLAGS=--encoding,float,…] -DWORK=dir
+#         [-DOPENVAT_FLAGS=--encoding,float,…] [-DCOMBINED=1] -DWORK=dir
 #         -P player_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
@@ -49,7 +49,14 @@ endfunction()
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 string(REPLACE "," ";" openvat_flags "${OPENVAT_FLAGS}")
-run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/openvat" --anim "${CLIP}" --fps ${FPS} --format vat,bones,morph
+# COMBINED: the openvat bake holds every clip in one texture (--combine-clips), so the player finds CLIP
+# through the clip table.
+if(COMBINED)
+  set(openvat_clips --anim all --combine-clips)
+else()
+  set(openvat_clips --anim "${CLIP}")
+endif()
+run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/openvat" ${openvat_clips} --fps ${FPS} --format vat,bones,morph
     --vat-profile openvat ${openvat_flags} -q)
 run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/houdini" --anim "${CLIP}" --fps ${FPS} --format vat --vat-profile houdini -q)
 run("${DQSKIN}" bake "${MODEL}" -o "${WORK}/morphq" --anim "${CLIP}" --fps ${FPS} --format morph --max-error 0.1%
@@ -58,13 +65,26 @@ run("${DQSKIN}" render "${MODEL}" -o "${WORK}/render" --anim "${CLIP}" --fps ${F
 run(env "THREE_DIR=${THREE_DIR}" bash "${SOURCE_DIR}/scripts/install/player.sh" "${WORK}")
 
 get_filename_component(stem "${MODEL}" NAME_WE)
-# The box dqskin render frames: the clip's bounds over its frames, as the bake measured them.
-file(GLOB vat_json "${WORK}/openvat/*/*/vat.json")
+# The box dqskin render frames: the clip's bounds over its frames, as the bake measured them (its entry in
+# the clip table).
+file(GLOB vat_json "${WORK}/openvat/*/*/vat.json" "${WORK}/openvat/*/vat.json")
 file(READ "${vat_json}" side)
+string(JSON clip_count LENGTH "${side}" clips)
+math(EXPR last_clip "${clip_count} - 1")
+set(entry "")
+foreach(i RANGE ${last_clip})
+  string(JSON name GET "${side}" clips ${i} name)
+  if(name STREQUAL CLIP)
+    set(entry ${i})
+  endif()
+endforeach()
+if(entry STREQUAL "")
+  message(FATAL_ERROR "${vat_json}: no clip ${CLIP} in its clip table")
+endif()
 set(box "")
 foreach(end min max)
   foreach(axis 0 1 2)
-    string(JSON value GET "${side}" bounds ${end} ${axis})
+    string(JSON value GET "${side}" clips ${entry} bounds ${end} ${axis})
     list(APPEND box ${value})
   endforeach()
 endforeach()

@@ -193,16 +193,19 @@ public:
 
   size_t bake_clip(const ClipPlan& clip) {
     ledger_.check_cancel();
+    if (per_clip_formats(options_) == 0) return 0;  // only textures of every clip (--combine-clips): no folder
     journal_.make_folders(ledger_.absolute(clip.folder));
     if (clip.clip_mine) write_clip_files(clip);
 
-    std::vector<size_t> frames = frames_to_deform(clip, options_.formats);
+    const unsigned formats = per_clip_formats(options_);
+    std::vector<size_t> frames = frames_to_deform(clip, formats);
     if (frames.empty()) return 0;
     const size_t counted = frames.size();  // what the progress counter expects of this clip
     std::unique_ptr<VatClipBake> vat;
-    if (clip.clip_mine && has(options_.formats, BakeFormat::kVat)) {
+    if (clip.clip_mine && has(formats, BakeFormat::kVat)) {
       const Clock::time_point start = Clock::now();  // the texture's own passes: rest, planner, measuring
-      vat = std::make_unique<VatClipBake>(*deformer_, input_, clip, options_, look_.get());
+      vat = std::make_unique<VatClipBake>(*deformer_, input_, TextureClips{{&clip}, clip.folder, "clip " + clip.name, true},
+                                          options_, look_.get());
       ledger_.add_time(&BakeStageTimes::check, since(start));
     }
     // A texture of other frames than the bake's (the planner decimated them) deforms its own; the bake's
@@ -210,7 +213,7 @@ public:
     VatClipBake* shared = vat && vat->uses_bake_frames() ? vat.get() : nullptr;
     if (vat && !shared) {
       vat->encode_own_frames(*deformer_);
-      frames = frames_to_deform(clip, options_.formats & ~unsigned(BakeFormat::kVat));
+      frames = frames_to_deform(clip, formats & ~unsigned(BakeFormat::kVat));
       ledger_.progress.add(counted - frames.size(), input_.path, clip.name);
     }
     // The morph animation takes every frame of the bake's pass (frames_to_deform gives them all).
@@ -228,38 +231,54 @@ public:
       ledger_.record_morph(std::move(result.check));
       for (std::string& w : result.warnings) warnings_.push_back(std::move(w));
     }
-    if (vat) {
-      Clock::time_point start = Clock::now();
-      vat->complete_images();  // the last rows; a PNG is compressed here, whole
-      ledger_.add_time(&BakeStageTimes::encode, since(start));
-      start = Clock::now();
-      std::vector<std::string> names;
-      std::vector<Committed> committed;
-      for (auto& [name, c] : vat->finish(*deformer_, {options_.overwrite, &journal_})) {
-        names.push_back(name);
-        committed.push_back(c);
-      }
-      ledger_.add_time(&BakeStageTimes::check, since(start));
-      ledger_.record_files(names, committed);
-      if (const auto& c = vat->check())
-        ledger_.record_check(bake_detail::texture_check(*c, input_.path, clip.name, "vat"));
-    }
+    if (vat) finish_vat(*vat);
     return counted;
   }
 
+  // With --combine-clips: the textures of every clip of the input, after the clips' own passes, from
+  // passes of their own (docs/DESIGN.md §4.9). Returns the frames deformed for them.
+  size_t bake_combined(const TextureClips& set) {
+    ledger_.check_cancel();
+    if (!set.mine) return 0;
+    journal_.make_folders(ledger_.absolute(set.folder));
+    if (has(options_.formats, BakeFormat::kBones) && !input_.skins.empty()) write_bones(set);
+    if (!has(options_.formats, BakeFormat::kVat)) return 0;
+    Clock::time_point start = Clock::now();  // the texture's own passes: rest, planner, measuring
+    VatClipBake vat(*deformer_, input_, set, options_, look_.get());
+    ledger_.add_time(&BakeStageTimes::check, since(start));
+    start = Clock::now();
+    vat.encode_own_frames(*deformer_);
+    ledger_.add_time(&BakeStageTimes::encode, since(start));
+    ledger_.progress.add(set.frames(), input_.path, set.what);
+    finish_vat(vat);
+    return set.frames();
+  }
+
 private:
-  // Whole-animation files that need no deformation: the glb frames' shared images, the OBJ material library
-  // and the bone textures.
-  void write_clip_files(const ClipPlan& clip) {
-    if (glb_)
-      for (const GlbImageFile& image : glb_->image_files())
-        ledger_.write(clip.folder + "/" + image.name, image.bytes, journal_);
-    if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
-      ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
-    if (!has(options_.formats, BakeFormat::kBones) || input_.skins.empty()) return;
+  // A texture's last rows, its decode-back check and its commit; its files and each clip's figures go into
+  // the report.
+  void finish_vat(VatClipBake& vat) {
+    Clock::time_point start = Clock::now();
+    vat.complete_images();  // the last rows; a PNG is compressed here, whole
+    ledger_.add_time(&BakeStageTimes::encode, since(start));
+    start = Clock::now();
+    std::vector<std::string> names;
+    std::vector<Committed> committed;
+    for (auto& [name, c] : vat.finish(*deformer_, {options_.overwrite, &journal_})) {
+      names.push_back(name);
+      committed.push_back(c);
+    }
+    ledger_.add_time(&BakeStageTimes::check, since(start));
+    ledger_.record_files(names, committed);
+    for (size_t c = 0; c < vat.checks().size(); ++c)
+      ledger_.record_check(bake_detail::texture_check(vat.checks()[c], input_.path, vat.clips().clips[c]->name, "vat"));
+  }
+
+  // The bone textures of a set of clips (texture/bones_bake.hpp).
+  void write_bones(const TextureClips& set) {
     const Clock::time_point start = Clock::now();
     BonesClipResult bones =
-        bake_bones_clip(deformer_.get(), input_, clip, options_, {options_.overwrite, &journal_}, jobs_, look_.get());
+        bake_bones_clip(deformer_.get(), input_, set, options_, {options_.overwrite, &journal_}, jobs_, look_.get());
     std::vector<std::string> names;
     std::vector<Committed> committed;
     for (auto& [name, c] : bones.files) {
@@ -269,6 +288,18 @@ private:
     ledger_.record_files(names, committed);
     for (TextureCheck& check : bones.checks) ledger_.record_check(std::move(check));
     ledger_.add_time(options_.textures.check ? &BakeStageTimes::check : &BakeStageTimes::sample, since(start));
+  }
+
+  // Whole-animation files that need no deformation: the glb frames' shared images, the OBJ material library
+  // and the bone textures.
+  void write_clip_files(const ClipPlan& clip) {
+    if (glb_)
+      for (const GlbImageFile& image : glb_->image_files())
+        ledger_.write(clip.folder + "/" + image.name, image.bytes, journal_);
+    if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
+      ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
+    if (!has(per_clip_formats(options_), BakeFormat::kBones) || input_.skins.empty()) return;
+    write_bones({{&clip}, clip.folder, "clip " + clip.name, true});
   }
 
   // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them, the
@@ -376,10 +407,26 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     throw InputError("--encoding " + options.textures.encoding + " is for vertex-animation textures; bone textures are float or half");
   if (options.morph.quantize && !has(options.formats, BakeFormat::kMorph))
     throw InputError("--morph-quantize is for --format morph");
+  if (options.textures.combine_clips) {
+    // docs/DESIGN.md §4.9: which runtimes read several clips from one texture.
+    if (!has(options.formats, BakeFormat::kVat) && !has(options.formats, BakeFormat::kBones))
+      throw InputError("--combine-clips is for --format vat or bones");
+    if (has(options.formats, BakeFormat::kVat) && vat_format(options.textures).profile == texture::VatProfile::kHoudini)
+      throw InputError("--combine-clips: Houdini's VAT 3 shader plays one frame range per texture (its _data.json "
+                       "holds one Frame Count); bake the houdini profile one texture per clip");
+    if (BoneProfile p{}; has(options.formats, BakeFormat::kBones) &&
+                         parse_bone_profile(options.textures.bones_profile, p) && p == BoneProfile::kDqCocos)
+      throw InputError("--combine-clips: Cocos Creator's baked animation reads one joint texture per skeleton and "
+                       "clip; bake the dq-cocos profile one texture per clip");
+  }
 
   std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
-  for (const InputPlan& plan : plans)
-    for (const ClipPlan& clip : plan.clips) report.frames_total += frames_to_deform(clip, options.formats).size();
+  for (const InputPlan& plan : plans) {
+    for (const ClipPlan& clip : plan.clips) report.frames_total += frames_to_deform(clip, per_clip_formats(options)).size();
+    if (options.textures.combine_clips && has(options.formats, BakeFormat::kVat))
+      for (const TextureClips& set : texture_clip_sets(plan, true))
+        if (set.mine) report.frames_total += set.frames();
+  }
 
   // The work in numbers, before anything is written. The glb writers made for it (they measure a frame's
   // size) are the ones that bake.
@@ -443,6 +490,9 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       for (const ClipPlan& clip : plan.clips)
         for (std::string& file : planned_motion_files(clip, motion[size_t(&plan - plans.data())]))
           report.outputs.push_back({std::move(file), 0, {}, false});
+      if (options.textures.combine_clips && plan.error.empty())
+        for (const TextureClips& set : texture_clip_sets(plan, true))
+          for (std::string& file : planned_texture_files(plan, set, options)) report.outputs.push_back({std::move(file), 0, {}, false});
     }
     std::sort(report.outputs.begin(), report.outputs.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
     report.wall_seconds = since(start);
@@ -469,6 +519,8 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
           ledger.record_files(names, committed);
           ledger.add_time(&BakeStageTimes::write, since(written));
         }
+        if (options.textures.combine_clips)
+          for (const TextureClips& set : texture_clip_sets(plan, true)) result.frames += baker.bake_combined(set);
       },
       [&](const InputPlan& plan) { ledger.forget(plan); });
   // What deformed: the GPU's context, or the CPU deformer (auto's choice is known once it was asked).

@@ -5,6 +5,35 @@
 
 namespace dqskin::bake_detail {
 
+size_t TextureClips::frames() const {
+  size_t n = 0;
+  for (const ClipPlan* c : clips) n += c->times.size();
+  return n;
+}
+
+std::vector<TextureClips> texture_clip_sets(const InputPlan& input, bool combine) {
+  std::vector<TextureClips> sets;
+  if (!combine) {
+    for (const ClipPlan& clip : input.clips) sets.push_back({{&clip}, clip.folder, "clip " + clip.name, clip.clip_mine});
+    return sets;
+  }
+  if (input.clips.empty()) return sets;
+  TextureClips all{{}, input.stem, "", input.clips.front().clip_mine};
+  std::string names;
+  for (const ClipPlan& clip : input.clips) {
+    all.clips.push_back(&clip);
+    names += (names.empty() ? "" : ", ") + clip.name;
+  }
+  all.what = (all.clips.size() == 1 ? "clip " : "clips ") + names;
+  sets.push_back(std::move(all));
+  return sets;
+}
+
+unsigned per_clip_formats(const BakeOptions& options) {
+  if (!options.textures.combine_clips) return options.formats;
+  return options.formats & ~(unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones));
+}
+
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats) {
   const bool textures = clip.clip_mine && (formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kMorph)));
   const bool per_frame = formats & (unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kPly) | unsigned(BakeFormat::kObj));
@@ -41,15 +70,25 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
         files.push_back(clip.folder + "/" + name);
   if ((formats & unsigned(BakeFormat::kObj)) && !input.asset->materials.empty())
     files.push_back(clip.folder + "/materials.mtl");
-  if (formats & unsigned(BakeFormat::kVat))
-    for (auto& [name, size] : planned_vat_files(input, clip, options.textures)) files.push_back(std::move(name));
-  if ((formats & unsigned(BakeFormat::kBones)) && !input.skins.empty()) {
-    files.push_back(clip.folder + "/" + kBonesMeshFile);
-    for (int skin : input.skins)
-      for (const char* extension : {".exr", ".json"})
-        files.push_back(clip.folder + "/bones_skin" + std::to_string(skin) + extension);
+  if (!options.textures.combine_clips) {
+    const std::vector<std::string> textures = planned_texture_files(input, {{&clip}, clip.folder, "clip " + clip.name, true}, options);
+    files.insert(files.end(), textures.begin(), textures.end());
   }
   if (formats & unsigned(BakeFormat::kMorph)) files.push_back(morph_file(clip));
+  return files;
+}
+
+std::vector<std::string> planned_texture_files(const InputPlan& input, const TextureClips& set, const BakeOptions& options) {
+  std::vector<std::string> files;
+  if (!set.mine) return files;
+  if (options.formats & unsigned(BakeFormat::kVat))
+    for (auto& [name, size] : planned_vat_files(input, set, options.textures)) files.push_back(std::move(name));
+  if ((options.formats & unsigned(BakeFormat::kBones)) && !input.skins.empty()) {
+    files.push_back(set.folder + "/" + kBonesMeshFile);
+    for (int skin : input.skins)
+      for (const char* extension : {".exr", ".json"})
+        files.push_back(set.folder + "/bones_skin" + std::to_string(skin) + extension);
+  }
   return files;
 }
 

@@ -11,6 +11,23 @@ struct DecodeCheck;
 
 namespace dqskin::bake_detail {
 
+// The clips one texture holds (docs/DESIGN.md §4.9): one clip, in the clip's folder, or with
+// --combine-clips every clip of the input, in the input's folder, the clips' frames one after another.
+struct TextureClips {
+  std::vector<const ClipPlan*> clips;
+  std::string folder;  // relative to the output folder
+  std::string what;    // for messages: "clip Walk", "clips Survey, Walk, Run"
+  bool mine = false;   // this shard writes the textures (a combined texture goes with its first clip)
+  size_t frames() const;  // of every clip together
+};
+
+// The texture sets of an input: one per clip, or one of every clip with `combine`.
+std::vector<TextureClips> texture_clip_sets(const InputPlan& input, bool combine);
+
+// The formats a clip's own pass bakes: with --combine-clips the textures (vat, bones) are baked once per
+// input, from their own pass over every clip, so they leave the clips' passes.
+unsigned per_clip_formats(const BakeOptions& options);
+
 // Frames to deform: all of them when whole-animation textures or the morph animation are due, else the
 // shard's own.
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats);
@@ -25,6 +42,10 @@ inline constexpr const char* kBonesMeshFile = "bones_mesh.glb";
 // The files one clip writes, relative to the output folder, for the formats (and texture profiles) asked
 // for. Throws InputError when a texture profile cannot hold the clip.
 std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& clip, const BakeOptions& options);
+
+// The texture files of a combined set (vat and bones), relative to the output folder, as planned_files
+// lists a clip's. Throws InputError when a profile cannot hold the clips.
+std::vector<std::string> planned_texture_files(const InputPlan& input, const TextureClips& set, const BakeOptions& options);
 
 // A decode-back check's figures as the bake reports them, for texture `texture` of `clip` of `input`.
 TextureCheck texture_check(const texture::DecodeCheck& check, const std::string& input, const std::string& clip,

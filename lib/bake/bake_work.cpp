@@ -14,6 +14,7 @@
 #include <sys/statvfs.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace dqskin::bake_detail {
 namespace {
@@ -78,42 +79,69 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
       images.emplace_back(std::move(name), asset.images[i].bytes.size());
 
   BakeWork work;
+  // A texture file's size: the VAT planner's bound, or a bone texture's.
+  auto texture_bytes = [&](const std::string& file, const TextureClips& set,
+                           const std::vector<std::pair<std::string, uint64_t>>& vat) -> std::optional<uint64_t> {
+    const auto in_vat = std::find_if(vat.begin(), vat.end(), [&](const auto& v) { return v.first == file; });
+    if (in_vat != vat.end()) return in_vat->second;
+    if (file.find("/bones_skin") == std::string::npos) return std::nullopt;
+    const uint64_t frames = set.frames();
+    const size_t skin = std::stoul(file.substr(file.rfind("bones_skin") + 10));
+    const uint64_t joints = asset.skins[skin].joints.size();
+    // Refused before anything is written: the smallest image the profile packs (dq's rigid joints take
+    // 2 texels, bones_bake checks the packed one) already past --max-size.
+    BoneProfile profile{};
+    if (ends_with(file, ".exr") && parse_bone_profile(options.textures.bones_profile, profile))
+      if (const std::string why = bone_size_problem(profile, bone_image_size(profile, joints, frames), options.textures.max_size);
+          !why.empty())
+        throw InputError(set.what + ": skin " + std::to_string(skin) + ": " + why);
+    return ends_with(file, ".exr") ? exr_bytes(mul(joints, 5), frames) : add(1024, add(mul(joints, 48), mul(frames, 24)));
+  };
+  // Any other file's: a frame's, the material library's, a texture's (the meshes beside textures are
+  // counted as a glb frame).
+  auto other_bytes = [&](const std::string& file, const TextureClips& set,
+                         const std::vector<std::pair<std::string, uint64_t>>& vat) -> uint64_t {
+    if (ends_with(file, ".glb")) return glb_frame;
+    if (ends_with(file, ".ply")) return ply_frame;
+    if (ends_with(file, ".obj")) return obj_frame;
+    if (ends_with(file, "materials.mtl")) return encode_mtl(asset).size();
+    return texture_bytes(file, set, vat).value_or(0);
+  };
+  auto count = [&](const std::string& file, uint64_t size) {
+    work.bytes = add(work.bytes, add(size, 160));  // and its line in the manifest
+    ++work.files;
+    struct stat st {};
+    if (::stat((options.plan.out_dir + "/" + file).c_str(), &st) == 0 && S_ISREG(st.st_mode))
+      work.existing = add(work.existing, uint64_t(st.st_size));
+  };
+  const bool combine = options.textures.combine_clips;
   for (const ClipPlan& clip : input.clips) {
-    const uint64_t frames = clip.times.size();
-    work.vertex_frames = add(work.vertex_frames, mul(vertices, frames_to_deform(clip, options.formats).size()));
+    work.vertex_frames = add(work.vertex_frames, mul(vertices, frames_to_deform(clip, per_clip_formats(options)).size()));
+    const TextureClips one{{&clip}, clip.folder, "clip " + clip.name, clip.clip_mine};
     std::vector<std::pair<std::string, uint64_t>> vat;
-    if (options.formats & unsigned(BakeFormat::kVat)) vat = planned_vat_files(input, clip, options.textures);
+    if ((options.formats & unsigned(BakeFormat::kVat)) && !combine) vat = planned_vat_files(input, one, options.textures);
     for (const std::string& file : planned_files(input, clip, options)) {
       uint64_t size = 0;
-      const auto in_vat = std::find_if(vat.begin(), vat.end(), [&](const auto& v) { return v.first == file; });
       const auto image =
           std::find_if(images.begin(), images.end(), [&](const auto& i) { return file == clip.folder + "/" + i.first; });
       if (file == morph_file(clip)) size = planned_morph_bytes(input, clip);
       else if (image != images.end()) size = image->second;
-      else if (ends_with(file, ".glb")) size = glb_frame;
-      else if (ends_with(file, ".ply")) size = ply_frame;
-      else if (ends_with(file, ".obj")) size = obj_frame;
-      else if (ends_with(file, "materials.mtl")) size = encode_mtl(asset).size();
-      else if (in_vat != vat.end()) size = in_vat->second;
-      else if (file.find("/bones_skin") != std::string::npos) {
-        const size_t skin = std::stoul(file.substr(file.rfind("bones_skin") + 10));
-        const uint64_t joints = asset.skins[skin].joints.size();
-        // Refused before anything is written: the smallest image the profile packs (dq's rigid joints take
-        // 2 texels, bones_bake checks the packed one) already past --max-size.
-        BoneProfile profile{};
-        if (ends_with(file, ".exr") && parse_bone_profile(options.textures.bones_profile, profile))
-          if (const std::string why = bone_size_problem(profile, bone_image_size(profile, joints, frames), options.textures.max_size);
-              !why.empty())
-            throw InputError("clip " + clip.name + ": skin " + std::to_string(skin) + ": " + why);
-        size = ends_with(file, ".exr") ? exr_bytes(mul(joints, 5), frames) : add(1024, add(mul(joints, 48), mul(frames, 24)));
-      }
-      work.bytes = add(work.bytes, add(size, 160));  // and its line in the manifest
-      ++work.files;
-      struct stat st {};
-      if (::stat((options.plan.out_dir + "/" + file).c_str(), &st) == 0 && S_ISREG(st.st_mode))
-        work.existing = add(work.existing, uint64_t(st.st_size));
+      else size = other_bytes(file, one, vat);
+      count(file, size);
     }
   }
+  // With --combine-clips, the textures of every clip at once, from their own pass.
+  if (combine)
+    for (const TextureClips& set : texture_clip_sets(input, true)) {
+      if (!set.mine) continue;
+      std::vector<std::pair<std::string, uint64_t>> vat;
+      if (options.formats & unsigned(BakeFormat::kVat)) {
+        vat = planned_vat_files(input, set, options.textures);
+        work.vertex_frames = add(work.vertex_frames, mul(vertices, set.frames()));
+      }
+      for (const std::string& file : planned_texture_files(input, set, options))
+        count(file, other_bytes(file, set, vat));
+    }
   return work;
 }
 

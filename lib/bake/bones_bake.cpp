@@ -51,7 +51,7 @@ struct SkinCheck {
 // Vertices are split among threads; their figures are merged afterwards.
 void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t prim_index, const Pose& pose,
                        const BoneImage& image, size_t frame, const PrimitiveView& reference, bool midpoint,
-                       size_t skinned, SkinCheck& check, unsigned threads) {
+                       bool first, size_t skinned, SkinCheck& check, unsigned threads) {
   const Primitive& prim = asset.meshes[size_t(instance.mesh)].primitives[prim_index];
   const size_t n = prim.vertex_count();
   const std::vector<double>& morph = pose.weights[size_t(instance.node)];
@@ -62,7 +62,7 @@ void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t 
     texture::Box bounds;
   };
   std::vector<Partial> partial(chunks);
-  const bool first = !midpoint && frame == 0;
+  // `first`: the clip's first frame, which the motion is measured from.
   if (first) {
     check.first_decoded.resize(std::max(check.first_decoded.size(), skinned + 1));
     check.first_reference.resize(std::max(check.first_reference.size(), skinned + 1));
@@ -116,7 +116,38 @@ void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t 
 
 }  // namespace
 
-BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, const ClipPlan& clip,
+namespace {
+
+// Whether a clip's last joint matrices are its first (to a millionth of the largest translation, float noise
+// aside): the clip loops.
+bool loops(const std::vector<JointTransforms>& frames, size_t first, size_t count) {
+  if (count < 2) return false;
+  const JointTransforms &a = frames[first], &b = frames[first + count - 1];
+  double scale = 1, gap = 0;
+  for (size_t j = 0; j < a.matrices.size(); ++j)
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) {
+        scale = std::max(scale, std::abs(a.matrices[j][c][r]));
+        gap = std::max(gap, std::abs(a.matrices[j][c][r] - b.matrices[j][c][r]));
+      }
+  return gap <= 1e-6 * scale;
+}
+
+texture::DecodeCheck figures(const SkinCheck& c) {
+  texture::DecodeCheck d;
+  d.max_error = c.frames.max();
+  d.p99_error = c.frames.quantile(0.99);
+  d.max_midpoint_error = c.midpoints.max();
+  d.p99_midpoint_error = c.midpoints.quantile(0.99);
+  d.max_normal_degrees = c.normal_degrees;
+  d.max_midpoint_normal_degrees = c.midpoint_normal_degrees;
+  d.samples = c.frames.count() + c.midpoints.count();
+  return d;
+}
+
+}  // namespace
+
+BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, const TextureClips& set,
                                 const BakeOptions& options, const CommitOptions& commit, unsigned threads,
                                 const glb::Appearance* look) {
   const Asset& asset = *input.asset;
@@ -124,92 +155,114 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
   BoneProfile profile{};
   if (!parse_bone_profile(o.bones_profile, profile))
     throw InputError("--bones-profile '" + o.bones_profile + "' is not one of dq, dq-cocos, mat3x4, mat4");
+  // Every clip's frames, one after another: row r of a texture is frame r (docs/DESIGN.md §4.9).
   std::vector<Pose> poses;
-  for (double t : clip.times) poses.push_back(sample_pose(asset, clip.clip, t));
+  std::vector<double> times;
+  std::vector<texture::VatClipEntry> table;
+  for (const ClipPlan* clip : set.clips) {
+    const std::vector<double>& t = clip->times;
+    table.push_back({clip->name, poses.size(), t.size(), clip->fps, t.empty() ? 0 : t.back() - t.front(), false});
+    for (double time : t) {
+      poses.push_back(sample_pose(asset, clip->clip, time));
+      times.push_back(time);
+    }
+  }
+  const double fps = std::all_of(table.begin(), table.end(), [&](const auto& c) { return c.fps == table.front().fps; })
+                         ? table.front().fps
+                         : 0.0;
 
   BonesClipResult result;
   std::vector<std::unique_ptr<texture::BoneTextureWriter>> writers;
   std::vector<std::string> bases;
+  std::vector<std::vector<texture::VatClipEntry>> tables;  // per skin: the clip table with its loops
   for (int skin : input.skins) {
     std::vector<JointTransforms> frames;
     for (const Pose& pose : poses) frames.push_back(joint_transforms(asset.skins[size_t(skin)], pose));
-    const std::string base = clip.folder + "/bones_skin" + std::to_string(skin);
+    tables.push_back(table);
+    for (texture::VatClipEntry& c : tables.back()) c.loops = loops(frames, c.first_frame, c.frame_count);
+    const std::string base = set.folder + "/bones_skin" + std::to_string(skin);
     BoneImage image = pack_bones(profile, frames);
     if (const std::string why = bone_size_problem(profile, {image.width, image.height}, o.max_size); !why.empty())
-      throw InputError("clip " + clip.name + ": skin " + std::to_string(skin) + ": " + why);
+      throw InputError(set.what + ": skin " + std::to_string(skin) + ": " + why);
     writers.push_back(std::make_unique<texture::BoneTextureWriter>(
         options.plan.out_dir + "/" + base + ".exr", options.plan.out_dir + "/" + base + ".json", std::move(image),
-        bone_texel_type(o), asset, skin, clip.times, clip.fps, o.exr_compression));
+        bone_texel_type(o), asset, skin, times, fps, o.exr_compression));
     bases.push_back(base);
   }
 
-  std::vector<std::optional<texture::DecodeCheck>> figures(writers.size());
+  std::vector<std::optional<texture::DecodeCheck>> figures_of(writers.size());
+  std::vector<std::vector<texture::DecodeCheck>> clip_figures(writers.size());
   if (o.check && !writers.empty() && deformer) {
     std::vector<BoneImage> images;
     for (const auto& w : writers) images.push_back(w->read_back());
-    std::vector<SkinCheck> checks(writers.size());
-    // Every frame, and between neighbours the midpoint.
-    const std::vector<double> times = frames_and_midpoints(clip.times);
-    deformer->run(clip.clip, times, [&](const DeformedBatch& batch) {
-      for (size_t k = 0; k < batch.frame_count; ++k) {
-        const size_t i = batch.first_frame + k;
-        const bool midpoint = i % 2 == 1;
-        // Morph weights: the frames' poses were sampled for packing; only midpoints need sampling.
-        const Pose midpoint_pose = midpoint ? sample_pose(asset, clip.clip, times[i]) : Pose();
-        const Pose& pose = midpoint ? midpoint_pose : poses[i / 2];
-        const FrameView view = frame_view(batch, k);
-        size_t at = 0;
-        for (size_t s = 0; s < input.skins.size(); ++s) {
-          size_t skinned = 0;
-          at = 0;
-          for (const MeshInstance& instance : input.instances) {
-            const size_t primitives = asset.meshes[size_t(instance.mesh)].primitives.size();
-            if (instance.skin == input.skins[s])
-              for (size_t p = 0; p < primitives; ++p, ++skinned)
-                compare_primitive(asset, instance, p, pose, images[s], i / 2, view.primitives[at + p], midpoint,
-                                  skinned, checks[s], threads);
-            at += primitives;
+    std::vector<SkinCheck> whole(writers.size());
+    for (size_t c = 0; c < set.clips.size(); ++c) {
+      const ClipPlan& clip = *set.clips[c];
+      const size_t first = table[c].first_frame;
+      std::vector<SkinCheck> checks(writers.size());
+      // Every frame, and between neighbours the midpoint.
+      const std::vector<double> clip_times = frames_and_midpoints(clip.times);
+      deformer->run(clip.clip, clip_times, [&](const DeformedBatch& batch) {
+        for (size_t k = 0; k < batch.frame_count; ++k) {
+          const size_t i = batch.first_frame + k;
+          const bool midpoint = i % 2 == 1;
+          // Morph weights: the frames' poses were sampled for packing; only midpoints need sampling.
+          const Pose midpoint_pose = midpoint ? sample_pose(asset, clip.clip, clip_times[i]) : Pose();
+          const Pose& pose = midpoint ? midpoint_pose : poses[first + i / 2];
+          const FrameView view = frame_view(batch, k);
+          size_t at = 0;
+          for (size_t s = 0; s < input.skins.size(); ++s) {
+            size_t skinned = 0;
+            at = 0;
+            for (const MeshInstance& instance : input.instances) {
+              const size_t primitives = asset.meshes[size_t(instance.mesh)].primitives.size();
+              if (instance.skin == input.skins[s])
+                for (size_t p = 0; p < primitives; ++p, ++skinned)
+                  compare_primitive(asset, instance, p, pose, images[s], first + i / 2, view.primitives[at + p],
+                                    midpoint, i == 0, skinned, checks[s], threads);
+              at += primitives;
+            }
           }
         }
+      });
+      for (size_t s = 0; s < writers.size(); ++s) {
+        const SkinCheck& check = checks[s];
+        const texture::DecodeCheck d = figures(check);
+        const std::string what = "clip " + clip.name + ", bones_skin" + std::to_string(input.skins[s]);
+        // Float noise aside: a millionth of the clip's size.
+        if (check.reference_motion > 1e-6 * check.bounds.diagonal() && check.decoded_motion == 0)
+          throw InputError(what + ": every frame of the texture skins to one pose while the clip moves " +
+                           length_text(check.reference_motion));
+        if (o.max_error > 0) {
+          const double limit = o.max_error_relative ? o.max_error * check.bounds.diagonal() : o.max_error;
+          if (d.max_error > limit)
+            throw InputError(what + ": the texture skins (" + implied_blend(profile) + ") to within " +
+                             length_text(d.max_error) + " of the deformed mesh (--mode " + to_string(options.mode) +
+                             "), over --max-error " + length_text(limit));
+        }
+        clip_figures[s].push_back(d);
+        result.checks.push_back(texture_check(d, input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
+        whole[s].frames.merge(check.frames);
+        whole[s].midpoints.merge(check.midpoints);
+        whole[s].normal_degrees = std::max(whole[s].normal_degrees, check.normal_degrees);
+        whole[s].midpoint_normal_degrees = std::max(whole[s].midpoint_normal_degrees, check.midpoint_normal_degrees);
       }
-    });
-    for (size_t s = 0; s < writers.size(); ++s) {
-      const SkinCheck& c = checks[s];
-      texture::DecodeCheck d;
-      d.max_error = c.frames.max();
-      d.p99_error = c.frames.quantile(0.99);
-      d.max_midpoint_error = c.midpoints.max();
-      d.p99_midpoint_error = c.midpoints.quantile(0.99);
-      d.max_normal_degrees = c.normal_degrees;
-      d.max_midpoint_normal_degrees = c.midpoint_normal_degrees;
-      d.samples = c.frames.count() + c.midpoints.count();
-      figures[s] = d;
-      const std::string what = "clip " + clip.name + ", bones_skin" + std::to_string(input.skins[s]);
-      // Float noise aside: a millionth of the clip's size.
-      if (c.reference_motion > 1e-6 * c.bounds.diagonal() && c.decoded_motion == 0)
-        throw InputError(what + ": every frame of the texture skins to one pose while the clip moves " +
-                         length_text(c.reference_motion));
-      if (o.max_error > 0) {
-        const double limit = o.max_error_relative ? o.max_error * c.bounds.diagonal() : o.max_error;
-        if (d.max_error > limit)
-          throw InputError(what + ": the texture skins (" + implied_blend(profile) + ") to within " +
-                           length_text(d.max_error) + " of the deformed mesh (--mode " + to_string(options.mode) +
-                           "), over --max-error " + length_text(limit));
-      }
-      result.checks.push_back(
-          texture_check(d, input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
     }
+    for (size_t s = 0; s < writers.size(); ++s) figures_of[s] = figures(whole[s]);
   }
   if (writers.empty()) return result;
   // The skinned mesh the textures deform, first: a reader that finds a texture finds its mesh.
-  const std::string mesh_name = clip.folder + "/" + kBonesMeshFile;
+  const std::string mesh_name = set.folder + "/" + kBonesMeshFile;
   AtomicFile mesh(options.plan.out_dir + "/" + mesh_name, false);
   mesh.write(texture::encode_bones_mesh_glb(asset, input.instances, input.stem, look));
   if (commit.overwrite == Overwrite::kRefuseDifferent && mesh.conflicts())
     throw OutputError(mesh.path() + ": exists with different contents; not overwritten");
   result.files.emplace_back(mesh_name, mesh.commit(commit));
   for (size_t s = 0; s < writers.size(); ++s) {
-    const std::vector<Committed> c = writers[s]->commit(figures[s] ? &*figures[s] : nullptr, commit);
+    // One clip: the texture's figures are the clip's; several: each clip's too, in the clip table.
+    const std::vector<texture::DecodeCheck> per_clip = set.clips.size() > 1 ? clip_figures[s] : std::vector<texture::DecodeCheck>();
+    const std::vector<Committed> c =
+        writers[s]->commit(figures_of[s] ? &*figures_of[s] : nullptr, commit, tables[s], per_clip);
     result.files.emplace_back(bases[s] + ".exr", c[0]);
     result.files.emplace_back(bases[s] + ".json", c[1]);
   }

@@ -9,6 +9,7 @@
 #include "../texture/texture_output.hpp"
 #include "../write/vertex_sharing.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -64,20 +65,21 @@ VatFormat chosen_format(const TextureOptions& o) {
 VatFormat vat_format(const TextureOptions& options) { return chosen_format(options); }
 
 
-std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const ClipPlan& clip,
+std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const TextureClips& set,
                                                                const TextureOptions& options) {
   const VatFormat format = chosen_format(options);
   size_t vertices = 0, indices = 0;
   for (const VatSource& s : vat_sources(*input.asset, input.instances)) vertices += s.vertices;
   for (const MeshInstance& inst : input.instances)
     for (const Primitive& p : input.asset->meshes[size_t(inst.mesh)].primitives) indices += std::max(p.indices.size(), p.vertex_count());
-  const std::string what = "clip " + clip.name;
+  const std::string& what = set.what;
   if (vertices == 0) throw InputError(what + ": no vertices to bake into a vertex-animation texture");
   // With a budget the planner may keep fewer frames: the estimate takes the most that fit (an upper bound),
   // and leaves a clip that fits at no decimation to the planner's message.
   std::optional<VatLayout> fits;
   for (size_t step = 1; step <= (planner_active(options) ? 8u : 1u) && !fits; ++step) {
-    const size_t frames = (clip.times.size() - 1 + step - 1) / step + 1;
+    size_t frames = 0;
+    for (const ClipPlan* clip : set.clips) frames += (clip->times.size() - 1 + step - 1) / step + 1;
     try {
       fits = plan_vat_layout(format, vertices, frames, options.max_size, options.pot, what);
     } catch (const InputError&) {
@@ -95,7 +97,7 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
     return uint64_t(l.width) * l.height * uint64_t(channels) * channel_bytes(type) + 1024 + l.height / 16 * 8;
   };
   std::vector<std::pair<std::string, uint64_t>> files;
-  const std::string folder = clip.folder + "/";
+  const std::string folder = set.folder + "/";
   for (size_t page = 0; page < l.pages; ++page) {
     files.emplace_back(folder + page_file_name(names.positions, page, l.pages), image(format.type, l.position_channels()));
     if (const std::optional<TexelType> type = e.normal_image_type())
@@ -107,23 +109,23 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
   for (const EncodedImage& i : input.asset->images) images += i.bytes.size() + 4;
   files.emplace_back(folder + names.rest_mesh,
                      4096 + uint64_t(vertices) * (12 + 12 + 8 + 8 + 8) + uint64_t(indices) * 4 + images);
-  if (!names.profile_side_file.empty()) files.emplace_back(folder + names.profile_side_file, 4096);
-  files.emplace_back(folder + names.dqskin_side_file, 8192 + uint64_t(clip.times.size()) * 200);
+  if (!names.profile_side_file.empty()) files.emplace_back(folder + names.profile_side_file, 4096 + set.clips.size() * 200);
+  files.emplace_back(folder + names.dqskin_side_file, 8192 + uint64_t(set.frames()) * 200 + set.clips.size() * 400);
   return files;
 }
 
-VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options,
+VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, TextureClips set, const BakeOptions& options,
                          const glb::Appearance* look)
-    : clip_(clip), options_(options), what_("clip " + clip.name), times_(clip.times),
-      sharing_(shared_vertex_layout(*input.asset, input.instances)) {
+    : set_(std::move(set)), options_(options), sharing_(shared_vertex_layout(*input.asset, input.instances)) {
   const TextureOptions& o = options.textures;
+  const std::string& what = set_.what;
   VatEncoding e;
   e.compression = o.exr_compression;
   VatFormat format = chosen_format(o);
   const std::vector<VatSource> sources = vat_sources(*input.asset, input.instances);
   size_t vertices = 0;
   for (const VatSource& s : sources) vertices += s.vertices;
-  if (vertices == 0) throw InputError(what_ + ": no vertices to bake into a vertex-animation texture");
+  if (vertices == 0) throw InputError(what + ": no vertices to bake into a vertex-animation texture");
 
   // The rest mesh: the rest pose (dqskin, openvat) or the clip's first frame (houdini, whose offsets start
   // there; it comes from the measuring pass).
@@ -135,47 +137,66 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
   }
 
   // With a budget, the planner chooses the texel type and the frames.
-  double fps = clip.fps;
+  std::vector<double> fps;
+  for (const ClipPlan* clip : set_.clips) {
+    times_.push_back(clip->times);
+    fps.push_back(clip->fps);
+  }
   std::optional<VatChoice> planned;
   if (planner_active(o)) {
-    const VatPlan plan = plan_vat(deformer, input, clip, o, e.rest);
+    const VatPlan plan = plan_vat(deformer, input, set_, o, e.rest);
     planned = plan.choices[plan.chosen];
     format.type = planned->format.type;
     times_ = plan.times;
-    if (planned->step > 1) fps = planned->fps;
+    if (planned->step > 1) fps = plan.fps;
   }
-  e.layout = plan_vat_layout(format, vertices, times_.size(), o.max_size, o.pot, what_);
+  e.layout = plan_vat_layout(format, vertices, frames(), o.max_size, o.pot, what);
 
-  // The measuring pass: bounds of what is stored, of each frame and of the clip; whether it loops.
+  // The measuring pass: bounds of what is stored, of each frame and of the clips; whether each loops.
   VatClipInfo info;
   info.asset = input.stem;
-  info.clip = clip.name;
-  info.times = times_;
-  info.fps = fps;
+  info.clip = set_.clips.size() == 1 ? set_.clips.front()->name : std::string();
+  info.fps = std::all_of(fps.begin(), fps.end(), [&](double f) { return f == fps.front(); }) ? fps.front() : 0.0;
   info.sources = sources;
+  for (size_t c = 0; c < set_.clips.size(); ++c) {
+    const std::vector<double>& t = times_[c];
+    info.clips.push_back({set_.clips[c]->name, info.times.size(), t.size(), fps[c], t.empty() ? 0 : t.back() - t.front(), false});
+    info.times.insert(info.times.end(), t.begin(), t.end());
+  }
   if (planned) info.plan = {to_string(planned->format.type), planned->step, planned->error(), planned->encoding_error,
                             planned->interpolation_error, planned->bytes};
-  VatMeasure measure(e);
-  deformer.run(clip.clip, times_, [&](const DeformedBatch& batch) {
-    for (size_t k = 0; k < batch.frame_count; ++k) {
-      if (batch.first_frame + k == 0 && format.profile == VatProfile::kHoudini) rest = copy_frame(batch, k);
-      measure.add(distinct_vertices(frame_view(batch, k), sharing_), batch.first_frame + k, times_.size());
-    }
-  });
-  measure.finish(info, what_);
+  VatMeasure measure(e, info.clips);
+  for (size_t c = 0; c < set_.clips.size(); ++c) {
+    const size_t first = info.clips[c].first_frame;
+    deformer.run(set_.clips[c]->clip, times_[c], [&](const DeformedBatch& batch) {
+      for (size_t k = 0; k < batch.frame_count; ++k) {
+        const size_t f = first + batch.first_frame + k;
+        if (f == 0 && format.profile == VatProfile::kHoudini) rest = copy_frame(batch, k);
+        measure.add(distinct_vertices(frame_view(batch, k), sharing_), f, info.times.size());
+      }
+    });
+  }
+  measure.finish(info, what);
 
-  const std::string folder = options.plan.out_dir + "/" + clip.folder;
+  const std::string folder = options.plan.out_dir + "/" + set_.folder;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem, look);
   writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));
 }
 
-bool VatClipBake::uses_bake_frames() const { return times_ == clip_.times; }
+size_t VatClipBake::frames() const {
+  size_t n = 0;
+  for (const std::vector<double>& t : times_) n += t.size();
+  return n;
+}
+
+bool VatClipBake::uses_bake_frames() const { return set_.clips.size() == 1 && times_[0] == set_.clips[0]->times; }
 
 void VatClipBake::encode_own_frames(Deformer& deformer) {
-  deformer.run(clip_.clip, times_, [&](const DeformedBatch& batch) {
-    for (size_t k = 0; k < batch.frame_count; ++k) writer_->append(distinct_vertices(frame_view(batch, k), sharing_));
-  });
+  for (size_t c = 0; c < set_.clips.size(); ++c)
+    deformer.run(set_.clips[c]->clip, times_[c], [&](const DeformedBatch& batch) {
+      for (size_t k = 0; k < batch.frame_count; ++k) writer_->append(distinct_vertices(frame_view(batch, k), sharing_));
+    });
 }
 
 VatClipBake::~VatClipBake() = default;
@@ -191,36 +212,57 @@ void VatClipBake::complete_images() {
 std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& deformer, const CommitOptions& commit) {
   complete_images();
   const TextureOptions& o = options_.textures;
+  std::optional<DecodeCheck> whole;  // over every clip: the side file's figures
   if (o.check) {
-    VatDecodeChecker checker(*writer_);
-    // Every frame, and between neighbours the midpoint a runtime interpolates.
-    const std::vector<double> times = frames_and_midpoints(times_);
-    deformer.run(clip_.clip, times, [&](const DeformedBatch& batch) {
-      for (size_t k = 0; k < batch.frame_count; ++k) {
-        const size_t i = batch.first_frame + k;
-        const FrameView frame = distinct_vertices(frame_view(batch, k), sharing_);
-        if (i % 2 == 0) checker.baked_frame(i / 2, frame);
-        else checker.midpoint(i / 2, frame);
+    ErrorHistogram frames, midpoints;
+    size_t first = 0;
+    for (size_t c = 0; c < set_.clips.size(); ++c) {
+      const ClipPlan& clip = *set_.clips[c];
+      const std::string what = "clip " + clip.name;
+      VatDecodeChecker checker(*writer_);
+      // Every frame, and between neighbours the midpoint a runtime interpolates.
+      const std::vector<double> times = frames_and_midpoints(times_[c]);
+      deformer.run(clip.clip, times, [&](const DeformedBatch& batch) {
+        for (size_t k = 0; k < batch.frame_count; ++k) {
+          const size_t i = batch.first_frame + k;
+          const FrameView frame = distinct_vertices(frame_view(batch, k), sharing_);
+          if (i % 2 == 0) checker.baked_frame(first + i / 2, frame);
+          else checker.midpoint(first + i / 2, frame);
+        }
+      });
+      first += times_[c].size();
+      const DecodeCheck check = checker.result();
+      checks_.push_back(check);
+      frames.merge(checker.frame_errors());
+      midpoints.merge(checker.midpoint_errors());
+      if (!whole) whole = check;
+      whole->max_normal_degrees = std::max(whole->max_normal_degrees, check.max_normal_degrees);
+      whole->max_midpoint_normal_degrees = std::max(whole->max_midpoint_normal_degrees, check.max_midpoint_normal_degrees);
+      // A clip that moves further than its encoding resolves (float noise aside) must not decode to one pose.
+      const double resolvable =
+          std::max(2 * position_encoding_bound(writer_->encoding()), 1e-6 * writer_->clip_bounds().diagonal());
+      if (checker.reference_motion() > resolvable && checker.decoded_motion() == 0)
+        throw InputError(what + ": every frame of the texture decodes to one pose while the clip moves " +
+                         length_text(checker.reference_motion()) + " (a bake of the rest pose?)");
+      if (o.max_error > 0) {
+        const double limit = o.max_error_relative ? o.max_error * writer_->clip_bounds().diagonal() : o.max_error;
+        const double worst = std::max(check.max_error, check.max_midpoint_error);
+        if (worst > limit)
+          throw InputError(what + ": the texture decodes with errors up to " + length_text(check.max_error) +
+                           " at frames and " + length_text(check.max_midpoint_error) + " between them, over --max-error " +
+                           length_text(limit));
       }
-    });
-    check_ = checker.result();
-    // A clip that moves further than its encoding resolves (float noise aside) must not decode to one pose.
-    const double resolvable =
-        std::max(2 * position_encoding_bound(writer_->encoding()), 1e-6 * writer_->clip_bounds().diagonal());
-    if (checker.reference_motion() > resolvable && checker.decoded_motion() == 0)
-      throw InputError(what_ + ": every frame of the texture decodes to one pose while the clip moves " +
-                       length_text(checker.reference_motion()) + " (a bake of the rest pose?)");
-    if (o.max_error > 0) {
-      const double limit = o.max_error_relative ? o.max_error * writer_->clip_bounds().diagonal() : o.max_error;
-      const double worst = std::max(check_->max_error, check_->max_midpoint_error);
-      if (worst > limit)
-        throw InputError(what_ + ": the texture decodes with errors up to " + length_text(check_->max_error) +
-                         " at frames and " + length_text(check_->max_midpoint_error) + " between them, over --max-error " +
-                         length_text(limit));
     }
+    whole->max_error = frames.max();
+    whole->p99_error = frames.quantile(0.99);
+    whole->max_midpoint_error = midpoints.max();
+    whole->p99_midpoint_error = midpoints.quantile(0.99);
+    whole->samples = frames.count() + midpoints.count();
   }
-  std::vector<std::pair<std::string, Committed>> files = writer_->commit(check_ ? &*check_ : nullptr, commit);
-  for (auto& [name, committed] : files) name = clip_.folder + "/" + name;
+  // One clip: the texture's figures are the clip's; several: each clip's too, in the clip table.
+  const std::vector<DecodeCheck> per_clip = set_.clips.size() > 1 ? checks_ : std::vector<DecodeCheck>();
+  std::vector<std::pair<std::string, Committed>> files = writer_->commit(whole ? &*whole : nullptr, commit, per_clip);
+  for (auto& [name, committed] : files) name = set_.folder + "/" + name;
   return files;
 }
 

@@ -1,4 +1,5 @@
-// One clip's vertex-animation texture in a bake (internal to lib/bake): the passes around the writer.
+// One vertex-animation texture in a bake (internal to lib/bake), of one clip or, with --combine-clips, of
+// every clip of an input one after another (docs/DESIGN.md §4.9): the passes around the writer.
 // Before the bake's own pass over the frames, a rest pass (the mesh the offsets are taken from) and a
 // measuring pass (the bounds the texels are remapped by, each frame's bounds for culling, whether the clip
 // loops); during it, each frame is encoded; after it, the decode-back check deforms the clip again at every
@@ -25,9 +26,9 @@ namespace dqskin::bake_detail {
 // cannot write.
 texture::VatFormat vat_format(const TextureOptions& options);
 
-// The VAT files of one clip, relative to the output folder, each with an upper bound of its size (images
+// The VAT files of one texture, relative to the output folder, each with an upper bound of its size (images
 // uncompressed). Throws InputError when the profile cannot hold the clip.
-std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const ClipPlan& clip,
+std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const TextureClips& set,
                                                                const TextureOptions& options);
 
 class VatClipBake {
@@ -35,16 +36,19 @@ public:
   // Runs the rest and measuring passes with `deformer` and opens the files. Throws InputError when the
   // profile cannot hold the clip (size, format), OutputError when a file cannot be created. `look`: the
   // source's materials and images for the rest mesh (glb::read_look), or null.
-  VatClipBake(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const BakeOptions& options,
+  VatClipBake(Deformer& deformer, const InputPlan& input, TextureClips set, const BakeOptions& options,
               const glb::Appearance* look = nullptr);
   ~VatClipBake();
 
-  // Whether the texture holds the bake's own frames (the clip's times), so that the bake's pass feeds it
-  // through append(); else (the planner decimated them) encode_own_frames() deforms its frames.
+  // Whether the texture holds the bake's own frames (one clip at its times), so that the bake's pass feeds
+  // it through append(); else (the planner decimated them, or several clips) encode_own_frames() deforms
+  // its frames.
   bool uses_bake_frames() const;
   // The bake's pass: every frame of the clip, in order.
   void append(const FrameView& frame);
   void encode_own_frames(Deformer& deformer);
+  // Frames the texture holds, over every clip.
+  size_t frames() const;
 
   // Writes what the images still lack (the last rows, or a whole PNG) to their temporaries.
   void complete_images();
@@ -54,17 +58,17 @@ public:
   // name. Returns the files' paths relative to the output folder with what happened to each.
   std::vector<std::pair<std::string, Committed>> finish(Deformer& deformer, const CommitOptions& commit);
 
-  // The check's figures, once finish() has run it.
-  const std::optional<texture::DecodeCheck>& check() const { return check_; }
+  // The check's figures per clip (in the set's order), once finish() has run it.
+  const std::vector<texture::DecodeCheck>& checks() const { return checks_; }
+  const TextureClips& clips() const { return set_; }
 
 private:
-  const ClipPlan& clip_;
+  TextureClips set_;
   const BakeOptions& options_;
-  std::string what_;  // "clip <name>" for messages
-  std::vector<double> times_;  // the texture's frames
+  std::vector<std::vector<double>> times_;  // per clip, the texture's frames
   SharedVertexLayout sharing_;  // the texture holds each distinct vertex once (vertex_sharing.hpp)
   std::unique_ptr<texture::VatWriter> writer_;
-  std::optional<texture::DecodeCheck> check_;
+  std::vector<texture::DecodeCheck> checks_;
   bool complete_ = false;
 };
 

@@ -108,10 +108,10 @@ std::string choice_text(const VatChoice& c) {
 
 bool planner_active(const TextureOptions& o) { return o.max_error > 0 || o.max_bytes > 0; }
 
-VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& clip, const TextureOptions& o,
+VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const TextureClips& set, const TextureOptions& o,
                  const std::vector<float>& rest) {
   const VatFormat base = vat_format(o);
-  const std::string what = "clip " + clip.name;
+  const std::string& what = set.what;
   const SharedVertexLayout sharing = shared_vertex_layout(*input.asset, input.instances);
   std::vector<TexelType> types;
   if (!o.encoding.empty()) {
@@ -124,49 +124,72 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
       if (unsupported_reason(f).empty() && !(base.profile == VatProfile::kHoudini && is_png(t))) types.push_back(t);
     }
   }
-  const std::vector<double>& t = clip.times;
-  const size_t frames = t.size();
-  const bool grid = clip.fps > 0 && frames >= 2;
+  // A decimation applies to every clip of the texture: offered when each clip's times are a grid longer
+  // than the step.
+  struct ClipGrid {
+    size_t frames = 0;
+    bool grid = false;
+    double spacing = 0;
+  };
+  std::vector<ClipGrid> grids;
+  for (const ClipPlan* clip : set.clips) {
+    const std::vector<double>& t = clip->times;
+    ClipGrid g;
+    g.frames = t.size();
+    g.grid = clip->fps > 0 && g.frames >= 2;
+    g.spacing = g.grid ? (t.back() - t.front()) / double(g.frames - 1) : 0.0;
+    grids.push_back(g);
+  }
   std::vector<size_t> steps;
   for (size_t k : kSteps)
-    if (k == 1 || (grid && k < frames)) steps.push_back(k);
-  const double spacing = grid ? (t.back() - t.front()) / double(frames - 1) : 0.0;
-
-  // Samples: every frame and midpoint, then the poses past the end that decimations keep.
-  std::vector<double> times = frames_and_midpoints(t);
-  const size_t regular = times.size();
-  std::map<size_t, std::vector<size_t>> past_end;  // last kept frame past the end → the steps keeping it
-  for (size_t s = 0; s < steps.size(); ++s) {
-    const size_t last = (kept_frames(frames, steps[s]) - 1) * steps[s];
-    if (last > frames - 1) past_end[last].push_back(s);
-  }
-  for (const auto& [frame, unused] : past_end) times.push_back(t.back() + double(frame - (frames - 1)) * spacing);
+    if (k == 1 || std::all_of(grids.begin(), grids.end(), [&](const ClipGrid& g) { return g.grid && k < g.frames; }))
+      steps.push_back(k);
 
   VatEncoding e;
   e.rest = rest;
   e.layout.format = base;
   Box stored, clip_box;
-  InterpolationErrors interpolation(steps, regular);
-  auto past_end_at = past_end.begin();
-  deformer.run(clip.clip, times, [&](const DeformedBatch& batch) {
-    for (size_t k = 0; k < batch.frame_count; ++k) {
-      const size_t j = batch.first_frame + k;
-      std::vector<float> positions = all_positions(distinct_vertices(frame_view(batch, k), sharing));
-      if (j >= regular) {  // a pose past the end
-        for (size_t s : past_end_at->second) interpolation.add_past_end(s, 2 * past_end_at->first, positions);
-        ++past_end_at;
-        continue;
-      }
-      if (j % 2 == 0) {
-        if (j == 0 && base.profile == VatProfile::kHoudini) e.rest = positions;
-        for (size_t v = 0; 3 * v < positions.size(); ++v) {
-          const glm::vec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-          clip_box.add(glm::dvec3(p));
-          stored.add(stored_position(e, v, p));
-        }
-      }
-      interpolation.add(j, std::move(positions));
+  std::vector<double> interpolation_errors(steps.size(), 0.0);
+  for (size_t c = 0; c < set.clips.size(); ++c) {
+    const std::vector<double>& t = set.clips[c]->times;
+    const ClipGrid& g = grids[c];
+    // Samples: every frame and midpoint, then the poses past the end that decimations keep.
+    std::vector<double> times = frames_and_midpoints(t);
+    const size_t regular = times.size();
+    std::map<size_t, std::vector<size_t>> past_end;  // last kept frame past the end → the steps keeping it
+    for (size_t s = 0; s < steps.size(); ++s) {
+      const size_t last = (kept_frames(g.frames, steps[s]) - 1) * steps[s];
+      if (last > g.frames - 1) past_end[last].push_back(s);
     }
+    for (const auto& [frame, unused] : past_end) times.push_back(t.back() + double(frame - (g.frames - 1)) * g.spacing);
+
+    InterpolationErrors interpolation(steps, regular);
+    auto past_end_at = past_end.begin();
+    deformer.run(set.clips[c]->clip, times, [&](const DeformedBatch& batch) {
+      for (size_t k = 0; k < batch.frame_count; ++k) {
+        const size_t j = batch.first_frame + k;
+        std::vector<float> positions = all_positions(distinct_vertices(frame_view(batch, k), sharing));
+        if (j >= regular) {  // a pose past the end
+          for (size_t s : past_end_at->second) interpolation.add_past_end(s, 2 * past_end_at->first, positions);
+          ++past_end_at;
+          continue;
+        }
+        if (j % 2 == 0) {
+          if (c == 0 && j == 0 && base.profile == VatProfile::kHoudini) e.rest = positions;
+          for (size_t v = 0; 3 * v < positions.size(); ++v) {
+            const glm::vec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+            clip_box.add(glm::dvec3(p));
+            stored.add(stored_position(e, v, p));
+          }
+        }
+        interpolation.add(j, std::move(positions));
+      }
+    });
+    for (size_t s = 0; s < steps.size(); ++s) interpolation_errors[s] = std::max(interpolation_errors[s], interpolation.error(s));
+  }
+  // The texture's rate for messages: the clips' common one (none when they differ).
+  const bool one_rate = std::all_of(grids.begin(), grids.end(), [&](const ClipGrid& g) {
+    return g.grid && grids.front().grid && g.spacing == grids.front().spacing;
   });
 
   size_t vertices = 0;
@@ -179,9 +202,10 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
       c.format = base;
       c.format.type = type;
       c.step = steps[s];
-      c.fps = grid ? 1.0 / (spacing * double(c.step)) : 0.0;
-      c.frames = kept_frames(frames, c.step);
-      c.interpolation_error = interpolation.error(s);
+      c.fps = one_rate ? 1.0 / (grids.front().spacing * double(c.step)) : 0.0;
+      c.frames = 0;
+      for (const ClipGrid& g : grids) c.frames += kept_frames(g.frames, c.step);
+      c.interpolation_error = interpolation_errors[s];
       try {
         e.layout = plan_vat_layout(c.format, vertices, c.frames, o.max_size, o.pot, what);
         c.width = e.layout.width;
@@ -237,9 +261,16 @@ VatPlan plan_vat(Deformer& deformer, const InputPlan& input, const ClipPlan& cli
   }
   plan.chosen = *chosen;
   const VatChoice& c = plan.choices[plan.chosen];
-  for (size_t i = 0; i < c.frames; ++i) {
-    const size_t f = i * c.step;
-    plan.times.push_back(f < frames ? t[f] : t.back() + double(f - (frames - 1)) * spacing);
+  for (size_t clip = 0; clip < set.clips.size(); ++clip) {
+    const std::vector<double>& t = set.clips[clip]->times;
+    const ClipGrid& g = grids[clip];
+    std::vector<double> kept;
+    for (size_t i = 0; i < kept_frames(g.frames, c.step); ++i) {
+      const size_t f = i * c.step;
+      kept.push_back(f < g.frames ? t[f] : t.back() + double(f - (g.frames - 1)) * g.spacing);
+    }
+    plan.times.push_back(std::move(kept));
+    plan.fps.push_back(g.grid ? 1.0 / (g.spacing * double(c.step)) : 0.0);
   }
   return plan;
 }
@@ -258,18 +289,18 @@ std::vector<std::string> dry_run_plans(const InputPlan& input, const BakeOptions
                   [&](const DeformedBatch& batch) { rest = all_positions(distinct_vertices(frame_view(batch, 0), sharing)); });
   }
   std::vector<std::string> lines;
-  for (const ClipPlan& clip : input.clips) {
-    if (!clip.clip_mine) continue;
-    std::vector<std::string> table = describe(plan_vat(*deformer, input, clip, options.textures, rest), clip.name);
+  for (const TextureClips& set : texture_clip_sets(input, options.textures.combine_clips)) {
+    if (!set.mine) continue;
+    std::vector<std::string> table = describe(plan_vat(*deformer, input, set, options.textures, rest), set.what);
     lines.push_back(input.path + ":");
     lines.insert(lines.end(), table.begin(), table.end());
   }
   return lines;
 }
 
-std::vector<std::string> describe(const VatPlan& plan, const std::string& clip) {
+std::vector<std::string> describe(const VatPlan& plan, const std::string& what) {
   std::vector<std::string> lines;
-  lines.push_back("plan for clip " + clip + (plan.budget.empty() ? "" : " (" + plan.budget + ")") +
+  lines.push_back("plan for " + what + (plan.budget.empty() ? "" : " (" + plan.budget + ")") +
                   ": type, frames, image, GPU bytes, expected error = encoding + interpolation");
   for (size_t i = 0; i < plan.choices.size(); ++i) {
     const VatChoice& c = plan.choices[i];

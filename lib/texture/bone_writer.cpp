@@ -76,7 +76,9 @@ BoneImage BoneTextureWriter::read_back() const {
   return back;
 }
 
-std::vector<Committed> BoneTextureWriter::commit(const DecodeCheck* check, const CommitOptions& options) {
+std::vector<Committed> BoneTextureWriter::commit(const DecodeCheck* check, const CommitOptions& options,
+                                                const std::vector<VatClipEntry>& clips,
+                                                const std::vector<DecodeCheck>& clip_checks) {
   Impl& m = *impl_;
   const BoneImage& t = m.texture;
   const Skin& s = m.asset.skins[size_t(m.skin)];
@@ -95,6 +97,24 @@ std::vector<Committed> BoneTextureWriter::commit(const DecodeCheck* check, const
   doc["frame_count"] = t.frames;
   doc["fps"] = m.fps > 0 ? Json(m.fps) : Json(nullptr);
   doc["frame_times"] = m.times;
+  // The clip table (when the caller names the clips): row r is frame r, so a clip's rows are its frames.
+  if (!clips.empty()) {
+    Json table = Json::array();
+    for (size_t i = 0; i < clips.size(); ++i) {
+      const VatClipEntry& c = clips[i];
+      Json entry = {{"name", c.name},
+                    {"first_row", c.first_frame},
+                    {"row_count", c.frame_count},
+                    {"first_frame", c.first_frame},
+                    {"frame_count", c.frame_count},
+                    {"fps", c.fps > 0 ? Json(c.fps) : Json(nullptr)},
+                    {"duration", c.duration},
+                    {"loop", c.loops}};
+      if (i < clip_checks.size()) entry["decode_check"] = clip_checks[i].to_json();
+      table.push_back(std::move(entry));
+    }
+    doc["clips"] = std::move(table);
+  }
   doc["width"] = t.width;
   doc["height"] = t.height;
   if (t.profile == BoneProfile::kDq)  // version 1's wording, kept for its readers

@@ -34,7 +34,11 @@ public:
 
   // Writes the JSON side file (with `check`'s figures when given) and commits image and JSON, image first;
   // with kRefuseDifferent both are compared before either is renamed. Returns what happened to each.
-  std::vector<Committed> commit(const DecodeCheck* check, const CommitOptions& options);
+  // `clips`: the clip table (none when empty); `clip_checks`: with several clips, each
+  // clip's figures (docs/DESIGN.md §4.9).
+  std::vector<Committed> commit(const DecodeCheck* check, const CommitOptions& options,
+                                const std::vector<VatClipEntry>& clips = {},
+                                const std::vector<DecodeCheck>& clip_checks = {});
 
 private:
   struct Impl;

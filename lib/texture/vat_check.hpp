@@ -40,12 +40,16 @@ public:
   ~VatDecodeChecker();
 
   // The deformed mesh at baked frame f; frames come in order, each followed (but the last) by its
-  // midpoint. Throws OutputError naming the file and texel when a texel is not finite.
+  // midpoint. The first frame given is the clip's first (of several in one texture, docs/DESIGN.md §4.9),
+  // which the motion is measured from. Throws OutputError naming the file and texel when a texel is not finite.
   void baked_frame(size_t f, const FrameView& reference);
   // The deformed mesh halfway between frames f and f + 1.
   void midpoint(size_t f, const FrameView& reference);
 
   DecodeCheck result() const;
+  // The distances behind result(), for figures over several clips.
+  const ErrorHistogram& frame_errors() const { return frame_errors_; }
+  const ErrorHistogram& midpoint_errors() const { return midpoint_errors_; }
   // How far the deformed meshes and the decoded ones move away from their first frame (largest vertex
   // distance over the clip): a texture whose frames all decode to one pose while the clip moves is a
   // failed bake.

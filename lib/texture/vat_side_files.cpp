@@ -96,6 +96,13 @@ const char* axes(VatProfile profile) {
              : "glTF's: right-handed, +y up, metres";
 }
 
+// The clip table; one clip of every frame when the info names none (a writer's caller that bakes one clip).
+std::vector<VatClipEntry> clip_table(const VatClipInfo& info, const VatLayout& l) {
+  if (!info.clips.empty()) return info.clips;
+  const double duration = info.times.empty() ? 0 : info.times.back() - info.times.front();
+  return {{info.clip, 0, l.frames, info.fps, duration, info.loops}};
+}
+
 double round_out(double x, double step, bool up) { return (up ? std::ceil(x / step) : std::floor(x / step)) * step; }
 
 }  // namespace
@@ -195,19 +202,41 @@ std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFil
   doc["encoding"] = to_string(l.format.type);
   doc["normals"] = to_string(l.format.normals);
   if (!is_png(l.format.type)) doc["exr_compression"] = exr_compression(e.compression);
-  doc["clip"] = info.clip;
+  doc["clip"] = info.clips.size() > 1 ? Json(nullptr) : Json(info.clip);
   doc["vertex_count"] = l.vertices;
   doc["frame_count"] = l.frames;
   doc["fps"] = info.fps > 0 ? Json(info.fps) : Json(nullptr);
   doc["frame_times"] = info.times;
-  const double duration = info.times.empty() ? 0 : info.times.back() - info.times.front();
-  doc["clips"] = Json::array({{{"name", info.clip},
-                               {"first_row", 0},
-                               {"row_count", l.frame_major() ? l.frames * l.wraps : l.used_height},
-                               {"first_frame", 0},
-                               {"frame_count", l.frames},
-                               {"duration", duration},
-                               {"loop", info.loops}}});
+  // The clip table (docs/DESIGN.md §4.9): where each clip's frames are. Frame-major layouts hold a clip in
+  // consecutive rows (of the page its first frame is in, when paged); openvat's frames lie in every wrap,
+  // so a clip's rows are given in the first wrap.
+  Json clips = Json::array();
+  const std::vector<VatClipEntry> entries = clip_table(info, l);
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const VatClipEntry& c = entries[i];
+    Json entry = {{"name", c.name}};
+    if (l.pages > 1) entry["first_page"] = l.page_of(c.first_frame);
+    if (l.frame_major()) {
+      entry["first_row"] = (c.first_frame - l.page_first_frame(l.page_of(c.first_frame))) * l.wraps;
+      entry["row_count"] = c.frame_count * l.wraps;
+    } else {
+      entry["first_row"] = c.first_frame;
+      entry["row_count"] = c.frame_count;
+    }
+    entry["first_frame"] = c.first_frame;
+    entry["frame_count"] = c.frame_count;
+    entry["fps"] = c.fps > 0 ? Json(c.fps) : Json(nullptr);
+    entry["duration"] = c.duration;
+    entry["loop"] = c.loops;
+    // The animated mesh over the clip's frames, for culling and framing one clip of several.
+    Box bounds;
+    for (size_t f = c.first_frame; f < c.first_frame + c.frame_count && f < info.frame_bounds.size(); ++f)
+      bounds.add(info.frame_bounds[f]);
+    entry["bounds"] = box_json(bounds);
+    if (i < info.clip_checks.size()) entry["decode_check"] = info.clip_checks[i].to_json();
+    clips.push_back(std::move(entry));
+  }
+  doc["clips"] = std::move(clips);
   doc["wrap_width"] = l.wrap;
   doc["rows_per_frame"] = l.format.profile == VatProfile::kOpenVat ? 1 : l.wraps;
   if (l.format.profile == VatProfile::kOpenVat) doc["wraps"] = l.wraps;
@@ -290,9 +319,12 @@ std::string profile_side_file(const VatEncoding& e, const VatClipInfo& info) {
     case VatProfile::kOpenVat: {
       Json doc;
       doc["os-remap"] = {{"Min", vec(e.bounds.lo)}, {"Max", vec(e.bounds.hi)}, {"Frames", l.frames}};
-      Json clip = {{"startFrame", 1}, {"endFrame", l.frames}, {"framerate", info.fps > 0 ? info.fps : 0.0},
-                   {"looping", info.loops}};
-      doc["animations"] = {{info.clip, std::move(clip)}};
+      // OpenVAT's animation list: frames counted from 1 over the whole texture.
+      Json animations = Json::object();
+      for (const VatClipEntry& c : clip_table(info, l))
+        animations[c.name] = {{"startFrame", c.first_frame + 1}, {"endFrame", c.first_frame + c.frame_count},
+                              {"framerate", c.fps > 0 ? c.fps : 0.0}, {"looping", c.loops}};
+      doc["animations"] = std::move(animations);
       return dump(doc, 4);
     }
     case VatProfile::kHoudini: {

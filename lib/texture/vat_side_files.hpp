@@ -25,13 +25,34 @@ struct VatFileNames {
 // <asset>_data.json. `asset` is a file-name-safe name of the input.
 VatFileNames vat_file_names(const VatFormat& format, const std::string& asset);
 
+// The decode-back check's figures for one texture (also recorded in manifest.json).
+struct DecodeCheck {
+  double max_error = 0, p99_error = 0;              // at the baked frames, scene units
+  double max_midpoint_error = 0, p99_midpoint_error = 0;  // between frames, linearly interpolated
+  double max_normal_degrees = 0;                    // at the baked frames
+  double max_midpoint_normal_degrees = 0;           // between frames (the normals interpolated, renormalized)
+  size_t samples = 0;                               // vertex samples compared
+  nlohmann::ordered_json to_json() const;
+};
+
+// One clip of a texture: frames first_frame … first_frame + frame_count − 1 (docs/DESIGN.md §4.9).
+struct VatClipEntry {
+  std::string name;
+  size_t first_frame = 0, frame_count = 0;
+  double fps = 0;       // 0: the clip's times are not a grid
+  double duration = 0;  // from its first frame to its last, seconds
+  bool loops = false;   // its last frame's pose equals its first's
+};
+
 // What the metadata says about the animation.
 struct VatClipInfo {
   std::string asset;  // the input's name
-  std::string clip;
-  std::vector<double> times;
-  double fps = 0;  // 0: the times are not a grid
-  bool loops = false;  // the last frame's pose equals the first's
+  std::string clip;   // the clip's name; empty for several
+  std::vector<double> times;  // every frame's time in its clip, the clips one after another
+  double fps = 0;  // 0: the times are not a grid, or the clips' rates differ
+  bool loops = false;  // one clip: its last frame's pose equals its first's
+  std::vector<VatClipEntry> clips;  // the clip table: one entry, or one per clip with --combine-clips
+  std::vector<DecodeCheck> clip_checks;  // several clips: each clip's decode-back figures, in table order
   std::vector<VatSource> sources;
   std::vector<Box> frame_bounds;  // the animated mesh at each frame, glTF world space
   Box clip_bounds;                // over the clip
@@ -43,16 +64,6 @@ struct VatClipInfo {
     uint64_t bytes = 0;  // GPU memory of the images
   };
   std::optional<Plan> plan;
-};
-
-// The decode-back check's figures for one texture (also recorded in manifest.json).
-struct DecodeCheck {
-  double max_error = 0, p99_error = 0;              // at the baked frames, scene units
-  double max_midpoint_error = 0, p99_midpoint_error = 0;  // between frames, linearly interpolated
-  double max_normal_degrees = 0;                    // at the baked frames
-  double max_midpoint_normal_degrees = 0;           // between frames (the normals interpolated, renormalized)
-  size_t samples = 0;                               // vertex samples compared
-  nlohmann::ordered_json to_json() const;
 };
 
 // Bounds for remapping that the shader reads back exactly: `box` widened outward to a decimal grid of

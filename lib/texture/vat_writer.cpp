@@ -86,7 +86,9 @@ VatWriter::WrittenImage VatWriter::normals(size_t page) const {
   return {normals_[page]->writer.temporary(), normals_[page]->file.path()};
 }
 
-std::vector<std::pair<std::string, Committed>> VatWriter::commit(const DecodeCheck* check, const CommitOptions& options) {
+std::vector<std::pair<std::string, Committed>> VatWriter::commit(const DecodeCheck* check, const CommitOptions& options,
+                                                                 std::vector<DecodeCheck> clip_checks) {
+  info_.clip_checks = std::move(clip_checks);
   const size_t pages = encoding_.layout.pages;
   std::vector<std::pair<std::string, AtomicFile*>> files;
   for (size_t page = 0; page < pages; ++page) {

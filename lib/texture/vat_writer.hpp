@@ -46,7 +46,9 @@ public:
   // Writes dqskin's JSON (with `check`'s figures when given), the profile's side file and the rest mesh,
   // then commits every file: with kRefuseDifferent all are compared first, so a refusal changes none.
   // Returns the files' names relative to the folder and what happened to each, in the same order.
-  std::vector<std::pair<std::string, Committed>> commit(const DecodeCheck* check, const CommitOptions& options);
+  // `clip_checks`: each clip's figures, for the clip table of a texture of several clips.
+  std::vector<std::pair<std::string, Committed>> commit(const DecodeCheck* check, const CommitOptions& options,
+                                                        std::vector<DecodeCheck> clip_checks = {});
 
 private:
   struct Image;

@@ -41,6 +41,10 @@ struct TextureOptions {
   bool max_error_relative = false;     // max_error is a fraction of the clip's bounding-box diagonal
   uint64_t max_bytes = 0;              // GPU memory a clip's vertex-animation textures may take; 0: no limit
   bool check = true;                   // read every texture back and decode it (the decode-back check)
+  // One texture (per format and skin) holding every clip of an input, with a clip table in its side file,
+  // instead of one per clip (docs/DESIGN.md §4.9). Not for the houdini and dq-cocos profiles, whose
+  // runtimes play one clip per texture.
+  bool combine_clips = false;
 };
 
 // The morph-target animation (docs/formats.md, "Morph-target animations"). Its keyframe budget is
