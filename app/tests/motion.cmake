@@ -40,3 +40,12 @@ set_tests_properties(cli.motion_dry_run_lists_the_files cli.motion_writes_the_fi
 add_test(NAME cli.motion_files_in_the_manifest COMMAND sh -c
   "grep -q '\"socket_prop/walk/sockets.exr\"' '${motion_scratch}/good/manifest.json' && grep -q '\"socket_prop/walk/root_motion.json\"' '${motion_scratch}/good/manifest.json' && grep -q '\"name\": \"sword\"' '${motion_scratch}/good/socket_prop/walk/sockets.json'")
 set_tests_properties(cli.motion_files_in_the_manifest PROPERTIES DEPENDS cli.motion_writes_the_files FIXTURES_REQUIRED motion_scratch)
+# With --combine-clips and only textures, no other output makes the animations' folders: the motion files
+# make them.
+dqskin_cli_test(cli.motion_with_combined_clips 0 ARGS bake ${socket_rig} -o ${motion_scratch}/combined --quiet --format vat
+  --combine-clips --sockets hand --root-motion in-place --backend fast-cpu)
+set_tests_properties(cli.motion_with_combined_clips PROPERTIES FIXTURES_REQUIRED motion_scratch)
+add_test(NAME cli.motion_with_combined_clips_files COMMAND sh -c
+  "test -s '${motion_scratch}/combined/socket_prop/walk/sockets.exr' && test -s '${motion_scratch}/combined/socket_prop/walk/root_motion.json'")
+set_tests_properties(cli.motion_with_combined_clips_files PROPERTIES DEPENDS cli.motion_with_combined_clips
+  FIXTURES_REQUIRED motion_scratch)

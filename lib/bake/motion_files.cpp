@@ -1,5 +1,6 @@
 #include "motion_files.hpp"
 
+#include "../base/output_journal.hpp"
 #include "../texture/texel_image.hpp"
 
 #include "dqskin/animation.hpp"
@@ -146,6 +147,9 @@ std::vector<std::pair<std::string, Committed>> write_motion_files(const InputPla
   std::vector<std::pair<std::string, Committed>> files;
   if (planned_motion_files(clip, nodes).empty()) return files;
   const Asset& asset = *input.asset;
+  // The clip's folder, which no other output may have made (--combine-clips writes elsewhere), under the
+  // input's journal so that a failure takes it back.
+  if (commit.journal) commit.journal->make_folders(options.plan.out_dir + "/" + clip.folder);
   std::vector<std::vector<Mat4<double>>> world(clip.times.size());
   std::vector<GroundMotion> track(clip.times.size());
   for (size_t f = 0; f < clip.times.size(); ++f) {
