@@ -4,7 +4,11 @@
 // Blending is DLB (Kavan et al. 2008, §4) with every influence flipped into the hemisphere of the one with
 // the largest weight (docs/DESIGN.md §3.5) and, for scale, two-phase skinning: p' = DLB(rigid) applied
 // to (Σ w S) p, the normal by the cofactor of Σ w S. The same formulas as bones_skinK.json's "decode" and
-// the compute shader's (glsl/skin.comp).
+// the compute shader's (glsl/skin.comp). A crossfade (defines BLEND: the player's blend=) first blends each
+// joint's two rows, `row` and `blend_row`, by blend_weight: DLB of the two dual quaternions (the second
+// flipped into the first's hemisphere; the same pose as the heavier-pivot rule of docs/DESIGN.md §3.5) and
+// the S rows lerped, then skins with them as above: the DQ crossfade of docs/DESIGN.md §3.10
+// (lib/skin/crossfade.cpp, dq_crossfade).
 import * as THREE from 'three';
 import { normalsFragment } from './shading.js';
 
@@ -22,19 +26,42 @@ in vec4 _weights_1;
 uniform mat4 modelMatrix, viewMatrix, projectionMatrix;
 uniform sampler2D bones;
 uniform int row;     // the frame's row
+uniform int blend_row;       // BLEND: the second frame's row
+uniform float blend_weight;  // BLEND: its weight w; row has 1 − w
 out vec3 world_position;
 out vec3 world_normal;
 
 vec3 quat_rotate(vec4 q, vec3 v) { return v + 2.0 * cross(q.xyz, cross(q.xyz, v) + q.w * v); }
 mat3 cofactor(mat3 a) { return mat3(cross(a[1], a[2]), cross(a[2], a[0]), cross(a[0], a[1])); }
-vec4 bone(int joint, int k) { return texelFetch(bones, ivec2(TEXELS * joint + k, row), 0); }
-mat3 bone_scale(int joint) {
+vec4 texel(int joint, int k, int r) { return texelFetch(bones, ivec2(TEXELS * joint + k, r), 0); }
+mat3 scale_at(int joint, int r) {
 #if TEXELS == 5
-  return mat3(bone(joint, 2).xyz, bone(joint, 3).xyz, bone(joint, 4).xyz);  // symmetric: rows are columns
+  // symmetric: rows are columns
+  return mat3(texel(joint, 2, r).xyz, texel(joint, 3, r).xyz, texel(joint, 4, r).xyz);
 #else
   return mat3(1.0);
 #endif
 }
+#if defined(BLEND)
+// The joint's real (k = 0) or dual (k = 1) part, blended: ((1 − w) qa + w s qb) / ‖·‖, the dual-number
+// norm, so that the result is unit (real part of length 1, dual part orthogonal to it).
+vec4 bone(int joint, int k) {
+  vec4 ra = texel(joint, 0, row), rb = texel(joint, 0, blend_row);
+  float wb = dot(ra, rb) < 0.0 ? -blend_weight : blend_weight, wa = 1.0 - blend_weight;
+  vec4 real = wa * ra + wb * rb;
+  float len = length(real);
+  real /= len;
+  if (k == 0) return real;
+  vec4 dual = (wa * texel(joint, 1, row) + wb * texel(joint, 1, blend_row)) / len;
+  return dual - dot(real, dual) * real;
+}
+mat3 bone_scale(int joint) {
+  return (1.0 - blend_weight) * scale_at(joint, row) + blend_weight * scale_at(joint, blend_row);
+}
+#else
+vec4 bone(int joint, int k) { return texel(joint, k, row); }
+mat3 bone_scale(int joint) { return scale_at(joint, row); }
+#endif
 vec3 translation_of(vec4 r, vec4 d) { return 2.0 * (r.w * d.xyz - d.w * r.xyz + cross(r.xyz, d.xyz)); }
 
 void main() {
@@ -99,13 +126,15 @@ void main() {
   gl_Position = projectionMatrix * viewMatrix * vec4(p, 1.0);
 }`;
 
-// texture: the skin's DataTexture; side: its bones_skinK.json; geometry: the primitive's.
+// texture: the skin's DataTexture; side: its bones_skinK.json; geometry: the primitive's. options.fault: 'lbs';
+// options.blend: crossfade `uniforms.row` with `uniforms.blend_row` by `uniforms.blend_weight`.
 export function bonesMaterial(texture, side, geometry, options = {}) {
   if (side.profile !== 'dq')
     throw new Error(`${side.file}: profile '${side.profile}'; the player skins the dq profile`);
   const influences = geometry.getAttribute('_joints_1') ? 8 : 4;
   const defines = { TEXELS: side.texels_per_joint, INFLUENCES: influences };
   if (options.fault === 'lbs') defines.FAULT_LBS = '';
+  if (options.blend) defines.BLEND = '';
   return new THREE.RawShaderMaterial({
     glslVersion: THREE.GLSL3,
     vertexShader: vertex,
@@ -114,6 +143,8 @@ export function bonesMaterial(texture, side, geometry, options = {}) {
     uniforms: {
       bones: { value: texture },
       row: { value: 0 },
+      blend_row: { value: 0 },
+      blend_weight: { value: 0 },
       has_normals: { value: geometry.getAttribute('normal') !== undefined },
     },
     side: THREE.DoubleSide,

@@ -8,6 +8,11 @@
 //   clip=NAME     the animation (default: the input's first)
 //   path=vat|bones|morph   what to play (default: the first the clip has of morph, vat, bones)
 //   frame=N       show frame N (the number in dqskin's file names) and stop; otherwise play
+//   blend=CLIP:N,W   vat and bones: crossfade the clip with frame N of CLIP by weight W (0: the clip alone,
+//                 1: CLIP's frame alone), as a runtime would from one texture (docs/DESIGN.md §3.10): the VAT
+//                 lerps the two frames' vertices, the bone texture blends each joint's two dual quaternions
+//                 before skinning. Both clips must be in the texture's clip table (bake --combine-clips, or
+//                 the clip with itself). With frame= CLIP shows frame N; playing, it advances from N in step.
 //   yaw, pitch, fov, distance, ortho   dqskin render's camera flags, with its defaults
 //   box=x0,y0,z0,x1,y1,z1   what the camera frames (default: the clip's bounds from its vat.json, as
 //                 `dqskin render` frames them, else the loaded mesh's own: the bind pose's or first frame's)
@@ -75,7 +80,40 @@ async function openBake() {
       'bake with --format morph, vat or bones)');
   const own = { vat: 'vat.json', bones: 'bones_mesh.glb', morph: 'animation.glb' }[path];
   const folder = files.has(own) ? clip.folder : input.output_folder;
-  return { folder: `${bake}/${folder}`, input, clip, files: files.has(own) ? files : inputFiles, path };
+  const blend = params.has('blend') ? parseBlend(params.get('blend'), clips, clip, path) : undefined;
+  return { folder: `${bake}/${folder}`, input, clip, files: files.has(own) ? files : inputFiles, path, blend };
+}
+
+// blend=CLIP:N,W → { clip, index (of frame N in CLIP's frames), weight, start (the index of the shown clip's
+// frame= that CLIP's frame N goes with; 0 when playing) }.
+function parseBlend(text, clips, shown, path) {
+  const match = /^(.+):(-?\d+),([^,]+)$/.exec(text);
+  if (!match) throw new Error(`blend=${text}: expected CLIP:FRAME,WEIGHT`);
+  if (path === 'morph') throw new Error(`blend=${text}: the vat and bones paths crossfade; the morph glb does not`);
+  const clip = clips.find((c) => c.name === match[1] || c.folder.endsWith(`/${match[1]}`));
+  if (!clip) throw new Error(`blend=${text}: no clip ${match[1]} (clips: ${clips.map((c) => c.name).join(', ')})`);
+  const index = clip.frame_numbers.indexOf(Number(match[2]));
+  if (index < 0)
+    throw new Error(`blend=${text}: ${clip.name} has frames ${clip.frame_numbers[0]} to ${clip.frame_numbers.at(-1)}`);
+  const weight = Number(match[3]);
+  if (!(weight >= 0 && weight <= 1)) throw new Error(`blend=${text}: the weight must be a number from 0 to 1`);
+  const start = Math.max(0, params.has('frame') ? shown.frame_numbers.indexOf(Number(params.get('frame'))) : 0);
+  return { clip, index, weight, start };
+}
+
+// The blended clip's frame, in its own frames, when the shown clip is at frame `index` of its own.
+function blendIndex(blend, entry, index) {
+  return (((blend.index + index - blend.start) % entry.frame_count) + entry.frame_count) % entry.frame_count;
+}
+
+// The blended clip's entry in a texture's clip table: it must be in the same texture as the shown clip.
+function blendEntry(side, blend, file, fault) {
+  try {
+    return clipEntry(side, blend.clip, file, fault);
+  } catch (error) {
+    throw new Error(`blend=: ${error.message}; a crossfade reads both clips from one texture ` +
+      '(bake --combine-clips)');
+  }
 }
 
 // The clip's entry in a texture's clip table (docs/formats.md, "Several clips in one texture").
@@ -95,15 +133,21 @@ async function vatPath(bake, fault) {
   const textures = { positions: await loadExrTexture(`${bake.folder}/${side.files.positions}`, { fault }) };
   if (side.files.normals) textures.normals = await loadExrTexture(`${bake.folder}/${side.files.normals}`, { fault });
   const gltf = await gltfLoader.loadAsync(`${bake.folder}/${side.files.rest_mesh}`);
-  const material = vatMaterial(side, profileFile, textures);
+  const blend = bake.blend;
+  const material = vatMaterial(side, profileFile, textures, { blend: blend !== undefined });
   gltf.scene.traverse((node) => { if (node.isMesh) node.material = material; });
   // The clip's frames in the texture, and between them no step past its last into the next clip's.
   const entry = clipEntry(side, bake.clip, 'vat.json', fault);
   material.uniforms.last_frame.value = entry.first_frame + entry.frame_count - 1;
+  const other = blend && blendEntry(side, blend, 'vat.json', fault);
+  if (blend) material.uniforms.blend_weight.value = blend.weight;
   return {
     object: gltf.scene,
     box: entry.bounds ?? side.bounds,
-    showFrame(index, fraction = 0) { material.uniforms.frame.value = entry.first_frame + index + fraction; },
+    showFrame(index, fraction = 0) {
+      material.uniforms.frame.value = entry.first_frame + index + fraction;
+      if (blend) material.uniforms.blend_frame.value = other.first_frame + blendIndex(blend, other, index);
+    },
   };
 }
 
@@ -121,16 +165,25 @@ async function bonesPath(bake, fault) {
       skins.set(name, { side, texture: await loadExrTexture(`${bake.folder}/${side.file}`, { fault }) });
     }
     const { side, texture } = skins.get(name);
-    mesh.material = bonesMaterial(texture, side, mesh.geometry, { fault });
+    mesh.material = bonesMaterial(texture, side, mesh.geometry, { fault, blend: bake.blend !== undefined });
     // three.js culls by the bind-pose bounds; the skinned mesh is elsewhere.
     mesh.frustumCulled = false;
     // Row r is frame r of the texture: the clip's frames start at its first.
-    materials.push({ material: mesh.material, first: clipEntry(side, bake.clip, `${name}.json`, fault).first_frame });
+    const other = bake.blend && blendEntry(side, bake.blend, `${name}.json`, fault);
+    if (bake.blend) mesh.material.uniforms.blend_weight.value = bake.blend.weight;
+    const first = clipEntry(side, bake.clip, `${name}.json`, fault).first_frame;
+    materials.push({ material: mesh.material, first, other });
   }
+  const blend = bake.blend;
   return {
     object: gltf.scene,
     // Runtimes that sample bone textures show the frame at or before the time (Babylon.js floors).
-    showFrame(index) { for (const m of materials) m.material.uniforms.row.value = m.first + index; },
+    showFrame(index) {
+      for (const m of materials) {
+        m.material.uniforms.row.value = m.first + index;
+        if (blend) m.material.uniforms.blend_row.value = m.other.first_frame + blendIndex(blend, m.other, index);
+      }
+    },
   };
 }
 

@@ -8,7 +8,9 @@
 //            frame; v steps 1 / FrameCount per frame, scaled by the used part of a padded texture; the
 //            normal is the rotation texture's quaternion applied to +Y, or the 10-bit spheremap code in
 //            the position alpha.
-// Between frames both runtimes blend the decoded neighbours linearly.
+// Between frames both runtimes blend the decoded neighbours linearly. A crossfade (defines BLEND: the
+// player's blend=) lerps the decoded frame with a second one, blend_frame, by blend_weight, normals
+// renormalized: the VAT crossfade of docs/DESIGN.md §3.10 (lib/skin/crossfade.cpp, vat_crossfade).
 import * as THREE from 'three';
 import { normalsFragment } from './shading.js';
 
@@ -27,6 +29,8 @@ uniform vec2 frame_step;     // texture coordinates from one frame to the next
 uniform vec2 uv_scale;       // Houdini: the used part of a padded texture; (1, 1) otherwise
 uniform vec2 normal_shift;   // OpenVAT packed: (0, 0.5)
 uniform vec3 remap_min, remap_max;
+uniform float blend_frame;   // BLEND: the second frame (a whole frame of the texture)
+uniform float blend_weight;  // BLEND: its weight w; the first frame has 1 − w
 out vec3 world_position;
 out vec3 world_normal;
 
@@ -65,8 +69,15 @@ vec3 normal_at(float f) {
 void main() {
   float f0 = floor(frame), f1 = min(f0 + 1.0, last_frame), s = frame - f0;
   vec3 p = position + mix(offset_at(f0), offset_at(f1), s);
+#if defined(BLEND)
+  p = mix(p, position + offset_at(blend_frame), blend_weight);
+#endif
 #if defined(HAS_NORMALS)
-  world_normal = normalize(mat3(modelMatrix) * normalize(mix(normal_at(f0), normal_at(f1), s)));
+  vec3 n = normalize(mix(normal_at(f0), normal_at(f1), s));
+#if defined(BLEND)
+  n = normalize(mix(n, normal_at(blend_frame), blend_weight));
+#endif
+  world_normal = normalize(mat3(modelMatrix) * n);
 #else
   world_normal = vec3(0.0);
 #endif
@@ -76,9 +87,11 @@ void main() {
 }`;
 
 // side: the bake's vat.json; profileFile: the profile's own side file (parsed); textures: { positions,
-// normals? } DataTextures. Returns a material whose `uniforms.frame` selects the frame.
-export function vatMaterial(side, profileFile, textures) {
+// normals? } DataTextures. Returns a material whose `uniforms.frame` selects the frame; options.blend makes
+// it crossfade with `uniforms.blend_frame` by `uniforms.blend_weight`.
+export function vatMaterial(side, profileFile, textures, options = {}) {
   const defines = {};
+  if (options.blend) defines.BLEND = '';
   const uniforms = {
     positions: { value: textures.positions },
     normals: { value: textures.normals ?? textures.positions },
@@ -89,6 +102,8 @@ export function vatMaterial(side, profileFile, textures) {
     normal_shift: { value: new THREE.Vector2() },
     remap_min: { value: new THREE.Vector3() },
     remap_max: { value: new THREE.Vector3() },
+    blend_frame: { value: 0 },
+    blend_weight: { value: 0 },
   };
   const height = textures.positions.image.height;
   if (side.profile === 'openvat') {

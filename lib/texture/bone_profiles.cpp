@@ -6,7 +6,10 @@
 //             (getJointDQ, skinRTS, CCSkin) and cc-skinning.chunk (CCGetJointTextureCoords).
 //   mat3x4    PlayCanvas's bone texture: three texels per bone, the rows of the 3×4 matrix.
 //   mat4      Babylon.js's VertexAnimationBaker: each frame's Skeleton.getTransformMatrices() as one row
-//             (bones + 1 matrices, the last the identity), four texels per matrix.
+//             (bones + 1 matrices, the last the identity), four texels per matrix; its shader
+//             (readMatrixFromRawSamplerVAT) reads frame f at texel row f, and Babylon's EXR decoder
+//             (exrLoader.decoder.js ScanData, as three.js's EXRLoader) puts the file's first scanline in
+//             the last texel row, so frame f is stored in the image's row height - 1 - f.
 // Dual quaternions as docs/DESIGN.md §3.1: (x, y, z, w) with w scalar, dual = 0.5 (t, 0) real [Kavan eq. 1].
 #include "bone_profiles.hpp"
 
@@ -138,6 +141,9 @@ void pack_mat3x4(BoneImage& image, std::span<const JointTransforms> frames) {
   }
 }
 
+// The image row of frame f in the mat4 layout: bottom-up, the first frame in the last row (above).
+size_t mat4_row(const BoneImage& image, size_t frame) { return image.frames - 1 - frame; }
+
 void pack_mat4(BoneImage& image, std::span<const JointTransforms> frames) {
   image.width = 4 * (image.joints + 1);
   image.height = image.frames;
@@ -147,7 +153,7 @@ void pack_mat4(BoneImage& image, std::span<const JointTransforms> frames) {
       // Babylon's baker writes the skeleton's bones + 1 matrices; the extra one is the identity.
       const Mat4<double> m = j < image.joints ? frames[f].matrices[j] : Mat4<double>(1.0);
       for (size_t k = 0; k < 4; ++k) {
-        float* texel = texel_at(image, 4 * j + k, f);
+        float* texel = texel_at(image, 4 * j + k, mat4_row(image, f));
         for (int c = 0; c < 4; ++c) texel[c] = float(m[int(k)][c]);  // column k
       }
     }
@@ -190,7 +196,7 @@ Mat4<double> read_matrix(const BoneImage& image, size_t joint, size_t frame) {
     }
   } else {
     for (int k = 0; k < 4; ++k) {
-      const float* column = texel_at(image, 4 * joint + size_t(k), frame);
+      const float* column = texel_at(image, 4 * joint + size_t(k), mat4_row(image, frame));
       m[k] = DVec4(column[0], column[1], column[2], column[3]);
     }
   }
@@ -399,8 +405,10 @@ std::string texel_formula(BoneProfile profile) {
       return "3 texels per joint; texel (3*j + k, f) = row k of the affine joint matrix: "
              "(A[k][0], A[k][1], A[k][2], t[k])";
     case BoneProfile::kMat4:
-      return "4 texels per joint; texel (4*j + k, f) = column k of the 4x4 joint matrix (column 3 = (t, 1)); "
-             "width = 4 * (joints + 1): the last 4 texels of each row are the identity";
+      return "4 texels per joint; texel (4*j + k, frames - 1 - f) = column k of the 4x4 joint matrix (column 3 = "
+             "(t, 1)); width = 4 * (joints + 1): the last 4 texels of each row are the identity; the first frame "
+             "is the image's last row, texel row 0 once an OpenGL-convention EXR reader (Babylon.js's, "
+             "three.js's) has read it bottom-up";
   }
   return "";
 }

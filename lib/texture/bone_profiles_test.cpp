@@ -261,14 +261,35 @@ TEST(BoneProfiles, Mat4TexelsAreColumnsWithATrailingIdentity) {
   EXPECT_EQ(image.height, 2u);
   EXPECT_EQ(image.texels_per_joint, 4);
   EXPECT_EQ(image.rgba.size(), 12u * 2u * 4u);
+  // Bottom-up: frame 1 in row 0, frame 0 in the last row (Babylon's EXR reader flips them back).
   const Mat4<double>& m11 = frames[1].matrices[1];
-  EXPECT_EQ(texel(image, 4 * 1 + 3, 1), as_float(DVec4(0.5, -1.5, 2.5, 1)));  // translation, w = 1
+  EXPECT_EQ(texel(image, 4 * 1 + 3, 0), as_float(DVec4(0.5, -1.5, 2.5, 1)));  // translation, w = 1
   for (int k = 0; k < 4; ++k) {
-    EXPECT_EQ(texel(image, 4 * 1 + size_t(k), 1), as_float(m11[k])) << "column " << k;
-    EXPECT_EQ(texel(image, size_t(k), 0), as_float(frames[0].matrices[0][k])) << "column " << k;
+    EXPECT_EQ(texel(image, 4 * 1 + size_t(k), 0), as_float(m11[k])) << "column " << k;
+    EXPECT_EQ(texel(image, size_t(k), 1), as_float(frames[0].matrices[0][k])) << "column " << k;
   }
   for (size_t f = 0; f < 2; ++f)
     for (int k = 0; k < 4; ++k) EXPECT_EQ(texel(image, 8 + size_t(k), f), Mat4<double>(1.0)[k]) << "identity, frame " << f;
+}
+
+// Bottom-up frames keep a clip's rows together: frames 0 … a−1 then a … n−1 in one image are the second
+// clip's own image above the first's, bit for bit, so a combined texture's clip starts at image row
+// n − first_frame − frame_count (bone_writer.cpp's clip table).
+TEST(BoneProfiles, Mat4ClipsStackBottomUp) {
+  const std::vector<JointTransforms> all = random_frames(7, 3);
+  const size_t split = 5;
+  const std::span<const JointTransforms> frames(all);
+  const BoneImage whole = pack_bones(BoneProfile::kMat4, frames);
+  const BoneImage first = pack_bones(BoneProfile::kMat4, frames.first(split));
+  const BoneImage second = pack_bones(BoneProfile::kMat4, frames.subspan(split));
+  ASSERT_EQ(whole.height, first.height + second.height);
+  const size_t row = 4 * whole.width;  // floats a row
+  const auto rows = [&](size_t y, size_t count) {
+    const auto begin = whole.rgba.begin() + std::ptrdiff_t(y * row);
+    return std::vector<float>(begin, begin + std::ptrdiff_t(count * row));
+  };
+  EXPECT_EQ(rows(whole.height - split, split), first.rgba);  // the first clip at the bottom
+  EXPECT_EQ(rows(0, second.height), second.rgba);
 }
 
 TEST(BoneProfiles, Mat3x4TexelsAreRows) {

@@ -97,13 +97,16 @@ std::vector<Committed> BoneTextureWriter::commit(const DecodeCheck* check, const
   doc["frame_count"] = t.frames;
   doc["fps"] = m.fps > 0 ? Json(m.fps) : Json(nullptr);
   doc["frame_times"] = m.times;
-  // The clip table (when the caller names the clips): row r is frame r, so a clip's rows are its frames.
+  // The clip table (when the caller names the clips): row r is frame r, so a clip's rows are its frames;
+  // mat4 stores its frames bottom-up (bone_profiles.cpp), so there a clip's top row is its last frame's.
   if (!clips.empty()) {
     Json table = Json::array();
     for (size_t i = 0; i < clips.size(); ++i) {
       const VatClipEntry& c = clips[i];
+      const size_t first_row =
+          t.profile == BoneProfile::kMat4 ? t.frames - c.first_frame - c.frame_count : c.first_frame;
       Json entry = {{"name", c.name},
-                    {"first_row", c.first_frame},
+                    {"first_row", first_row},
                     {"row_count", c.frame_count},
                     {"first_frame", c.first_frame},
                     {"frame_count", c.frame_count},

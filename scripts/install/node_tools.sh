@@ -4,6 +4,11 @@
 #   gltfpack              meshoptimizer's optimizer (app/tests/geometry_diff.cmake)
 #   @gltf-transform/cli   glTF-Transform's `gltf-transform` (app/tests/geometry_diff.cmake)
 #   three                 three.js, which the player (web/) imports; scripts/install/player.sh copies it
+#   @babylonjs/core       Babylon.js, whose baked vertex animation plays the mat4 bone texture (web/runtimes/)
+#   playcanvas            PlayCanvas, whose skinning shader reads the mat3x4 bone texture (web/runtimes/)
+#   fflate                the zlib decoder Babylon.js's EXR loader needs for ZIP-compressed EXR, at the
+#                         version Babylon.js fetches it at (ExrLoaderGlobalConfiguration.FFLATEUrl), here
+#                         so that it comes from disk
 # Does nothing when every package is there at its version; otherwise one npm call installs them all.
 # The programs are then PREFIX/node_modules/.bin/gltfpack and PREFIX/node_modules/.bin/gltf-transform; they
 # need no network to run.
@@ -18,6 +23,9 @@ packages=(
   gltfpack@1.3.0
   @gltf-transform/cli@4.5.1
   three@0.187.0
+  @babylonjs/core@9.35.0
+  playcanvas@2.23.3
+  fflate@0.8.2
 )
 
 if [ $# -ne 1 ]; then
