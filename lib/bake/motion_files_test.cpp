@@ -215,6 +215,13 @@ TEST(RootMotion, GeneratedWalkerInPlaceAndTrackGiveBackTheOriginal) {
   EXPECT_GT(r.turned, 2.0);     // 120°
 }
 
+// The crossfade tests' legs walk in place but turn the pelvis ±6° (the skin's skeleton): in place takes the
+// turn out, and the track gives it back.
+TEST(RootMotion, LegsPelvisTurnIsTakenOutAndGivenBack) {
+  const WalkResult r = compare_in_place(model_path("walk_run_legs.gltf"), "walk", 30);
+  EXPECT_GT(r.turned, 0.1);
+}
+
 // The glb frames of an in-place bake show the in-place pose: a viewer composing the written node transforms
 // puts every vertex where the in-place PLY frame has it (the glb writer took the ground motion out of the
 // scene roots' transforms too). Without that, the vertices would come back to the original place, metres
