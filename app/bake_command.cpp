@@ -43,7 +43,26 @@ struct BakeSettings {
   bool no_check = false;
   bool morph_quantize = false;
   std::string glb_images = "shared";
+  std::string sockets;              // "Hand_L,Hand_R"
+  std::string root_motion = "none";  // none, in-place
+  std::string root_joint;
 };
+
+// --sockets, --root-motion, --root-joint (docs/DESIGN.md §3.11).
+MotionOptions to_motion_options(const BakeSettings& s) {
+  MotionOptions m;
+  for (size_t start = 0; !s.sockets.empty() && start <= s.sockets.size();) {
+    const size_t comma = std::min(s.sockets.find(',', start), s.sockets.size());
+    m.sockets.push_back(s.sockets.substr(start, comma - start));
+    start = comma + 1;
+  }
+  if (s.root_motion != "none" && s.root_motion != "in-place")
+    throw InputError("--root-motion '" + s.root_motion + "' is not one of none, in-place");
+  m.in_place = s.root_motion == "in-place";
+  if (!s.root_joint.empty() && !m.in_place) throw InputError("--root-joint is for --root-motion in-place");
+  m.root_joint = s.root_joint;
+  return m;
+}
 
 // --max-error: a length in scene units, or a percentage of the clip's bounding-box diagonal.
 void parse_max_error(const std::string& text, TextureOptions& t) {
@@ -69,6 +88,7 @@ BakeOptions to_options(const BakeSettings& s) {
   o.textures.check = !s.no_check;
   o.morph.quantize = s.morph_quantize;
   o.glb_images = parse_glb_images(s.glb_images);
+  o.motion = to_motion_options(s);
   parse_max_error(s.max_error, o.textures);
   if (!s.max_bytes.empty()) o.textures.max_bytes = parse_byte_size(s.max_bytes, "--max-bytes");
   return o;
@@ -226,6 +246,20 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->add_flag("--morph-quantize", bake.morph_quantize,
                      "morph: KHR_mesh_quantization, positions on a 15-bit grid that the node's transform decodes "
                      "(the grid's error counts against --max-error), normals as normalized 16-bit integers");
+  bake_cmd->add_option("--sockets", bake.sockets,
+                       "Record these nodes' world transforms (joints that hold props: hands, weapons) at every frame, "
+                       "as matrices and dual quaternions, in each animation's sockets.json and sockets.exr. Node "
+                       "names, comma-separated, or #N for node N")
+      ->type_name("NODE,...");
+  bake_cmd->add_option("--root-motion", bake.root_motion,
+                       "in-place: take the root's motion on the ground (x, z and the turn about +Y) out of every "
+                       "frame of every output, and write it per frame to each animation's root_motion.json")
+      ->type_name("none|in-place")
+      ->capture_default_str();
+  bake_cmd->add_option("--root-joint", bake.root_joint,
+                       "The root for --root-motion in-place (a node name or #N). Default: the skin's skeleton node, "
+                       "else its topmost joint that is an ancestor of all the others")
+      ->type_name("NODE");
   bake_cmd->add_flag("--no-check", bake.no_check,
                      "Skip the decode-back check (every texture read back from its file and decoded as its shader "
                      "does, against the deformed meshes)");
@@ -256,7 +290,7 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->footer(
       "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{glb,ply,obj} (frame numbers zero-padded, so name order is\n"
       "frame order), materials.mtl, vat_positions.exr, vat_normals.exr, vat.json, bones_skinK.{exr,json},\n"
-      "animation.glb (morph), and\n"
+      "animation.glb (morph), sockets.{json,exr} (--sockets), root_motion.json (--root-motion), and\n"
       "OUTDIR/manifest.json (manifest.shard-I-of-N.json for a shard). Files appear complete or not at all.\n"
       "Exit status: 0 success, 1 some inputs failed (the others baked), 2 usage or input error, 3 no OpenGL context.\n"
       "Examples:\n"

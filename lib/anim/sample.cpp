@@ -114,6 +114,13 @@ Pose sample_pose(const Asset& asset, const Clip* clip, double time) {
       done[*it] = 1;
     }
   }
+  // In place (docs/DESIGN.md §3.11): one rigid left-multiplication of every world matrix, which LBS and DQS
+  // both carry through unchanged to the deformed vertices.
+  if (clip && clip->in_place_root >= 0 && size_t(clip->in_place_root) < count) {
+    pose.removed = ground_motion(pose.world[size_t(clip->in_place_root)]);
+    const Mat4<double> to_place = ground_matrix_inverse(*pose.removed);
+    for (Mat4<double>& w : pose.world) w = to_place * w;
+  }
   return pose;
 }
 

@@ -17,6 +17,7 @@
 #include "../base/sha256.hpp"
 #include "../texture/texture_output.hpp"
 #include "manifest.hpp"
+#include "motion_files.hpp"
 #include "bones_bake.hpp"
 #include "morph_bake.hpp"
 #include "../write/glb_appearance.hpp"
@@ -438,6 +439,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
   std::vector<std::unique_ptr<GlbWriter>> glb_writers(plans.size());
   std::vector<std::unique_ptr<glb::Appearance>> appearances(plans.size());
   std::vector<std::unique_ptr<glb::Appearance>> looks(plans.size());
+  std::vector<MotionNodes> motion(plans.size());  // --sockets and --root-motion
   BakeWork work;
   for (size_t i = 0; i < plans.size(); ++i) {
     InputPlan& plan = plans[i];
@@ -447,6 +449,11 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
     if (has(options.formats, BakeFormat::kBones) && plan.skins.empty())
       plan.asset->warnings.push_back("the scene has no skinned mesh, so --format bones writes no bone texture for it");
     try {
+      motion[i] = find_motion_nodes(plan, options.motion);  // before anything samples: the clips go in place
+      set_in_place(plan, motion[i]);
+      if (motion[i].root >= 0 && plan.asset->clips.empty())
+        plan.asset->warnings.push_back("the file has no animation, so --root-motion in-place leaves its rest pose as it "
+                                       "is and writes no root_motion.json");
       if (has(options.formats, BakeFormat::kGlb))
         glb_writers[i] = std::make_unique<GlbWriter>(*plan.asset, plan.instances, plan.scene, options.glb_images);
       if (has(options.formats, BakeFormat::kMorph))
@@ -486,6 +493,9 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
                                plan.asset ? plan.asset->notices : std::vector<std::string>{}});
       for (const ClipPlan& clip : plan.clips)
         for (std::string& file : planned_files(plan, clip, options)) report.outputs.push_back({std::move(file), 0, {}, false});
+      for (const ClipPlan& clip : plan.clips)
+        for (std::string& file : planned_motion_files(clip, motion[size_t(&plan - plans.data())]))
+          report.outputs.push_back({std::move(file), 0, {}, false});
       if (options.textures.combine_clips && plan.error.empty())
         for (const TextureClips& set : texture_clip_sets(plan, true))
           for (std::string& file : planned_texture_files(plan, set, options)) report.outputs.push_back({std::move(file), 0, {}, false});
@@ -505,7 +515,17 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
         const size_t i = size_t(&plan - plans.data());
         InputBaker baker(plan, options, context.for_deforming(options.mode), ledger, journal, std::move(glb_writers[i]),
                          std::move(appearances[i]), std::move(looks[i]), result.warnings);
-        for (const ClipPlan& clip : plan.clips) result.frames += baker.bake_clip(clip);
+        for (const ClipPlan& clip : plan.clips) {
+          result.frames += baker.bake_clip(clip);
+          // Sockets and root motion: whole-animation files, sampled on the CPU (docs/DESIGN.md §3.11).
+          const Clock::time_point written = Clock::now();
+          std::vector<std::string> names;
+          std::vector<Committed> committed;
+          for (auto& [name, c] : write_motion_files(plan, clip, motion[i], options, {options.overwrite, &journal}))
+            names.push_back(std::move(name)), committed.push_back(c);
+          ledger.record_files(names, committed);
+          ledger.add_time(&BakeStageTimes::write, since(written));
+        }
         if (options.textures.combine_clips)
           for (const TextureClips& set : texture_clip_sets(plan, true)) result.frames += baker.bake_combined(set);
       },

@@ -183,6 +183,19 @@ std::vector<LocalTransform> local_transforms(const Asset& asset, const Clip* cli
   return local;
 }
 
+// A scene root's transform with a clip's ground motion `g` taken out, as sample_pose took it out of the world
+// matrices (docs/DESIGN.md §3.11): M⁻¹ · local, with M⁻¹ rigid, so a TRS stays a TRS.
+LocalTransform without_ground_motion(LocalTransform t, const GroundMotion& g) {
+  const Mat4<double> to_place = ground_matrix_inverse(g);
+  if (t.has_matrix) {
+    t.matrix = to_place * t.matrix;
+    return t;
+  }
+  t.translation = DVec3(to_place * glm::dvec4(t.translation, 1.0));
+  t.rotation = glm::angleAxis(-g.yaw, DVec3(0, 1, 0)) * t.rotation;
+  return t;
+}
+
 }  // namespace
 
 GlbImages parse_glb_images(const std::string& name) {
@@ -250,7 +263,10 @@ std::string GlbWriter::encode(const FrameView& frame, const Clip* clip, double t
                                 " primitives, the instances " + std::to_string(expected));
 
   const Pose pose = sample_pose(asset, clip, time);
-  const std::vector<LocalTransform> local = local_transforms(asset, clip, time);
+  std::vector<LocalTransform> local = local_transforms(asset, clip, time);
+  if (pose.removed)  // an in-place clip: the viewer's world matrices must be the in-place ones too
+    for (size_t n = 0; n < local.size(); ++n)
+      if (asset.nodes[n].parent < 0) local[n] = without_ground_motion(local[n], *pose.removed);
   json doc = w.fixed.doc;
   glb::BinWriter bin = w.fixed.bin;
   json meshes = json::array();

@@ -10,16 +10,33 @@
 
 namespace dqskin {
 
+// A node's motion on the ground (docs/DESIGN.md §3.11): its world origin projected on glTF's ground plane
+// (x and z; y is up) and its heading, the twist of its world rotation about +Y, in radians in [-π, π].
+struct GroundMotion {
+  double x = 0, z = 0, yaw = 0;
+};
+
+// The ground motion of a node whose world matrix is `world` (its rotation: the nearest one, for a matrix
+// with scale).
+GroundMotion ground_motion(const Mat4<double>& world);
+// M = T(x, 0, z) · Ry(yaw), and its inverse Ry(-yaw) · T(-x, 0, -z), both rigid.
+Mat4<double> ground_matrix(const GroundMotion& g);
+Mat4<double> ground_matrix_inverse(const GroundMotion& g);
+
 // Every node's world matrix and morph weights at one time.
 struct Pose {
   std::vector<Mat4<double>> world;           // per node
   std::vector<std::vector<double>> weights;  // per node: its mesh's morph weights (empty without targets)
+  // For a clip with an in_place_root: the root's ground motion M that was taken out, every world matrix
+  // being M⁻¹ · its world matrix in the file's scene (docs/DESIGN.md §3.11).
+  std::optional<GroundMotion> removed;
 };
 
 // Samples `clip` at `time` seconds (glTF time: clip time 0 is 0 s, not the first key). Channels clamp
 // outside their key range. Nodes without channels keep their rest transform; clip may be null for the
 // rest pose. Follows glTF 2.0 §3.11 and Appendix C: STEP, LINEAR (rotations by shortest-path slerp),
-// CUBICSPLINE (Hermite with the key tangents scaled by the key interval; rotations renormalised).
+// CUBICSPLINE (Hermite with the key tangents scaled by the key interval; rotations renormalised). A clip
+// with an in_place_root gives the pose in place: its root's ground motion removed from every node.
 Pose sample_pose(const Asset& asset, const Clip* clip, double time);
 
 // One channel's value at `time`: components() floats widened to double (rotation as x, y, z, w).

@@ -118,6 +118,9 @@ struct Clip {
   std::vector<Channel> channels;
   double first_key = 0;  // smallest key time over all channels
   double last_key = 0;   // largest key time: the clip's duration, as glTF time 0 is the clip's start
+  // Not from the file: a node whose ground motion sample_pose takes out of every node's world matrix (a bake
+  // with --root-motion in-place sets it, docs/DESIGN.md §3.11); -1: none.
+  int in_place_root = -1;
 };
 
 // KHR_texture_transform on a textureInfo: the texture is read at uv' = T · R · S · uv, T translating by

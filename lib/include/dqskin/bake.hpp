@@ -53,6 +53,14 @@ struct MorphOptions {
   bool quantize = false;  // KHR_mesh_quantization: positions on a 15-bit grid, normals as normalized SHORT
 };
 
+// Sockets and root motion (docs/formats.md, "Sockets and root motion"; docs/DESIGN.md §3.11). Names are node
+// names, or "#N" for node N; one that no node has, or more than one, fails that input.
+struct MotionOptions {
+  std::vector<std::string> sockets;  // nodes whose world transforms each clip records (sockets.json, .exr)
+  bool in_place = false;             // take the root's ground motion out of every frame (root_motion.json)
+  std::string root_joint;            // the root for in_place; empty: the skin's skeleton, or its topmost joint
+};
+
 struct BakeOptions {
   // Output folder, inputs' loading, animations, frames, scene, and the shard this process bakes (its units
   // of the plan, lib/job/job_plan.hpp).
@@ -69,6 +77,7 @@ struct BakeOptions {
   // any of unity,unreal,godot,three, or all; empty: none. Written once per bake (by shard 0 when sharded);
   // an unknown name is an InputError when the bake starts.
   std::string shader_kit;
+  MotionOptions motion;
   Backend backend = Backend::kAuto;  // a GL context, or cpu (the double-precision reference)
   size_t gpu_memory = size_t(512) << 20;
   unsigned jobs = 0;  // encoder threads; 0: one per core
