@@ -167,7 +167,7 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, const ClipP
   const std::string folder = options.plan.out_dir + "/" + clip.folder;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem, look);
-  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));
+  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb), o.check);
 }
 
 bool VatClipBake::uses_bake_frames() const { return times_ == clip_.times; }
@@ -192,18 +192,18 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
   complete_images();
   const TextureOptions& o = options_.textures;
   if (o.check) {
+    // The frames were checked in memory as they were encoded (VatWriter's VatFrameCheck); the files are
+    // read back for the midpoints a runtime interpolates, the only poses deformed again, and their
+    // digests (docs/DESIGN.md §4.8).
     VatDecodeChecker checker(*writer_);
-    // Every frame, and between neighbours the midpoint a runtime interpolates.
-    const std::vector<double> times = frames_and_midpoints(times_);
-    deformer.run(clip_.clip, times, [&](const DeformedBatch& batch) {
-      for (size_t k = 0; k < batch.frame_count; ++k) {
-        const size_t i = batch.first_frame + k;
-        const FrameView frame = distinct_vertices(frame_view(batch, k), sharing_);
-        if (i % 2 == 0) checker.baked_frame(i / 2, frame);
-        else checker.midpoint(i / 2, frame);
-      }
-    });
-    check_ = checker.result();
+    std::vector<double> midpoints;
+    for (size_t f = 0; f + 1 < times_.size(); ++f) midpoints.push_back(times_[f] + (times_[f + 1] - times_[f]) / 2);
+    if (!midpoints.empty())
+      deformer.run(clip_.clip, midpoints, [&](const DeformedBatch& batch) {
+        for (size_t k = 0; k < batch.frame_count; ++k)
+          checker.midpoint(batch.first_frame + k, distinct_vertices(frame_view(batch, k), sharing_));
+      });
+    check_ = checker.finish();
     // A clip that moves further than its encoding resolves (float noise aside) must not decode to one pose.
     const double resolvable =
         std::max(2 * position_encoding_bound(writer_->encoding()), 1e-6 * writer_->clip_bounds().diagonal());
