@@ -15,6 +15,8 @@
 #   --vat-only  only the first table
 #   --old BIN   a dqskin binary to compare with (its rows are marked "old")
 # Environment:
+#   RUNS           runs of each command in the first table, the fastest kept (default 2)
+#   VAT_ENCODINGS  the first table's encodings (default "float half")
 #   BIG_FPS    frames per second for the 1M-vertex character (default 10)
 #   BENCH_TMP  folder for the bakes' outputs (default build/bench)
 set -euo pipefail
@@ -64,33 +66,40 @@ if [[ -f "$SHARED/BrainStem/BrainStem.glb" ]]; then
 else
   echo "note: $SHARED/BrainStem/BrainStem.glb is missing; skipped"
 fi
-if [[ "$QUICK" == 0 ]]; then
+if [[ "$QUICK" == 0 && "$VAT_ONLY" == 0 ]]; then
   [[ -s "$BENCH/big_rig.glb" ]] || python3 scripts/testdata/make_big_rig.py "$BENCH/big_rig.glb" --vertices 1000000 | sed 's/^/generated /'
   INPUTS+=("$BENCH/big_rig.glb")
   ARGS+=("--fps $BIG_FPS")
 fi
 
-# The VAT bake against the disk: seconds of one command, best of two.
+# The VAT bake against the disk: "WALL CPU" seconds of one command (CPU: user and system of it and its
+# threads), best of $RUNS by wall time.
 seconds() {
   python3 - "$@" <<'PY'
-import subprocess, sys, time
+import os, resource, subprocess, sys, time
 best = None
-for _ in range(2):
+for _ in range(int(os.environ.get("RUNS", "2"))):
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
     subprocess.run(sys.argv[1:], check=True, stdout=subprocess.DEVNULL)
     took = time.monotonic() - start
-    best = took if best is None else min(best, took)
-print("%.2f" % best)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+    if best is None or took < best[0]:
+        best = (took, cpu)
+print("%.2f %.2f" % best)
 PY
 }
 if [[ -f "$SHARED/BrainStem/BrainStem.glb" ]]; then
   BRAINSTEM="$SHARED/BrainStem/BrainStem.glb"
-  echo "VAT bake against the disk: BrainStem, every frame; nproc $(nproc); seconds are wall, best of two"
-  echo "(bake: --no-check; check: the checked bake's extra time; write: dd writing and syncing the bake's images)"
+  echo "VAT bake against the disk: BrainStem, every frame; nproc $(nproc), load $(cut -d' ' -f1 /proc/loadavg);" \
+    "best of ${RUNS:-2} by wall time"
+  echo "(bake: --no-check; check: what the checked bake adds; write: dd writing and syncing the bake's images;"
+  echo " cpu: user + system seconds on every core)"
   echo
-  echo "| binary | encoding | MB | bake s | check s | write s | bake / write | check / bake | same bytes |"
-  echo "|---|---|---|---|---|---|---|---|---|"
-  for encoding in float half; do
+  echo "| binary | encoding | MB | bake s | check s | write s | bake / write | check / bake | bake cpu s | check cpu s | same bytes |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  for encoding in ${VAT_ENCODINGS:-float half}; do
     for which in new old; do
       bin="$DQSKIN"
       [[ "$which" == old ]] && { [[ -n "$OLD" ]] || continue; bin="$OLD"; }
@@ -100,6 +109,7 @@ if [[ -f "$SHARED/BrainStem/BrainStem.glb" ]]; then
       checked="$(seconds "$bin" "${bake[@]}" -o "$out")"
       images=("$out"/BrainStem/*/*.exr)
       bytes="$(cat "${images[@]}" | wc -c)"
+      # shellcheck disable=SC2016  # the inner shell expands them
       write="$(seconds bash -c 'cat "$@" | dd of="$0" bs=4M conv=fsync status=none' "$WORK/copy" "${images[@]}")"
       rm -f "$WORK/copy"
       same="-"
@@ -109,9 +119,13 @@ if [[ -f "$SHARED/BrainStem/BrainStem.glb" ]]; then
           cmp -s "$f" "$WORK/vat-new-$encoding/${f#"$out/"}" || same=no
         done
       fi
-      python3 -c 'import sys; w, e, mb, b, c, d, s = sys.argv[1:]; b, c, d = float(b), float(c) - float(b), float(d)
-print("| %s | %s | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f | %s |" % (w, e, float(mb) / 1e6, b, c, d, b / d, c / b, s))' \
-        "$which" "$encoding" "$bytes" "$unchecked" "$checked" "$write" "$same"
+      # shellcheck disable=SC2086  # "WALL CPU": two words each
+      python3 -c 'import sys
+w, e, mb, bw, bc, cw, cc, dw, dc, s = sys.argv[1:]
+b, c, d = float(bw), float(cw) - float(bw), float(dw)
+print("| %s | %s | %.1f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.1f | %s |" % (
+    w, e, float(mb) / 1e6, b, c, d, b / d, c / b, float(bc), float(cc) - float(bc), s))' \
+        "$which" "$encoding" "$bytes" $unchecked $checked $write "$same"
     done
   done
   echo
