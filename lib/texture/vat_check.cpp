@@ -47,10 +47,11 @@ double ErrorHistogram::quantile(double q) const {
 
 namespace {
 
-// Adds the distance of every decoded position to the reference's to `errors`, and raises `normal_degrees`
-// to the largest angle between decoded and reference normals.
+// Adds the distance of every decoded position to the reference's to `errors`, and lowers `min_cosine` to
+// the smallest cosine between decoded and reference normals: the largest angle is its arc cosine, taken
+// once (acos is correctly rounded, so monotonic: the same figure as the largest of every arc cosine).
 void compare(const std::vector<float>& positions, const std::vector<float>& normals, const FrameView& reference,
-             ErrorHistogram& errors, double& normal_degrees) {
+             ErrorHistogram& errors, double& min_cosine) {
   size_t v = 0;
   for (const PrimitiveView& p : reference.primitives) {
     for (size_t k = 0; k < p.vertices; ++k, ++v) {
@@ -62,8 +63,7 @@ void compare(const std::vector<float>& positions, const std::vector<float>& norm
       const glm::dvec3 m(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
       const double ln = glm::length(n), lm = glm::length(m);
       if (!(ln > 0) || !(lm > 0)) continue;
-      const double c = std::clamp(glm::dot(n, m) / (ln * lm), -1.0, 1.0);
-      normal_degrees = std::max(normal_degrees, std::acos(c) * 180 / std::numbers::pi);
+      min_cosine = std::min(min_cosine, std::clamp(glm::dot(n, m) / (ln * lm), -1.0, 1.0));
     }
   }
 }
@@ -83,7 +83,11 @@ double motion(const std::vector<float>& first, const std::vector<float>* positio
   return most;
 }
 
+double degrees(double cosine) { return std::acos(cosine) * 180 / std::numbers::pi; }
+
 }  // namespace
+
+double VatFrameCheck::max_normal_degrees() const { return degrees(min_cosine_); }
 
 void VatFrameCheck::frame(size_t f, const TexelImage& positions, const TexelImage* normals, const FrameView& reference,
                           const std::string& positions_name, const std::string& normals_name) {
@@ -98,7 +102,7 @@ void VatFrameCheck::frame(size_t f, const TexelImage& positions, const TexelImag
         throw OutputError(normals_name + ": texel " + at + " is not finite");
   }
   decode_vat_frame(e_, positions, normals, f, positions_, normals_);
-  compare(positions_, normals_, reference, errors_, max_normal_degrees_);
+  compare(positions_, normals_, reference, errors_, min_cosine_);
   if (f == 0) {
     first_positions_ = positions_;
     return;
@@ -211,7 +215,7 @@ void VatDecodeChecker::midpoint(size_t f, const FrameView& reference) {
     if (l > 0) n /= l;
     for (int c = 0; c < 3; ++c) normals[i + size_t(c)] = n[c];
   }
-  compare(positions, normals, reference, midpoint_errors_, max_midpoint_normal_degrees_);
+  compare(positions, normals, reference, midpoint_errors_, midpoint_min_cosine_);
   if (!frames_.first_positions().empty())
     midpoint_reference_motion_ = std::max(midpoint_reference_motion_, motion(frames_.first_positions(), nullptr, reference));
 }
@@ -228,7 +232,7 @@ DecodeCheck VatDecodeChecker::finish() {
   c.max_midpoint_error = midpoint_errors_.max();
   c.p99_midpoint_error = midpoint_errors_.quantile(0.99);
   c.max_normal_degrees = frames_.max_normal_degrees();
-  c.max_midpoint_normal_degrees = max_midpoint_normal_degrees_;
+  c.max_midpoint_normal_degrees = degrees(midpoint_min_cosine_);
   c.samples = frames_.errors().count() + midpoint_errors_.count();
   return c;
 }

@@ -48,7 +48,7 @@ public:
              const std::string& positions_name, const std::string& normals_name);
 
   const ErrorHistogram& errors() const { return errors_; }
-  double max_normal_degrees() const { return max_normal_degrees_; }
+  double max_normal_degrees() const;
   double reference_motion() const { return reference_motion_; }
   double decoded_motion() const { return decoded_motion_; }
   // Frame 0 decoded (3 floats per vertex): what motion is measured from.
@@ -58,7 +58,7 @@ private:
   const VatEncoding& e_;
   std::vector<float> positions_, normals_, first_positions_;
   ErrorHistogram errors_;
-  double max_normal_degrees_ = 0, reference_motion_ = 0, decoded_motion_ = 0;
+  double min_cosine_ = 1, reference_motion_ = 0, decoded_motion_ = 0;
 };
 
 // The read-back half (docs/DESIGN.md §4.8): reads the images back from the files written, proves that
@@ -112,7 +112,7 @@ private:
   std::vector<bool> pages_verified_;
   Decoded current_, next_;
   ErrorHistogram midpoint_errors_;
-  double max_midpoint_normal_degrees_ = 0, midpoint_reference_motion_ = 0;
+  double midpoint_min_cosine_ = 1, midpoint_reference_motion_ = 0;
 };
 
 }  // namespace dqskin::texture
