@@ -87,7 +87,18 @@ double degrees(double cosine) { return std::acos(cosine) * 180 / std::numbers::p
 
 }  // namespace
 
-double VatFrameCheck::max_normal_degrees() const { return degrees(min_cosine_); }
+void VatFrameCheck::set_clip_starts(std::vector<size_t> first_frames) {
+  if (first_frames.empty() || first_frames[0] != 0 || !std::is_sorted(first_frames.begin(), first_frames.end()))
+    throw std::logic_error("VatFrameCheck::set_clip_starts: clips must start at 0 and in order");
+  clips_.assign(first_frames.size(), Clip());
+  for (size_t c = 0; c < first_frames.size(); ++c) clips_[c].first_frame = first_frames[c];
+}
+
+size_t VatFrameCheck::clip_of(size_t f) const {
+  const auto after = std::upper_bound(clips_.begin(), clips_.end(), f,
+                                      [](size_t frame, const Clip& c) { return frame < c.first_frame; });
+  return size_t(after - clips_.begin()) - 1;
+}
 
 void VatFrameCheck::frame(size_t f, const TexelImage& positions, const TexelImage* normals, const FrameView& reference,
                           const std::string& positions_name, const std::string& normals_name) {
@@ -102,20 +113,21 @@ void VatFrameCheck::frame(size_t f, const TexelImage& positions, const TexelImag
         throw OutputError(normals_name + ": texel " + at + " is not finite");
   }
   decode_vat_frame(e_, positions, normals, f, positions_, normals_);
-  compare(positions_, normals_, reference, errors_, min_cosine_);
-  if (f == 0) {
-    first_positions_ = positions_;
+  Clip& c = clips_[clip_of(f)];
+  compare(positions_, normals_, reference, c.errors, c.min_cosine);
+  if (c.first_positions.empty()) {
+    c.first_positions = positions_;
     return;
   }
-  decoded_motion_ = std::max(decoded_motion_, motion(first_positions_, &positions_, reference));
-  reference_motion_ = std::max(reference_motion_, motion(first_positions_, nullptr, reference));
+  c.decoded_motion = std::max(c.decoded_motion, motion(c.first_positions, &positions_, reference));
+  c.reference_motion = std::max(c.reference_motion, motion(c.first_positions, nullptr, reference));
 }
 
 VatDecodeChecker::VatDecodeChecker(const VatWriter& writer)
     : writer_(writer), e_(writer.encoding()),
       frames_(writer.frame_check() ? *writer.frame_check()
                                    : throw std::logic_error("VatDecodeChecker: the writer did not check its frames")),
-      pages_verified_(writer.encoding().layout.pages, false) {
+      pages_verified_(writer.encoding().layout.pages, false), midpoints_(frames_.clips()) {
   open_page(0);
 }
 
@@ -215,9 +227,11 @@ void VatDecodeChecker::midpoint(size_t f, const FrameView& reference) {
     if (l > 0) n /= l;
     for (int c = 0; c < 3; ++c) normals[i + size_t(c)] = n[c];
   }
-  compare(positions, normals, reference, midpoint_errors_, midpoint_min_cosine_);
-  if (!frames_.first_positions().empty())
-    midpoint_reference_motion_ = std::max(midpoint_reference_motion_, motion(frames_.first_positions(), nullptr, reference));
+  const size_t c = frames_.clip_of(f);
+  Midpoints& m = midpoints_[c];
+  compare(positions, normals, reference, m.errors, m.min_cosine);
+  if (!frames_.clip(c).first_positions.empty())
+    m.reference_motion = std::max(m.reference_motion, motion(frames_.clip(c).first_positions, nullptr, reference));
 }
 
 DecodeCheck VatDecodeChecker::finish() {
@@ -226,19 +240,43 @@ DecodeCheck VatDecodeChecker::finish() {
     open_page(page);
     finish_page();
   }
+  ErrorHistogram frames, midpoints;
+  double min_cosine = 1, midpoint_min_cosine = 1;
+  for (size_t c = 0; c < midpoints_.size(); ++c) {
+    frames.merge(frames_.clip(c).errors);
+    midpoints.merge(midpoints_[c].errors);
+    min_cosine = std::min(min_cosine, frames_.clip(c).min_cosine);
+    midpoint_min_cosine = std::min(midpoint_min_cosine, midpoints_[c].min_cosine);
+  }
   DecodeCheck c;
-  c.max_error = frames_.errors().max();
-  c.p99_error = frames_.errors().quantile(0.99);
-  c.max_midpoint_error = midpoint_errors_.max();
-  c.p99_midpoint_error = midpoint_errors_.quantile(0.99);
-  c.max_normal_degrees = frames_.max_normal_degrees();
-  c.max_midpoint_normal_degrees = degrees(midpoint_min_cosine_);
-  c.samples = frames_.errors().count() + midpoint_errors_.count();
+  c.max_error = frames.max();
+  c.p99_error = frames.quantile(0.99);
+  c.max_midpoint_error = midpoints.max();
+  c.p99_midpoint_error = midpoints.quantile(0.99);
+  c.max_normal_degrees = degrees(min_cosine);
+  c.max_midpoint_normal_degrees = degrees(midpoint_min_cosine);
+  c.samples = frames.count() + midpoints.count();
   return c;
 }
 
-double VatDecodeChecker::reference_motion() const { return std::max(frames_.reference_motion(), midpoint_reference_motion_); }
+DecodeCheck VatDecodeChecker::clip_result(size_t c) const {
+  const VatFrameCheck::Clip& f = frames_.clip(c);
+  const Midpoints& m = midpoints_[c];
+  DecodeCheck r;
+  r.max_error = f.errors.max();
+  r.p99_error = f.errors.quantile(0.99);
+  r.max_midpoint_error = m.errors.max();
+  r.p99_midpoint_error = m.errors.quantile(0.99);
+  r.max_normal_degrees = degrees(f.min_cosine);
+  r.max_midpoint_normal_degrees = degrees(m.min_cosine);
+  r.samples = f.errors.count() + m.errors.count();
+  return r;
+}
 
-double VatDecodeChecker::decoded_motion() const { return frames_.decoded_motion(); }
+double VatDecodeChecker::reference_motion(size_t c) const {
+  return std::max(frames_.clip(c).reference_motion, midpoints_[c].reference_motion);
+}
+
+double VatDecodeChecker::decoded_motion(size_t c) const { return frames_.clip(c).decoded_motion; }
 
 }  // namespace dqskin::texture

@@ -40,25 +40,32 @@ private:
 // frame 0, never a frame's texels.
 class VatFrameCheck {
 public:
-  explicit VatFrameCheck(const VatEncoding& e) : e_(e) {}
+  explicit VatFrameCheck(const VatEncoding& e) : e_(e), clips_(1) {}
+  // A texture of several clips: each clip's first frame, in increasing order from
+  // 0; each clip has its own figures and its motion is measured from its own first frame. Before the
+  // first frame; one clip from frame 0 when not called.
+  void set_clip_starts(std::vector<size_t> first_frames);
   // Frame f in `positions` (and `normals`, the normal image's band, when there is one), bands holding its
   // rows; `reference` the frame it was encoded from. Frames come in order, each once. Throws OutputError
   // naming the file (`positions_name`, `normals_name`) and texel when a texel is not finite.
   void frame(size_t f, const TexelImage& positions, const TexelImage* normals, const FrameView& reference,
              const std::string& positions_name, const std::string& normals_name);
 
-  const ErrorHistogram& errors() const { return errors_; }
-  double max_normal_degrees() const;
-  double reference_motion() const { return reference_motion_; }
-  double decoded_motion() const { return decoded_motion_; }
-  // Frame 0 decoded (3 floats per vertex): what motion is measured from.
-  const std::vector<float>& first_positions() const { return first_positions_; }
+  struct Clip {
+    size_t first_frame = 0;
+    ErrorHistogram errors;
+    double min_cosine = 1;  // of the angles between decoded and reference normals
+    double reference_motion = 0, decoded_motion = 0;
+    std::vector<float> first_positions;  // the clip's first frame decoded (3 floats per vertex)
+  };
+  size_t clips() const { return clips_.size(); }
+  size_t clip_of(size_t f) const;
+  const Clip& clip(size_t c) const { return clips_[c]; }
 
 private:
   const VatEncoding& e_;
-  std::vector<float> positions_, normals_, first_positions_;
-  ErrorHistogram errors_;
-  double min_cosine_ = 1, reference_motion_ = 0, decoded_motion_ = 0;
+  std::vector<Clip> clips_;
+  std::vector<float> positions_, normals_;
 };
 
 // The read-back half (docs/DESIGN.md §4.8): reads the images back from the files written, proves that
@@ -75,16 +82,18 @@ public:
   // The deformed mesh halfway between frames f and f + 1; midpoints come in order.
   void midpoint(size_t f, const FrameView& reference);
   // Reads what the midpoints did not, compares every image's digest with the writer's and returns the
-  // figures of frames and midpoints. Throws OutputError naming the file when its texels differ from those
-  // the writer checked.
+  // figures of frames and midpoints over every clip. Throws OutputError naming the file when its texels
+  // differ from those the writer checked.
   DecodeCheck finish();
+  // Clip c's figures (VatFrameCheck::set_clip_starts), once finish() has run.
+  DecodeCheck clip_result(size_t c) const;
 
-  // How far the deformed meshes and the decoded ones move away from decoded frame 0 (largest vertex
-  // distance over the clip, frames and midpoints): a texture whose frames all decode to one pose while
-  // the clip moves is a failed bake. The midpoints, deformed apart from the bake's pass, see a texture
-  // stuck in one pose even when the frames fed to the writer were.
-  double reference_motion() const;
-  double decoded_motion() const;
+  // How far clip c's deformed meshes and decoded ones move away from its first frame decoded (largest
+  // vertex distance over the clip, frames and midpoints): a texture whose frames all decode to one pose
+  // while the clip moves is a failed bake. The midpoints, deformed apart from the bake's pass, see a
+  // texture stuck in one pose even when the frames fed to the writer were.
+  double reference_motion(size_t c = 0) const;
+  double decoded_motion(size_t c = 0) const;
 
 private:
   struct Decoded {
@@ -111,8 +120,11 @@ private:
   TexelDigest position_digest_, normal_digest_;
   std::vector<bool> pages_verified_;
   Decoded current_, next_;
-  ErrorHistogram midpoint_errors_;
-  double midpoint_min_cosine_ = 1, midpoint_reference_motion_ = 0;
+  struct Midpoints {
+    ErrorHistogram errors;
+    double min_cosine = 1, reference_motion = 0;
+  };
+  std::vector<Midpoints> midpoints_;  // per clip
 };
 
 }  // namespace dqskin::texture

@@ -50,6 +50,7 @@ public:
   // With `check`: the frames' figures, and each page's images' digests once finish() has run (the normal
   // image's: 0 when none).
   const VatFrameCheck* frame_check() const { return frame_check_.get(); }
+  VatFrameCheck* frame_check() { return frame_check_.get(); }
   uint64_t position_digest(size_t page) const;
   uint64_t normal_digest(size_t page) const;
 

@@ -666,6 +666,33 @@ TEST_F(VatWriterTest, ABakeOfOnePoseInEveryRowDecodesWithoutMotion) {
   EXPECT_GT(c.max_midpoint_error, 0.1);
 }
 
+TEST_F(VatWriterTest, ClipsOfOneTextureHaveTheirOwnFiguresAndMotion) {
+  // Two clips in one texture: frames 0-4 the twist, frames 5-8 stuck in frame 5's pose. The second clip's
+  // motion is measured from its own first frame: it decodes without motion while its midpoints (deformed
+  // apart) move; the first clip moves. The whole figures are the clips' together.
+  const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf", 0, grid(9, 8));
+  VatEncoding e;
+  e.layout = plan_vat_layout(kDqskin, vertex_count(d), d.times.size(), 0, false, "t");
+  VatWriter writer(e, {}, dir_.string(), vat_file_names(kDqskin, "x"), "");
+  writer.frame_check()->set_clip_starts({0, 5});
+  for (size_t f = 0; f < d.times.size(); ++f) writer.append(frame_view(d.frames, std::min<size_t>(f, 5)));
+  writer.finish();
+  VatDecodeChecker checker(writer);
+  for (size_t f = 0; f + 1 < d.times.size(); ++f)
+    if (f != 4) checker.midpoint(f, frame_view(d.midpoints, f));  // not across the clips' boundary
+  const DecodeCheck whole = checker.finish();
+  const DecodeCheck first = checker.clip_result(0), second = checker.clip_result(1);
+  EXPECT_GT(checker.decoded_motion(0), 0.1);
+  EXPECT_EQ(checker.decoded_motion(1), 0.0);
+  EXPECT_GT(checker.reference_motion(1), 0.1);
+  EXPECT_EQ(first.max_error, 0.0);
+  EXPECT_EQ(second.max_error, 0.0) << "the frames are the ones fed";
+  EXPECT_GT(second.max_midpoint_error, first.max_midpoint_error);
+  EXPECT_EQ(whole.samples, first.samples + second.samples);
+  EXPECT_EQ(whole.samples, (9 + 7) * vertex_count(d));
+  EXPECT_EQ(whole.max_midpoint_error, std::max(first.max_midpoint_error, second.max_midpoint_error));
+}
+
 TEST_F(VatWriterTest, HalfOverflowIsAnErrorNamingFrameAndVertex) {
   Deformed d;
   d.times = {0.0};
