@@ -181,7 +181,13 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, TextureClip
   const std::string folder = options.plan.out_dir + "/" + set_.folder;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem, look);
-  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb));
+  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb), o.check);
+  // Several clips: each has its own figures, its motion measured from its own first frame.
+  if (set_.clips.size() > 1 && writer_->frame_check()) {
+    std::vector<size_t> starts;
+    for (size_t c = 0, first = 0; c < times_.size(); first += times_[c].size(), ++c) starts.push_back(first);
+    writer_->frame_check()->set_clip_starts(std::move(starts));
+  }
 }
 
 size_t VatClipBake::frames() const {
@@ -214,36 +220,33 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
   const TextureOptions& o = options_.textures;
   std::optional<DecodeCheck> whole;  // over every clip: the side file's figures
   if (o.check) {
-    ErrorHistogram frames, midpoints;
+    // The frames were checked in memory as they were encoded (VatWriter's VatFrameCheck); the files are
+    // read back for the midpoints a runtime interpolates, the only poses deformed again, and their
+    // digests (docs/DESIGN.md §4.8). One reader for the whole texture; midpoints within each clip only.
+    VatDecodeChecker checker(*writer_);
     size_t first = 0;
     for (size_t c = 0; c < set_.clips.size(); ++c) {
-      const ClipPlan& clip = *set_.clips[c];
-      const std::string what = "clip " + clip.name;
-      VatDecodeChecker checker(*writer_);
-      // Every frame, and between neighbours the midpoint a runtime interpolates.
-      const std::vector<double> times = frames_and_midpoints(times_[c]);
-      deformer.run(clip.clip, times, [&](const DeformedBatch& batch) {
-        for (size_t k = 0; k < batch.frame_count; ++k) {
-          const size_t i = batch.first_frame + k;
-          const FrameView frame = distinct_vertices(frame_view(batch, k), sharing_);
-          if (i % 2 == 0) checker.baked_frame(first + i / 2, frame);
-          else checker.midpoint(first + i / 2, frame);
-        }
-      });
-      first += times_[c].size();
-      const DecodeCheck check = checker.result();
+      const std::vector<double>& t = times_[c];
+      std::vector<double> midpoints;
+      for (size_t f = 0; f + 1 < t.size(); ++f) midpoints.push_back(t[f] + (t[f + 1] - t[f]) / 2);
+      if (!midpoints.empty())
+        deformer.run(set_.clips[c]->clip, midpoints, [&](const DeformedBatch& batch) {
+          for (size_t k = 0; k < batch.frame_count; ++k)
+            checker.midpoint(first + batch.first_frame + k, distinct_vertices(frame_view(batch, k), sharing_));
+        });
+      first += t.size();
+    }
+    whole = checker.finish();
+    for (size_t c = 0; c < set_.clips.size(); ++c) {
+      const std::string what = "clip " + set_.clips[c]->name;
+      const DecodeCheck check = checker.clip_result(c);
       checks_.push_back(check);
-      frames.merge(checker.frame_errors());
-      midpoints.merge(checker.midpoint_errors());
-      if (!whole) whole = check;
-      whole->max_normal_degrees = std::max(whole->max_normal_degrees, check.max_normal_degrees);
-      whole->max_midpoint_normal_degrees = std::max(whole->max_midpoint_normal_degrees, check.max_midpoint_normal_degrees);
       // A clip that moves further than its encoding resolves (float noise aside) must not decode to one pose.
       const double resolvable =
           std::max(2 * position_encoding_bound(writer_->encoding()), 1e-6 * writer_->clip_bounds().diagonal());
-      if (checker.reference_motion() > resolvable && checker.decoded_motion() == 0)
+      if (checker.reference_motion(c) > resolvable && checker.decoded_motion(c) == 0)
         throw InputError(what + ": every frame of the texture decodes to one pose while the clip moves " +
-                         length_text(checker.reference_motion()) + " (a bake of the rest pose?)");
+                         length_text(checker.reference_motion(c)) + " (a bake of the rest pose?)");
       if (o.max_error > 0) {
         const double limit = o.max_error_relative ? o.max_error * writer_->clip_bounds().diagonal() : o.max_error;
         const double worst = std::max(check.max_error, check.max_midpoint_error);
@@ -253,11 +256,6 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
                            length_text(limit));
       }
     }
-    whole->max_error = frames.max();
-    whole->p99_error = frames.quantile(0.99);
-    whole->max_midpoint_error = midpoints.max();
-    whole->p99_midpoint_error = midpoints.quantile(0.99);
-    whole->samples = frames.count() + midpoints.count();
   }
   // One clip: the texture's figures are the clip's; several: each clip's too, in the clip table.
   const std::vector<DecodeCheck> per_clip = set_.clips.size() > 1 ? checks_ : std::vector<DecodeCheck>();

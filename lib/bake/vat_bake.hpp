@@ -2,9 +2,10 @@
 // every clip of an input one after another (docs/DESIGN.md §4.9): the passes around the writer.
 // Before the bake's own pass over the frames, a rest pass (the mesh the offsets are taken from) and a
 // measuring pass (the bounds the texels are remapped by, each frame's bounds for culling, whether the clip
-// loops); during it, each frame is encoded; after it, the decode-back check deforms the clip again at every
-// frame and midpoint and compares what the written files decode to. The files are committed only when the
-// check passes.
+// loops); during it, each frame is encoded and checked in memory against the frame it came from; after it,
+// the decode-back check deforms the clip at the midpoints between frames and compares them with what the
+// written files decode to, and proves by digest that the files hold the texels checked. The files are
+// committed only when the check passes.
 #pragma once
 
 #include "bake_plan.hpp"

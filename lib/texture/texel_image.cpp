@@ -7,12 +7,14 @@
 #include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <bit>
 #include <cassert>
 #include <climits>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <thread>
 
 namespace dqskin::texture {
 
@@ -132,6 +134,23 @@ void TexelImage::reset(size_t first_row) {
 
 std::string TexelImage::first_non_finite() const {
   if (is_png(type_)) return {};
+  // Fast path: all exponent bits set is infinity or NaN; most bands have none, and the texel is then
+  // looked for below.
+  bool any = false;
+  if (type_ == TexelType::kFloat32) {
+    for (size_t i = 0; i + 4 <= data_.size(); i += 4) {
+      uint32_t bits;
+      std::memcpy(&bits, &data_[i], 4);
+      any |= (bits & 0x7f800000u) == 0x7f800000u;
+    }
+  } else {
+    for (size_t i = 0; i + 2 <= data_.size(); i += 2) {
+      uint16_t bits;
+      std::memcpy(&bits, &data_[i], 2);
+      any |= (bits & 0x7c00u) == 0x7c00u;
+    }
+  }
+  if (!any) return {};
   for (size_t y = first_row_; y < first_row_ + rows_; ++y)
     for (size_t x = 0; x < width_; ++x)
       for (int c = 0; c < channels_; ++c)
@@ -148,21 +167,83 @@ std::string TexelImage::first_non_finite() const {
 
 const char* file_extension(TexelType type) { return is_png(type) ? "png" : "exr"; }
 
+namespace {
+constexpr uint64_t kPrime1 = 0x9e3779b185ebca87ull, kPrime2 = 0xc2b2ae3d27d4eb4full;
+uint64_t rotl(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+uint64_t load64(const uint8_t* p) {
+  uint64_t w;
+  std::memcpy(&w, p, 8);
+  return w;
+}
+}  // namespace
+
+void TexelDigest::mix(const uint8_t* block) {
+  for (int i = 0; i < 4; ++i) lanes_[i] = rotl(lanes_[i] + load64(block + 8 * i) * kPrime2, 31) * kPrime1;
+}
+
+void TexelDigest::add(const uint8_t* bytes, size_t size) {
+  size_ += size;
+  if (tail_size_ > 0) {
+    const size_t take = std::min(size, sizeof tail_ - tail_size_);
+    std::memcpy(tail_ + tail_size_, bytes, take);
+    tail_size_ += take;
+    bytes += take;
+    size -= take;
+    if (tail_size_ < sizeof tail_) return;
+    mix(tail_);
+    tail_size_ = 0;
+  }
+  for (; size >= 32; bytes += 32, size -= 32) mix(bytes);
+  std::memcpy(tail_, bytes, size);
+  tail_size_ = size;
+}
+
+uint64_t TexelDigest::value() const {
+  uint64_t h = rotl(lanes_[0], 1) + rotl(lanes_[1], 7) + rotl(lanes_[2], 12) + rotl(lanes_[3], 18) + size_;
+  for (size_t i = 0; i < tail_size_; ++i) h = rotl(h ^ (tail_[i] * kPrime1), 11) * kPrime2;
+  h ^= h >> 33;
+  h *= kPrime2;
+  h ^= h >> 29;
+  return h;
+}
+
 struct TexelFileWriter::Impl {
   AtomicFile* file = nullptr;
   std::string temporary;
   TexelType type{};
   size_t width = 0, height = 0, next_row = 0;
   int channels = 0;
-  std::unique_ptr<OIIO::ImageOutput> exr;  // EXR: rows are compressed and written as they come
+  size_t row_bytes = 0;
+  std::unique_ptr<OIIO::ImageOutput> exr;  // EXR: rows are compressed and written as chunks fill
   TexelImage png;                          // PNG: the whole image, written at close (libpng is one call)
   std::string compression;                 // EXR
+  // EXR: rows [chunk_first, next_row) wait in `chunk` until it holds chunk_rows (a whole number of
+  // compression blocks).
+  std::vector<uint8_t> chunk;
+  size_t chunk_first = 0, chunk_rows = 0;
+  bool digesting = false;
+  TexelDigest digest;
 
   [[noreturn]] void fail(const std::string& why) const { throw OutputError(file->path() + ": " + why); }
 
-  void write_exr_rows(const TexelImage& band) {
-    if (!exr->write_scanlines(int(band.first_row()), int(band.first_row() + band.rows()), 0, oiio_type(type), band.data()))
+  // The next rows in order: gathered, and the chunk written once full (all of it at the end).
+  void add_exr_rows(const uint8_t* data, size_t rows) {
+    while (rows > 0) {
+      const size_t held = next_row - chunk_first, take = std::min(rows, chunk_rows - held);
+      if (data) std::memcpy(chunk.data() + held * row_bytes, data, take * row_bytes);
+      else std::memset(chunk.data() + held * row_bytes, 0, take * row_bytes);
+      next_row += take;
+      rows -= take;
+      if (data) data += take * row_bytes;
+      if (next_row - chunk_first == chunk_rows || next_row == height) flush_exr_rows();
+    }
+  }
+  void flush_exr_rows() {
+    if (next_row == chunk_first) return;
+    if (digesting) digest.add(chunk.data(), (next_row - chunk_first) * row_bytes);
+    if (!exr->write_scanlines(int(chunk_first), int(next_row), 0, oiio_type(type), chunk.data()))
       fail(oiio_message(exr->geterror()));
+    chunk_first = next_row;
   }
 };
 
@@ -173,7 +254,7 @@ bool is_lossless_exr_compression(const std::string& name) {
 std::string exr_compression(const std::string& requested) { return requested.empty() ? "zip" : requested; }
 
 TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
-                                 const std::string& compression)
+                                 const std::string& compression, bool digest)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.file = &file;
@@ -181,6 +262,8 @@ TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width,
   m.width = width;
   m.height = height;
   m.channels = channels;
+  m.digesting = digest;
+  m.row_bytes = width * size_t(channels) * channel_bytes(type);
   if (width == 0 || height == 0 || width > size_t(INT_MAX) / 16 || height > size_t(INT_MAX))
     throw InputError(file.path() + ": " + std::to_string(width) + " x " + std::to_string(height) +
                      " texels is not a size an image file holds");
@@ -202,8 +285,16 @@ TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width,
   spec.attribute("DateTime", "");
   m.exr = OIIO::ImageOutput::create("openexr");
   if (!m.exr) m.fail(oiio_message(OIIO::geterror()));
-  // Scanline (not tiled) with increasing y: the writer holds one block of rows, not the image.
+  // Scanline (not tiled) with increasing y: the writer holds one chunk of rows, not the image. A chunk is
+  // at least 8 MiB and 4 blocks per core, so that every core of OpenEXR's pool has blocks to compress,
+  // and at most 64 MiB (one block when a block is larger).
   if (!m.exr->open(m.temporary, spec)) m.fail(oiio_message(m.exr->geterror()));
+  const size_t block = rows_per_block(m.compression), block_bytes = block * m.row_bytes;
+  const size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  size_t blocks = std::max(4 * cores, ((size_t(8) << 20) + block_bytes - 1) / block_bytes);
+  blocks = std::max<size_t>(1, std::min(blocks, (size_t(64) << 20) / block_bytes));
+  m.chunk_rows = std::min(height, blocks * block);
+  m.chunk.resize(m.chunk_rows * m.row_bytes);
 }
 
 TexelFileWriter::~TexelFileWriter() = default;
@@ -213,22 +304,20 @@ void TexelFileWriter::write(const TexelImage& band) {
   assert(band.type() == m.type && band.width() == m.width && band.channels() == m.channels);
   assert(band.first_row() >= m.next_row && band.first_row() + band.rows() <= m.height);
   if (m.exr) {
-    if (band.first_row() > m.next_row) {  // skipped rows are zeros
-      const TexelImage zeros(m.type, m.width, band.first_row() - m.next_row, m.channels, m.next_row);
-      m.write_exr_rows(zeros);
-    }
-    m.write_exr_rows(band);
-  } else {
-    const size_t row_bytes = m.width * size_t(m.channels) * channel_bytes(m.type);
-    std::memcpy(m.png.data() + band.first_row() * row_bytes, band.data(), band.rows() * row_bytes);
+    m.add_exr_rows(nullptr, band.first_row() - m.next_row);  // skipped rows are zeros
+    m.add_exr_rows(band.data(), band.rows());
+    return;
   }
+  std::memcpy(m.png.data() + band.first_row() * m.row_bytes, band.data(), band.rows() * m.row_bytes);
   m.next_row = band.first_row() + band.rows();
 }
 
 void TexelFileWriter::close() {
   Impl& m = *impl_;
   if (m.exr) {
-    if (m.next_row < m.height) m.write_exr_rows(TexelImage(m.type, m.width, m.height - m.next_row, m.channels, m.next_row));
+    m.add_exr_rows(nullptr, m.height - m.next_row);
+    m.flush_exr_rows();
+    m.chunk = std::vector<uint8_t>();
     if (!m.exr->close()) m.fail(oiio_message(m.exr->geterror()));
     m.exr.reset();
     if (!exr_is_whole(m.temporary, m.height, rows_per_block(m.compression)))
@@ -239,11 +328,14 @@ void TexelFileWriter::close() {
   // Data, not colour: no sRGB or gAMA chunk, so that no reader converts the values (engines must import
   // these textures as linear data; docs/formats.md, "Encodings").
   spec.attribute("oiio:ColorSpace", "");
+  if (m.digesting) m.digest.add(m.png.data(), m.height * m.row_bytes);
   io::write_image_file(m.temporary, m.file->path(), "png", spec, oiio_type(m.type), m.png.data());
   m.png = TexelImage();
 }
 
 const std::string& TexelFileWriter::temporary() const { return impl_->temporary; }
+
+uint64_t TexelFileWriter::digest() const { return impl_->digest.value(); }
 
 struct TexelFileReader::Impl {
   std::string name;

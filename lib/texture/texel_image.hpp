@@ -60,15 +60,40 @@ const char* file_extension(TexelType type);
 bool is_lossless_exr_compression(const std::string& name);
 std::string exr_compression(const std::string& requested);
 
+// A 64-bit digest of texel bytes fed in pieces, equal for equal byte sequences however they are cut: what
+// the decode-back check remembers of the texels it compared in memory, to prove that the file decodes to
+// them (docs/DESIGN.md §4.8). Not cryptographic: it catches a codec, a disk or a hand that changed
+// texels, not an adversary. Four lanes of 64-bit multiply-mix over little-endian words keep it at memory
+// speed, several GB/s.
+class TexelDigest {
+public:
+  void add(const uint8_t* bytes, size_t size);
+  uint64_t value() const;
+  uint64_t bytes() const { return size_; }
+
+private:
+  void mix(const uint8_t* block);  // 32 bytes
+  uint64_t lanes_[4] = {0x9e3779b97f4a7c15ull, 0xc2b2ae3d27d4eb4full, 0x165667b19e3779f9ull, 0x27d4eb2f165667c5ull};
+  uint8_t tail_[32] = {};
+  size_t tail_size_ = 0;
+  uint64_t size_ = 0;
+};
+
 // Writes an image into `file`'s temporary, band after band in row order (the caller commits the file):
 // EXR with channels R, G, B(, A), a lossless compression (exr_compression) and no capture date; PNG with
 // no colour-space chunk (the values are data, not colours). Rows never written are zeros. Byte-identical
-// for equal texels and equal bands.
+// for equal texels and equal bands, however the rows come in bands and whatever the thread count.
+//
+// EXR rows are gathered into chunks of many compression blocks (16 rows for ZIP, 32 for PIZ) before they
+// go to OpenEXR, whose thread pool compresses the blocks of one write on every core; a frame's few rows
+// at a time would keep one core busy. Each block is compressed alone and the blocks are stored in row
+// order, so the bytes do not depend on how the rows were gathered.
 class TexelFileWriter {
 public:
   // Throws OutputError naming the file when it cannot be created, InputError for sizes no file holds.
+  // `digest`: keep digest() (the decode-back check wants it; it costs a pass over the bytes).
   TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
-                  const std::string& compression = "");
+                  const std::string& compression = "", bool digest = false);
   ~TexelFileWriter();
   TexelFileWriter(const TexelFileWriter&) = delete;
   TexelFileWriter& operator=(const TexelFileWriter&) = delete;
@@ -80,6 +105,9 @@ public:
   void close();
   // The temporary being written (the file's final name comes with the commit).
   const std::string& temporary() const;
+  // With `digest`: the digest of every row of the image in row order (zeros included) as handed to the
+  // file; complete after close().
+  uint64_t digest() const;
 
 private:
   struct Impl;

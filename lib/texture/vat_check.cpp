@@ -8,6 +8,7 @@
 #include <future>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace dqskin::texture {
 
@@ -44,67 +45,13 @@ double ErrorHistogram::quantile(double q) const {
   return max_;
 }
 
-VatDecodeChecker::VatDecodeChecker(const VatWriter& writer) : writer_(writer), e_(writer.encoding()) { open_page(0); }
+namespace {
 
-void VatDecodeChecker::open_page(size_t page) {
-  if (page == page_) return;
-  const VatLayout& l = e_.layout;
-  const VatWriter::WrittenImage positions = writer_.positions(page), normals = writer_.normals(page);
-  positions_name_ = positions.name;
-  normals_name_ = normals.name;
-  positions_ = std::make_unique<TexelFileReader>(positions.temporary, positions.name, l.format.type, l.width,
-                                                 l.page_height(page), l.position_channels());
-  normals_.reset();
-  if (const std::optional<TexelType> type = e_.normal_image_type())
-    normals_ = std::make_unique<TexelFileReader>(normals.temporary, normals.name, *type, l.width, l.page_height(page),
-                                                 normal_channels(e_));
-  page_ = page;
-  whole_read_ = false;
-}
-
-VatDecodeChecker::~VatDecodeChecker() = default;
-
-const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
-  for (const Decoded* d : {&current_, &next_})
-    if (d->frame == f) return *d;
-  const VatLayout& l = e_.layout;
-  open_page(l.page_of(f));
-  // Frame-major layouts read bands of whole frames, at least 256 rows (several EXR blocks of 16 or 32
-  // rows, each decompressed once, not once per frame that shares it); openvat's frames lie in every wrap:
-  // the image, read once. Positions and normals are read at once, on two threads.
-  const VatLayout::Rows rows = l.frame_rows(f);
-  const bool in_band = whole_read_ && rows.first >= position_band_.first_row() &&
-                       rows.first + rows.count <= position_band_.first_row() + position_band_.rows();
-  if (!in_band) {
-    size_t first = rows.first, count = rows.count;
-    if (l.frame_major()) {
-      const size_t height = l.page_height(l.page_of(f));
-      const size_t frames = std::max<size_t>(1, 256 / rows.count);
-      count = std::min(height - first, frames * rows.count);
-    }
-    std::future<void> normals;
-    if (normals_) normals = std::async(std::launch::async, [&] { normals_->read(first, count, normal_band_); });
-    positions_->read(first, count, position_band_);
-    if (normals.valid()) normals.get();
-    if (const std::string at = position_band_.first_non_finite(); !at.empty())
-      throw OutputError(positions_name_ + ": texel " + at + " is not finite");
-    if (normals_)
-      if (const std::string at = normal_band_.first_non_finite(); !at.empty())
-        throw OutputError(normals_name_ + ": texel " + at + " is not finite");
-    whole_read_ = true;
-  }
-  // Overwrite the slot holding no frame, else the earlier frame (callers copy what they still need).
-  auto older = [](const Decoded& a, const Decoded& b) {
-    return a.frame == SIZE_MAX || (b.frame != SIZE_MAX && a.frame < b.frame);
-  };
-  Decoded& slot = older(current_, next_) ? current_ : next_;
-  decode_vat_frame(e_, position_band_, normals_ ? &normal_band_ : nullptr, f, slot.positions, slot.normals);
-  slot.frame = f;
-  return slot;
-}
-
-void VatDecodeChecker::compare(const std::vector<float>& positions, const std::vector<float>& normals,
-                               const FrameView& reference, ErrorHistogram& errors, double& normal_degrees) {
+// Adds the distance of every decoded position to the reference's to `errors`, and lowers `min_cosine` to
+// the smallest cosine between decoded and reference normals: the largest angle is its arc cosine, taken
+// once (acos is correctly rounded, so monotonic: the same figure as the largest of every arc cosine).
+void compare(const std::vector<float>& positions, const std::vector<float>& normals, const FrameView& reference,
+             ErrorHistogram& errors, double& min_cosine) {
   size_t v = 0;
   for (const PrimitiveView& p : reference.primitives) {
     for (size_t k = 0; k < p.vertices; ++k, ++v) {
@@ -116,30 +63,156 @@ void VatDecodeChecker::compare(const std::vector<float>& positions, const std::v
       const glm::dvec3 m(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
       const double ln = glm::length(n), lm = glm::length(m);
       if (!(ln > 0) || !(lm > 0)) continue;
-      const double c = std::clamp(glm::dot(n, m) / (ln * lm), -1.0, 1.0);
-      normal_degrees = std::max(normal_degrees, std::acos(c) * 180 / std::numbers::pi);
+      min_cosine = std::min(min_cosine, std::clamp(glm::dot(n, m) / (ln * lm), -1.0, 1.0));
     }
   }
 }
 
-void VatDecodeChecker::baked_frame(size_t f, const FrameView& reference) {
-  const Decoded& d = decode(f);
-  compare(d.positions, d.normals, reference, frame_errors_, max_normal_degrees_);
-  if (first_positions_.empty()) {
-    first_positions_ = d.positions;
+// The largest distance of a vertex of `positions` (3 floats per vertex, or the reference's when null)
+// from its place in `first`.
+double motion(const std::vector<float>& first, const std::vector<float>* positions, const FrameView& reference) {
+  double most = 0;
+  size_t v = 0;
+  for (const PrimitiveView& p : reference.primitives)
+    for (size_t k = 0; k < p.vertices; ++k, ++v) {
+      const glm::dvec3 from(first[3 * v], first[3 * v + 1], first[3 * v + 2]);
+      const glm::dvec3 at = positions ? glm::dvec3((*positions)[3 * v], (*positions)[3 * v + 1], (*positions)[3 * v + 2])
+                                      : glm::dvec3(p.positions[3 * k], p.positions[3 * k + 1], p.positions[3 * k + 2]);
+      most = std::max(most, glm::length(at - from));
+    }
+  return most;
+}
+
+double degrees(double cosine) { return std::acos(cosine) * 180 / std::numbers::pi; }
+
+}  // namespace
+
+void VatFrameCheck::set_clip_starts(std::vector<size_t> first_frames) {
+  if (first_frames.empty() || first_frames[0] != 0 || !std::is_sorted(first_frames.begin(), first_frames.end()))
+    throw std::logic_error("VatFrameCheck::set_clip_starts: clips must start at 0 and in order");
+  clips_.assign(first_frames.size(), Clip());
+  for (size_t c = 0; c < first_frames.size(); ++c) clips_[c].first_frame = first_frames[c];
+}
+
+size_t VatFrameCheck::clip_of(size_t f) const {
+  const auto after = std::upper_bound(clips_.begin(), clips_.end(), f,
+                                      [](size_t frame, const Clip& c) { return frame < c.first_frame; });
+  return size_t(after - clips_.begin()) - 1;
+}
+
+void VatFrameCheck::frame(size_t f, const TexelImage& positions, const TexelImage* normals, const FrameView& reference,
+                          const std::string& positions_name, const std::string& normals_name) {
+  // Finite texels: the encoder refuses non-finite values, so this guards the encoder itself. Openvat's band
+  // is the whole image, filled frame by frame: it is scanned once, when its last frame is in.
+  const bool scan = e_.layout.frame_major() || f + 1 == e_.layout.frames;
+  if (scan) {
+    if (const std::string at = positions.first_non_finite(); !at.empty())
+      throw OutputError(positions_name + ": texel " + at + " is not finite");
+    if (normals)
+      if (const std::string at = normals->first_non_finite(); !at.empty())
+        throw OutputError(normals_name + ": texel " + at + " is not finite");
+  }
+  decode_vat_frame(e_, positions, normals, f, positions_, normals_);
+  Clip& c = clips_[clip_of(f)];
+  compare(positions_, normals_, reference, c.errors, c.min_cosine);
+  if (c.first_positions.empty()) {
+    c.first_positions = positions_;
     return;
   }
-  // Motion: the largest distance of any vertex from its place in frame 0, decoded and deformed.
-  size_t v = 0;
-  for (const PrimitiveView& p : reference.primitives) {
-    for (size_t k = 0; k < p.vertices; ++k, ++v) {
-      const glm::dvec3 first(first_positions_[3 * v], first_positions_[3 * v + 1], first_positions_[3 * v + 2]);
-      const glm::dvec3 decoded(d.positions[3 * v], d.positions[3 * v + 1], d.positions[3 * v + 2]);
-      const glm::dvec3 want(p.positions[3 * k], p.positions[3 * k + 1], p.positions[3 * k + 2]);
-      decoded_motion_ = std::max(decoded_motion_, glm::length(decoded - first));
-      reference_motion_ = std::max(reference_motion_, glm::length(want - first));
+  c.decoded_motion = std::max(c.decoded_motion, motion(c.first_positions, &positions_, reference));
+  c.reference_motion = std::max(c.reference_motion, motion(c.first_positions, nullptr, reference));
+}
+
+VatDecodeChecker::VatDecodeChecker(const VatWriter& writer)
+    : writer_(writer), e_(writer.encoding()),
+      frames_(writer.frame_check() ? *writer.frame_check()
+                                   : throw std::logic_error("VatDecodeChecker: the writer did not check its frames")),
+      pages_verified_(writer.encoding().layout.pages, false), midpoints_(frames_.clips()) {
+  open_page(0);
+}
+
+VatDecodeChecker::~VatDecodeChecker() = default;
+
+void VatDecodeChecker::open_page(size_t page) {
+  if (page == page_) return;
+  if (page_ != SIZE_MAX && !pages_verified_[page_]) finish_page();
+  const VatLayout& l = e_.layout;
+  const VatWriter::WrittenImage positions = writer_.positions(page), normals = writer_.normals(page);
+  positions_name_ = positions.name;
+  normals_name_ = normals.name;
+  positions_ = std::make_unique<TexelFileReader>(positions.temporary, positions.name, l.format.type, l.width,
+                                                 l.page_height(page), l.position_channels());
+  normals_.reset();
+  if (const std::optional<TexelType> type = e_.normal_image_type())
+    normals_ = std::make_unique<TexelFileReader>(normals.temporary, normals.name, *type, l.width, l.page_height(page),
+                                                 normal_channels(e_));
+  page_ = page;
+  band_read_ = false;
+  digested_rows_ = 0;
+  position_digest_ = TexelDigest();
+  normal_digest_ = TexelDigest();
+}
+
+void VatDecodeChecker::read_rows(size_t first, size_t count) {
+  if (first > digested_rows_) read_rows(digested_rows_, first - digested_rows_);  // the rows between, digested
+  // Positions and normals are read at once, on two threads (OpenEXR decompresses a read's blocks on its pool).
+  std::future<void> normals;
+  if (normals_) normals = std::async(std::launch::async, [&] { normals_->read(first, count, normal_band_); });
+  positions_->read(first, count, position_band_);
+  if (normals.valid()) normals.get();
+  band_read_ = true;
+  if (first + count <= digested_rows_) return;
+  const size_t skip = digested_rows_ - first;
+  auto digest = [&](const TexelImage& band, TexelDigest& d) {
+    const size_t row_bytes = band.width() * size_t(band.channels()) * channel_bytes(band.type());
+    d.add(band.data() + skip * row_bytes, (count - skip) * row_bytes);
+  };
+  digest(position_band_, position_digest_);
+  if (normals_) digest(normal_band_, normal_digest_);
+  digested_rows_ = first + count;
+}
+
+void VatDecodeChecker::finish_page() {
+  const size_t height = e_.layout.page_height(page_);
+  const size_t rows = std::max<size_t>(256, position_band_.rows());
+  while (digested_rows_ < height) read_rows(digested_rows_, std::min(rows, height - digested_rows_));
+  band_read_ = false;
+  const std::string differs = ": the texels read back differ from those the check compared (changed after writing?)";
+  if (position_digest_.value() != writer_.position_digest(page_)) throw OutputError(positions_name_ + differs);
+  if (normals_ && normal_digest_.value() != writer_.normal_digest(page_)) throw OutputError(normals_name_ + differs);
+  pages_verified_[page_] = true;
+}
+
+const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
+  for (const Decoded* d : {&current_, &next_})
+    if (d->frame == f) return *d;
+  const VatLayout& l = e_.layout;
+  open_page(l.page_of(f));
+  // Frame-major layouts read bands of whole frames, at least 256 rows and 8 MiB (many EXR blocks of 16 or
+  // 32 rows, each decompressed once, not once per frame that shares it, and enough for every core);
+  // openvat's frames lie in every wrap: the image, read once.
+  const VatLayout::Rows rows = l.frame_rows(f);
+  const bool in_band = band_read_ && rows.first >= position_band_.first_row() &&
+                       rows.first + rows.count <= position_band_.first_row() + position_band_.rows();
+  if (!in_band) {
+    size_t first = rows.first, count = rows.count;
+    if (l.frame_major()) {
+      const size_t height = l.page_height(l.page_of(f));
+      const size_t row_bytes = l.width * size_t(l.position_channels()) * channel_bytes(l.format.type);
+      const size_t band_rows = std::max<size_t>(256, (size_t(8) << 20) / row_bytes);
+      const size_t frames = std::max<size_t>(1, band_rows / rows.count);
+      count = std::min(height - first, frames * rows.count);
     }
+    read_rows(first, count);
   }
+  // Overwrite the slot holding no frame, else the earlier frame (callers copy what they still need).
+  auto older = [](const Decoded& a, const Decoded& b) {
+    return a.frame == SIZE_MAX || (b.frame != SIZE_MAX && a.frame < b.frame);
+  };
+  Decoded& slot = older(current_, next_) ? current_ : next_;
+  decode_vat_frame(e_, position_band_, normals_ ? &normal_band_ : nullptr, f, slot.positions, slot.normals);
+  slot.frame = f;
+  return slot;
 }
 
 void VatDecodeChecker::midpoint(size_t f, const FrameView& reference) {
@@ -154,19 +227,56 @@ void VatDecodeChecker::midpoint(size_t f, const FrameView& reference) {
     if (l > 0) n /= l;
     for (int c = 0; c < 3; ++c) normals[i + size_t(c)] = n[c];
   }
-  compare(positions, normals, reference, midpoint_errors_, max_midpoint_normal_degrees_);
+  const size_t c = frames_.clip_of(f);
+  Midpoints& m = midpoints_[c];
+  compare(positions, normals, reference, m.errors, m.min_cosine);
+  if (!frames_.clip(c).first_positions.empty())
+    m.reference_motion = std::max(m.reference_motion, motion(frames_.clip(c).first_positions, nullptr, reference));
 }
 
-DecodeCheck VatDecodeChecker::result() const {
+DecodeCheck VatDecodeChecker::finish() {
+  for (size_t page = 0; page < pages_verified_.size(); ++page) {
+    if (pages_verified_[page]) continue;
+    open_page(page);
+    finish_page();
+  }
+  ErrorHistogram frames, midpoints;
+  double min_cosine = 1, midpoint_min_cosine = 1;
+  for (size_t c = 0; c < midpoints_.size(); ++c) {
+    frames.merge(frames_.clip(c).errors);
+    midpoints.merge(midpoints_[c].errors);
+    min_cosine = std::min(min_cosine, frames_.clip(c).min_cosine);
+    midpoint_min_cosine = std::min(midpoint_min_cosine, midpoints_[c].min_cosine);
+  }
   DecodeCheck c;
-  c.max_error = frame_errors_.max();
-  c.p99_error = frame_errors_.quantile(0.99);
-  c.max_midpoint_error = midpoint_errors_.max();
-  c.p99_midpoint_error = midpoint_errors_.quantile(0.99);
-  c.max_normal_degrees = max_normal_degrees_;
-  c.max_midpoint_normal_degrees = max_midpoint_normal_degrees_;
-  c.samples = frame_errors_.count() + midpoint_errors_.count();
+  c.max_error = frames.max();
+  c.p99_error = frames.quantile(0.99);
+  c.max_midpoint_error = midpoints.max();
+  c.p99_midpoint_error = midpoints.quantile(0.99);
+  c.max_normal_degrees = degrees(min_cosine);
+  c.max_midpoint_normal_degrees = degrees(midpoint_min_cosine);
+  c.samples = frames.count() + midpoints.count();
   return c;
 }
+
+DecodeCheck VatDecodeChecker::clip_result(size_t c) const {
+  const VatFrameCheck::Clip& f = frames_.clip(c);
+  const Midpoints& m = midpoints_[c];
+  DecodeCheck r;
+  r.max_error = f.errors.max();
+  r.p99_error = f.errors.quantile(0.99);
+  r.max_midpoint_error = m.errors.max();
+  r.p99_midpoint_error = m.errors.quantile(0.99);
+  r.max_normal_degrees = degrees(f.min_cosine);
+  r.max_midpoint_normal_degrees = degrees(m.min_cosine);
+  r.samples = f.errors.count() + m.errors.count();
+  return r;
+}
+
+double VatDecodeChecker::reference_motion(size_t c) const {
+  return std::max(frames_.clip(c).reference_motion, midpoints_[c].reference_motion);
+}
+
+double VatDecodeChecker::decoded_motion(size_t c) const { return frames_.clip(c).decoded_motion; }
 
 }  // namespace dqskin::texture

@@ -1,7 +1,8 @@
-// The decode-back check of a vertex-animation texture (internal to lib/texture and lib/bake): the images
-// are read back from the files written, decoded on the CPU exactly as the profile's shader decodes them,
-// and compared with the deformed meshes at every baked frame and at the midpoint between neighbours (the
-// linear interpolation a runtime shows between frames).
+// The decode-back check of a vertex-animation texture (internal to lib/texture and lib/bake): the texels
+// decoded on the CPU exactly as the profile's shader decodes them and compared with the deformed meshes
+// at every baked frame (in memory, as the bake encodes them) and at the midpoint between neighbours (read
+// back from the files written: the linear interpolation a runtime shows between frames), with a digest
+// proving that the files decode to the texels compared.
 #pragma once
 
 #include "texel_image.hpp"
@@ -33,28 +34,66 @@ private:
   size_t count_ = 0;
 };
 
+// The in-memory half of the check (docs/DESIGN.md §4.8): each frame as the bake's pass encodes it, its
+// bands decoded as the shader decodes them and compared with the deformed frame it was encoded from (the
+// bake's own frame, not a second deformation). The writer runs it; it keeps the figures and decoded
+// frame 0, never a frame's texels.
+class VatFrameCheck {
+public:
+  explicit VatFrameCheck(const VatEncoding& e) : e_(e), clips_(1) {}
+  // A texture of several clips: each clip's first frame, in increasing order from
+  // 0; each clip has its own figures and its motion is measured from its own first frame. Before the
+  // first frame; one clip from frame 0 when not called.
+  void set_clip_starts(std::vector<size_t> first_frames);
+  // Frame f in `positions` (and `normals`, the normal image's band, when there is one), bands holding its
+  // rows; `reference` the frame it was encoded from. Frames come in order, each once. Throws OutputError
+  // naming the file (`positions_name`, `normals_name`) and texel when a texel is not finite.
+  void frame(size_t f, const TexelImage& positions, const TexelImage* normals, const FrameView& reference,
+             const std::string& positions_name, const std::string& normals_name);
+
+  struct Clip {
+    size_t first_frame = 0;
+    ErrorHistogram errors;
+    double min_cosine = 1;  // of the angles between decoded and reference normals
+    double reference_motion = 0, decoded_motion = 0;
+    std::vector<float> first_positions;  // the clip's first frame decoded (3 floats per vertex)
+  };
+  size_t clips() const { return clips_.size(); }
+  size_t clip_of(size_t f) const;
+  const Clip& clip(size_t c) const { return clips_[c]; }
+
+private:
+  const VatEncoding& e_;
+  std::vector<Clip> clips_;
+  std::vector<float> positions_, normals_;
+};
+
+// The read-back half (docs/DESIGN.md §4.8): reads the images back from the files written, proves that
+// every texel decoded equals the one the writer's VatFrameCheck compared (a digest of each image's rows,
+// taken as the writer handed them to the file), and compares the midpoints between frames, decoded from
+// the file, with the clip deformed there (a deformation of its own, which the bake's pass did not make).
 class VatDecodeChecker {
 public:
-  // Reads the writer's images (temporaries) back. Throws OutputError when one cannot be read as written.
+  // Reads the writer's images (temporaries) back; the writer must have checked its frames
+  // (VatWriter::frame_check). Throws OutputError when an image cannot be read as written.
   explicit VatDecodeChecker(const VatWriter& writer);
   ~VatDecodeChecker();
 
-  // The deformed mesh at baked frame f; frames come in order, each followed (but the last) by its
-  // midpoint. The first frame given is the clip's first (of several in one texture, docs/DESIGN.md §4.9),
-  // which the motion is measured from. Throws OutputError naming the file and texel when a texel is not finite.
-  void baked_frame(size_t f, const FrameView& reference);
-  // The deformed mesh halfway between frames f and f + 1.
+  // The deformed mesh halfway between frames f and f + 1; midpoints come in order.
   void midpoint(size_t f, const FrameView& reference);
+  // Reads what the midpoints did not, compares every image's digest with the writer's and returns the
+  // figures of frames and midpoints over every clip. Throws OutputError naming the file when its texels
+  // differ from those the writer checked.
+  DecodeCheck finish();
+  // Clip c's figures (VatFrameCheck::set_clip_starts), once finish() has run.
+  DecodeCheck clip_result(size_t c) const;
 
-  DecodeCheck result() const;
-  // The distances behind result(), for figures over several clips.
-  const ErrorHistogram& frame_errors() const { return frame_errors_; }
-  const ErrorHistogram& midpoint_errors() const { return midpoint_errors_; }
-  // How far the deformed meshes and the decoded ones move away from their first frame (largest vertex
-  // distance over the clip): a texture whose frames all decode to one pose while the clip moves is a
-  // failed bake.
-  double reference_motion() const { return reference_motion_; }
-  double decoded_motion() const { return decoded_motion_; }
+  // How far clip c's deformed meshes and decoded ones move away from its first frame decoded (largest
+  // vertex distance over the clip, frames and midpoints): a texture whose frames all decode to one pose
+  // while the clip moves is a failed bake. The midpoints, deformed apart from the bake's pass, see a
+  // texture stuck in one pose even when the frames fed to the writer were.
+  double reference_motion(size_t c = 0) const;
+  double decoded_motion(size_t c = 0) const;
 
 private:
   struct Decoded {
@@ -62,23 +101,30 @@ private:
     std::vector<float> positions, normals;
   };
   const Decoded& decode(size_t f);
-  void compare(const std::vector<float>& positions, const std::vector<float>& normals, const FrameView& reference,
-               ErrorHistogram& errors, double& normal_degrees);
-
   void open_page(size_t page);
+  // Reads rows [first, first + count) of the current page into the bands, digesting those not yet
+  // digested (rows are read in order).
+  void read_rows(size_t first, size_t count);
+  // Reads and digests the current page's remaining rows and compares the digests with the writer's.
+  void finish_page();
 
   const VatWriter& writer_;
   const VatEncoding& e_;
+  const VatFrameCheck& frames_;
   size_t page_ = SIZE_MAX;  // the page the readers are open on
   std::string positions_name_, normals_name_;
   std::unique_ptr<TexelFileReader> positions_, normals_;
   TexelImage position_band_, normal_band_;
-  bool whole_read_ = false;  // the bands hold rows read from the current page
+  bool band_read_ = false;  // the bands hold rows read from the current page
+  size_t digested_rows_ = 0;  // of the current page
+  TexelDigest position_digest_, normal_digest_;
+  std::vector<bool> pages_verified_;
   Decoded current_, next_;
-  std::vector<float> first_positions_;
-  ErrorHistogram frame_errors_, midpoint_errors_;
-  double max_normal_degrees_ = 0, max_midpoint_normal_degrees_ = 0;
-  double reference_motion_ = 0, decoded_motion_ = 0;
+  struct Midpoints {
+    ErrorHistogram errors;
+    double min_cosine = 1, reference_motion = 0;
+  };
+  std::vector<Midpoints> midpoints_;  // per clip
 };
 
 }  // namespace dqskin::texture

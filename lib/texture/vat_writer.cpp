@@ -1,8 +1,11 @@
 #include "vat_writer.hpp"
 
+#include "vat_check.hpp"
+
 #include "dqskin/error.hpp"
 
 #include <cassert>
+#include <exception>
 #include <future>
 #include <stdexcept>
 
@@ -11,8 +14,8 @@ namespace dqskin::texture {
 // One image file: its AtomicFile, the writer streaming into its temporary, and the band being filled.
 struct VatWriter::Image {
   Image(const std::string& path, TexelType texel_type, size_t image_width, size_t height, int image_channels,
-        const std::string& compression)
-      : file(path, false), writer(file, texel_type, image_width, height, image_channels, compression), type(texel_type),
+        const std::string& compression, bool digest)
+      : file(path, false), writer(file, texel_type, image_width, height, image_channels, compression, digest), type(texel_type),
         width(image_width), channels(image_channels) {}
 
   AtomicFile file;  // synced with the rest of the bake before the manifest
@@ -24,19 +27,20 @@ struct VatWriter::Image {
 };
 
 VatWriter::VatWriter(VatEncoding encoding, VatClipInfo info, const std::string& folder, VatFileNames names,
-                     std::string rest_glb)
+                     std::string rest_glb, bool check)
     : encoding_(std::move(encoding)), info_(std::move(info)), folder_(folder), names_(std::move(names)),
       rest_glb_(std::move(rest_glb)) {
+  if (check) frame_check_ = std::make_unique<VatFrameCheck>(encoding_);
   const VatLayout& l = encoding_.layout;
   const std::optional<TexelType> normal_type = encoding_.normal_image_type();
   for (size_t page = 0; page < l.pages; ++page) {
     positions_.push_back(std::make_unique<Image>(folder_ + "/" + page_file_name(names_.positions, page, l.pages),
                                                  l.format.type, l.width, l.page_height(page), l.position_channels(),
-                                                 encoding_.compression));
+                                                 encoding_.compression, check));
     if (normal_type)
       normals_.push_back(std::make_unique<Image>(folder_ + "/" + page_file_name(names_.normals, page, l.pages),
                                                  *normal_type, l.width, l.page_height(page), normal_channels(encoding_),
-                                                 encoding_.compression));
+                                                 encoding_.compression, check));
   }
 }
 
@@ -58,12 +62,25 @@ void VatWriter::append(const FrameView& frame) {
   }
   encode_vat_frame(encoding_, frame, f, positions->band, normals ? &normals->band : nullptr, "clip " + info_.clip);
   ++frames_written_;
-  if (!l.frame_major() && frames_written_ < l.frames) return;
-  // The two images compress (ZIP) independently: the normals on a second thread.
-  std::future<void> written;
-  if (normals) written = std::async(std::launch::async, [normals] { normals->writer.write(normals->band); });
-  positions->writer.write(positions->band);
-  if (written.valid()) written.get();
+  const bool write = l.frame_major() || frames_written_ == l.frames;
+  // The images are handed to their files on threads of their own (each compresses on OpenEXR's pool when
+  // a chunk fills) while this one checks the frame: the bands are only read meanwhile.
+  std::future<void> positions_written, normals_written;
+  if (write) {
+    positions_written = std::async(std::launch::async, [positions] { positions->writer.write(positions->band); });
+    if (normals) normals_written = std::async(std::launch::async, [normals] { normals->writer.write(normals->band); });
+  }
+  std::exception_ptr failed;
+  try {
+    if (frame_check_)
+      frame_check_->frame(f, positions->band, normals ? &normals->band : nullptr, frame, positions->file.path(),
+                          normals ? normals->file.path() : std::string());
+  } catch (...) {
+    failed = std::current_exception();
+  }
+  for (std::future<void>* written : {&positions_written, &normals_written})
+    if (written->valid()) written->get();  // rethrows a write's error (before the check's: a full disk explains more)
+  if (failed) std::rethrow_exception(failed);
 }
 
 void VatWriter::finish() {
@@ -76,6 +93,10 @@ void VatWriter::finish() {
       image->band = TexelImage();
     }
 }
+
+uint64_t VatWriter::position_digest(size_t page) const { return positions_[page]->writer.digest(); }
+
+uint64_t VatWriter::normal_digest(size_t page) const { return normals_.empty() ? 0 : normals_[page]->writer.digest(); }
 
 VatWriter::WrittenImage VatWriter::positions(size_t page) const {
   return {positions_[page]->writer.temporary(), positions_[page]->file.path()};

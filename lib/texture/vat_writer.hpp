@@ -17,18 +17,23 @@
 
 namespace dqskin::texture {
 
+class VatFrameCheck;  // vat_check.hpp
+
 class VatWriter {
 public:
   // `folder`: the clip's output folder; `names`: the files in it (vat_file_names); `rest_glb`: the rest
-  // mesh's bytes. Creates the images' temporaries now. Throws OutputError naming a file that cannot be
-  // created, InputError for an image no file can hold.
-  VatWriter(VatEncoding encoding, VatClipInfo info, const std::string& folder, VatFileNames names, std::string rest_glb);
+  // mesh's bytes; `check`: check each frame in memory as it is encoded and keep the images' digests for
+  // the read-back (vat_check.hpp; off for --no-check). Creates the images' temporaries now. Throws
+  // OutputError naming a file that cannot be created, InputError for an image no file can hold.
+  VatWriter(VatEncoding encoding, VatClipInfo info, const std::string& folder, VatFileNames names, std::string rest_glb,
+            bool check = true);
   // Without commit(): nothing appears under the final names.
   ~VatWriter();
   VatWriter(const VatWriter&) = delete;
   VatWriter& operator=(const VatWriter&) = delete;
 
-  // Encodes the next frame (frames come in order, each once). Throws as encode_vat_frame, or OutputError.
+  // Encodes the next frame (frames come in order, each once) and, with `check`, compares its texels with
+  // it. Throws as encode_vat_frame or VatFrameCheck::frame, or OutputError.
   void append(const FrameView& frame);
   // After the last frame: completes the images on disk (still under temporary names).
   void finish();
@@ -42,6 +47,12 @@ public:
   };
   WrittenImage positions(size_t page = 0) const;
   WrittenImage normals(size_t page = 0) const;
+  // With `check`: the frames' figures, and each page's images' digests once finish() has run (the normal
+  // image's: 0 when none).
+  const VatFrameCheck* frame_check() const { return frame_check_.get(); }
+  VatFrameCheck* frame_check() { return frame_check_.get(); }
+  uint64_t position_digest(size_t page) const;
+  uint64_t normal_digest(size_t page) const;
 
   // Writes dqskin's JSON (with `check`'s figures when given), the profile's side file and the rest mesh,
   // then commits every file: with kRefuseDifferent all are compared first, so a refusal changes none.
@@ -58,6 +69,7 @@ private:
   VatFileNames names_;
   std::string rest_glb_;
   std::vector<std::unique_ptr<Image>> positions_, normals_;  // one per page; normals_ empty without an image
+  std::unique_ptr<VatFrameCheck> frame_check_;
   size_t frames_written_ = 0;
 };
 

@@ -25,6 +25,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 namespace dqskin::texture {
 namespace {
@@ -138,12 +139,9 @@ Written write_clip(const Deformed& d, const VatFormat& format, const fs::path& f
   writer.finish();
   Written w;
   {
-    VatDecodeChecker checker(writer);
-    for (size_t f = 0; f < d.times.size(); ++f) {
-      checker.baked_frame(f, frame_view(d.frames, f));
-      if (f + 1 < d.times.size()) checker.midpoint(f, frame_view(d.midpoints, f));
-    }
-    w.check = checker.result();
+    VatDecodeChecker checker(writer);  // the frames were checked as they were appended
+    for (size_t f = 0; f + 1 < d.times.size(); ++f) checker.midpoint(f, frame_view(d.midpoints, f));
+    w.check = checker.finish();
     w.reference_motion = checker.reference_motion();
     w.decoded_motion = checker.decoded_motion();
   }
@@ -461,6 +459,147 @@ TEST_F(VatWriterTest, OutputsAreByteIdenticalWhateverTheThreadCount) {
   }
 }
 
+// An image of `rows` rows written through TexelFileWriter in bands of `band_rows` rows (the rows after
+// `skip` zeros), with OpenEXR's pool at `threads`; the file's bytes.
+std::string write_texels(const fs::path& path, TexelType type, size_t width, size_t rows, int channels,
+                         const std::string& compression, size_t band_rows, size_t skip, int threads) {
+  int saved = 0;
+  OIIO::getattribute("exr_threads", saved);
+  OIIO::attribute("exr_threads", threads);
+  {
+    AtomicFile file(path.string(), false);
+    TexelFileWriter writer(file, type, width, rows, channels, compression, true);
+    for (size_t first = skip; first < rows; first += band_rows) {
+      TexelImage band(type, width, std::min(band_rows, rows - first), channels, first);
+      for (size_t y = first; y < first + band.rows(); ++y)
+        for (size_t x = 0; x < width; ++x)
+          for (int c = 0; c < channels; ++c)  // smooth, as positions are, with some noise in the low bits
+          {
+            const float v = float(std::sin(double(x) * 0.01 + double(y) * 0.002 + c)) + float((x * 31 + y) % 7) * 1e-4f;
+            float h = v;
+            if (type == TexelType::kHalf) {
+              EXPECT_TRUE(to_half(v, h));
+            }
+            band.set(x, y, c, h);
+          }
+      writer.write(band);
+    }
+    writer.close();
+    file.commit({});
+  }
+  OIIO::attribute("exr_threads", saved);
+  return read_file(path);
+}
+
+TEST_F(VatWriterTest, GatheredChunksOnEveryThreadWriteTheBytesOfOneThreadRowByRow) {
+  // 300 wide RGBA float rows are 4.7 KB: 2,500 rows are 12 MB, more than one chunk (8 MiB), with a last
+  // chunk that is not a whole number of blocks. One row at a time on one thread is how the bytes were
+  // made before rows were gathered; a frame's 5 rows at a time on 8 threads and one band of everything
+  // must give the same file, and every band size the same digest.
+  for (const std::string compression : {"zip", "piz", "rle", "zips", "none"})
+    for (const TexelType type : {TexelType::kFloat32, TexelType::kHalf}) {
+      const std::string what = compression + " " + to_string(type);
+      const std::string one = write_texels(dir_ / "one.exr", type, 300, 2500, 4, compression, 1, 0, 1);
+      EXPECT_GT(one.size(), 10000u) << what;
+      EXPECT_EQ(one, write_texels(dir_ / "five.exr", type, 300, 2500, 4, compression, 5, 0, 8)) << what;
+      EXPECT_EQ(one, write_texels(dir_ / "all.exr", type, 300, 2500, 4, compression, 2500, 0, 0)) << what;
+      EXPECT_NE(one, write_texels(dir_ / "skip.exr", type, 300, 2500, 4, compression, 5, 40, 8))
+          << what << ": 40 rows of zeros differ";
+    }
+}
+
+TEST_F(VatWriterTest, DigestIsOfTheBytesHowEverTheyAreCut) {
+  std::vector<uint8_t> bytes(1000);
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(i * 37 + i / 7);
+  TexelDigest whole, pieces;
+  whole.add(bytes.data(), bytes.size());
+  for (size_t at = 0, step = 1; at < bytes.size(); at += step, step = step % 45 + 3)
+    pieces.add(bytes.data() + at, std::min(step, bytes.size() - at));
+  EXPECT_EQ(whole.value(), pieces.value());
+  bytes[500] ^= 1;
+  TexelDigest changed;
+  changed.add(bytes.data(), bytes.size());
+  EXPECT_NE(whole.value(), changed.value());
+  TexelDigest longer;
+  longer.add(bytes.data(), bytes.size() - 1);
+  EXPECT_NE(changed.value(), longer.value());
+}
+
+// A clip written with its frames checked in memory, and its positions' temporary replaced by `tamper` before
+// the read-back: the check must fail naming the file.
+void expect_read_back_fails(const Deformed& d, const VatFormat& format, const fs::path& folder,
+                            const std::function<void(const std::string& temporary, const VatEncoding&)>& tamper,
+                            const std::string& why = "") {
+  fs::create_directories(folder);
+  VatEncoding e;
+  e.layout = plan_vat_layout(format, vertex_count(d), d.times.size(), 0, false, "t");
+  if (format.profile == VatProfile::kOpenVat) e.rest = all_positions(frame_view(d.rest, 0));
+  VatMeasure measure(e);
+  VatClipInfo info;
+  info.times = d.times;
+  for (size_t f = 0; f < d.times.size(); ++f) measure.add(frame_view(d.frames, f), f, d.times.size());
+  measure.finish(info, "t");
+  VatWriter writer(e, info, folder.string(), vat_file_names(format, "x"), "");
+  for (size_t f = 0; f < d.times.size(); ++f) writer.append(frame_view(d.frames, f));
+  writer.finish();
+  tamper(writer.positions().temporary, writer.encoding());
+  try {
+    VatDecodeChecker checker(writer);
+    for (size_t f = 0; f + 1 < d.times.size(); ++f) checker.midpoint(f, frame_view(d.midpoints, f));
+    checker.finish();
+    ADD_FAILURE() << "a tampered file passed the check";
+  } catch (const OutputError& err) {
+    EXPECT_EQ(std::string(err.what()).rfind(writer.positions().name + ": ", 0), 0u) << err.what();
+    EXPECT_NE(std::string(err.what()).find(why), std::string::npos) << err.what();
+  }
+}
+
+TEST_F(VatWriterTest, AFileChangedAfterWritingFailsTheCheck) {
+  // The frames are compared in memory; what proves the file holds those texels is the digest of the
+  // rows read back. A file re-encoded with one texel changed decodes cleanly, so only the digest can
+  // catch it: in a row the midpoints read (frame 0) and in the last row, which only the final read
+  // reaches. A byte flipped in the compressed data fails as unreadable or as different.
+  const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf", 0, grid(9, 8));
+  auto change_texel = [](size_t x, bool last_row) {
+    return [x, last_row](const std::string& temporary, const VatEncoding& e) {
+      auto in = OIIO::ImageInput::open(temporary);
+      ASSERT_TRUE(in);
+      OIIO::ImageSpec spec = in->spec();
+      std::vector<float> texels(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+      ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, texels.data()));
+      in->close();
+      const size_t y = last_row ? size_t(spec.height) - 1 : 0;
+      float& v = texels[(y * size_t(spec.width) + x) * size_t(spec.nchannels)];
+      v += v < 0.5f ? 0.25f : -0.25f;  // within [0, 1] for the PNG
+      const bool png = spec.format == OIIO::TypeDesc::UINT16 || spec.format == OIIO::TypeDesc::UINT8;
+      auto out = OIIO::ImageOutput::create(png ? "png" : "openexr");  // the temporary's name has no extension
+      ASSERT_TRUE(out && out->open(temporary, spec));
+      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels.data()));
+      out->close();
+      (void)e;
+    };
+  };
+  const std::string differ = "differ from those the check compared";
+  expect_read_back_fails(d, kDqskin, dir_ / "first", change_texel(3, false), differ);
+  expect_read_back_fails(d, kDqskin, dir_ / "last", change_texel(0, true), differ);
+  expect_read_back_fails(d, VatFormat{VatProfile::kOpenVat, TexelType::kUnorm16, NormalMode::kSeparate}, dir_ / "png",
+                         change_texel(1, false), differ);
+  expect_read_back_fails(d, kDqskin, dir_ / "flipped", [](const std::string& temporary, const VatEncoding&) {
+    std::fstream f(temporary, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(0, std::ios::end);
+    const std::streamoff size = f.tellg();
+    f.seekg(size - 40);
+    char c = 0;
+    f.get(c);
+    f.seekp(size - 40);
+    f.put(char(c ^ 0x10));
+  });
+  // The same clip untampered passes: the failures above are the tampering's.
+  fs::create_directories(dir_ / "clean");
+  const Written w = write_clip(d, kDqskin, dir_ / "clean");
+  EXPECT_EQ(w.check.max_error, 0.0);
+}
+
 TEST_F(VatWriterTest, RefuseDifferentKeepsEqualFilesAndChangesNoneWhenOneDiffers) {
   const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/two_skins.gltf", 0, grid(3, 2));
   write_clip(d, kDqskin, dir_);
@@ -508,8 +647,10 @@ TEST_F(VatWriterTest, UnwritableFolderIsAnOutputErrorNamingTheFile) {
 }
 
 TEST_F(VatWriterTest, ABakeOfOnePoseInEveryRowDecodesWithoutMotion) {
-  // The failure users report: a bake that "succeeded" with the bind pose in every row. The checker sees
-  // the deformed clip move and the texture stand still, the figures the bake fails on.
+  // The failure users report: a bake that "succeeded" with the bind pose in every row. The frames fed to
+  // the writer were the bind pose too, so the in-memory comparison of frames sees nothing wrong; the
+  // midpoints, deformed apart, see the clip move and the texture stand still, the figures the bake fails
+  // on.
   const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf", 0, grid(9, 8));
   VatEncoding e;
   e.layout = plan_vat_layout(kDqskin, vertex_count(d), d.times.size(), 0, false, "t");
@@ -517,13 +658,39 @@ TEST_F(VatWriterTest, ABakeOfOnePoseInEveryRowDecodesWithoutMotion) {
   for (size_t f = 0; f < d.times.size(); ++f) writer.append(frame_view(d.rest, 0));
   writer.finish();
   VatDecodeChecker checker(writer);
-  for (size_t f = 0; f < d.times.size(); ++f) {
-    checker.baked_frame(f, frame_view(d.frames, f));
-    if (f + 1 < d.times.size()) checker.midpoint(f, frame_view(d.midpoints, f));
-  }
+  for (size_t f = 0; f + 1 < d.times.size(); ++f) checker.midpoint(f, frame_view(d.midpoints, f));
+  const DecodeCheck c = checker.finish();
   EXPECT_EQ(checker.decoded_motion(), 0.0);
   EXPECT_GT(checker.reference_motion(), 0.1) << "the twist moves the cylinder's rim by more than a tenth";
-  EXPECT_GT(checker.result().max_error, 0.1);
+  EXPECT_EQ(c.max_error, 0.0) << "the frames are the ones fed";
+  EXPECT_GT(c.max_midpoint_error, 0.1);
+}
+
+TEST_F(VatWriterTest, ClipsOfOneTextureHaveTheirOwnFiguresAndMotion) {
+  // Two clips in one texture: frames 0-4 the twist, frames 5-8 stuck in frame 5's pose. The second clip's
+  // motion is measured from its own first frame: it decodes without motion while its midpoints (deformed
+  // apart) move; the first clip moves. The whole figures are the clips' together.
+  const Deformed d = deform_clip(std::string(DQSKIN_TESTDATA_DIR) + "/twisted_cylinder.gltf", 0, grid(9, 8));
+  VatEncoding e;
+  e.layout = plan_vat_layout(kDqskin, vertex_count(d), d.times.size(), 0, false, "t");
+  VatWriter writer(e, {}, dir_.string(), vat_file_names(kDqskin, "x"), "");
+  writer.frame_check()->set_clip_starts({0, 5});
+  for (size_t f = 0; f < d.times.size(); ++f) writer.append(frame_view(d.frames, std::min<size_t>(f, 5)));
+  writer.finish();
+  VatDecodeChecker checker(writer);
+  for (size_t f = 0; f + 1 < d.times.size(); ++f)
+    if (f != 4) checker.midpoint(f, frame_view(d.midpoints, f));  // not across the clips' boundary
+  const DecodeCheck whole = checker.finish();
+  const DecodeCheck first = checker.clip_result(0), second = checker.clip_result(1);
+  EXPECT_GT(checker.decoded_motion(0), 0.1);
+  EXPECT_EQ(checker.decoded_motion(1), 0.0);
+  EXPECT_GT(checker.reference_motion(1), 0.1);
+  EXPECT_EQ(first.max_error, 0.0);
+  EXPECT_EQ(second.max_error, 0.0) << "the frames are the ones fed";
+  EXPECT_GT(second.max_midpoint_error, first.max_midpoint_error);
+  EXPECT_EQ(whole.samples, first.samples + second.samples);
+  EXPECT_EQ(whole.samples, (9 + 7) * vertex_count(d));
+  EXPECT_EQ(whole.max_midpoint_error, std::max(first.max_midpoint_error, second.max_midpoint_error));
 }
 
 TEST_F(VatWriterTest, HalfOverflowIsAnErrorNamingFrameAndVertex) {
