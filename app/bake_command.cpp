@@ -290,8 +290,10 @@ Command add_bake_command(CLI::App& app) {
   bake_cmd->footer(
       "Outputs: OUTDIR/<input name>/<animation>/frame_NNNN.{glb,ply,obj} (frame numbers zero-padded, so name order is\n"
       "frame order), materials.mtl, vat_positions.exr, vat_normals.exr, vat.json, bones_skinK.{exr,json},\n"
-      "animation.glb (morph), sockets.{json,exr} (--sockets), root_motion.json (--root-motion), and\n"
-      "OUTDIR/manifest.json (manifest.shard-I-of-N.json for a shard). Files appear complete or not at all.\n"
+      "animation.glb (morph), sockets.{json,exr} (--sockets), root_motion.json (--root-motion); with\n"
+      "--combine-clips the textures of every animation in OUTDIR/<input name>/; OUTDIR/shader_kit/<engine>/\n"
+      "(--shader-kit); and OUTDIR/manifest.json (manifest.shard-I-of-N.json for a shard). Files appear complete\n"
+      "or not at all.\n"
       "Exit status: 0 success, 1 some inputs failed (the others baked), 2 usage or input error, 3 no OpenGL context.\n"
       "Examples:\n"
       "  dqskin bake Fox.glb -o out --format glb,vat\n"
