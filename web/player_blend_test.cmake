@@ -17,8 +17,7 @@
 #         -DWORK=dir -P player_blend_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
-set(pixel 0.05)
-set(percent 2)
+include("${CMAKE_CURRENT_LIST_DIR}/shot_comparison.cmake")  # pixel, percent, run()
 
 macro(skip why)
   message("player: SKIPPED: ${why}")
@@ -33,13 +32,6 @@ if(NOT EXISTS "${THREE_DIR}/build/three.module.js")
   skip("three.js is missing at ${THREE_DIR}; run scripts/install/node_tools.sh on the build folder's tools/")
 endif()
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
-  if(NOT status EQUAL 0)
-    string(REPLACE ";" " " line "${ARGN}")
-    message(FATAL_ERROR "${line}: exit ${status}\n${out}${err}")
-  endif()
-endfunction()
 
 set(model "${SOURCE_DIR}/testdata/twisted_cylinder.gltf")
 file(REMOVE_RECURSE "${WORK}")

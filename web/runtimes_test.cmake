@@ -8,7 +8,7 @@
 #      animation, or PlayCanvas's skinning chunk fed one row of the texture a frame) in headless Chromium
 #      (web/runtimes/capture.mjs), into WORK/shots;
 #   4. compares every shot with dqskin's render of that frame as the three.js player's test does
-#      (player_test.cmake's thresholds): `dqskin diff` must pass (or warn) with --fail ${pixel}
+#      (shot_comparison.cmake's thresholds): `dqskin diff` must pass (or warn) with --fail ${pixel}
 #      --failpercent ${percent}; and each of FAULTS (frame:fault, a deliberately wrong read of the texture:
 #      row-order, transpose, joint-order,
 #      texel-offset, clip-offset: web/runtimes/page.js) must fail it.
@@ -19,10 +19,8 @@
 #         -DFAULTS=4:transpose,15:row-order [-DCOMBINED=1] -DWORK=dir -P runtimes_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
-# The three.js player's thresholds (player_test.cmake, where they are explained): a pixel is over when a
-# channel differs by more than `pixel`, and a shot fails when more than `percent` % of its pixels are.
-set(pixel 0.05)
-set(percent 2)
+# The three.js player's thresholds, run() and compare_shots().
+include("${CMAKE_CURRENT_LIST_DIR}/shot_comparison.cmake")
 
 macro(skip why)
   message("runtimes: SKIPPED: ${why}")
@@ -49,13 +47,6 @@ foreach(file "${package}" three/build/three.module.js)
   endif()
 endforeach()
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 600)
-  if(NOT status EQUAL 0)
-    string(REPLACE ";" " " line "${ARGN}")
-    message(FATAL_ERROR "${line}: exit ${status}\n${out}${err}")
-  endif()
-endfunction()
 
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
@@ -92,39 +83,4 @@ endforeach()
 run("${NODE}" "${SOURCE_DIR}/web/runtimes/capture.mjs" --modules "${MODULES}" --bakes "${WORK}" --out "${WORK}/shots"
     --chromium "${CHROMIUM}" --size 256x256 ${captures})
 
-# The render's folder for the clip: bake and render name it alike (docs/formats.md, "Bake outputs").
-file(GLOB clip_dirs LIST_DIRECTORIES true "${WORK}/render/${stem}/*")
-list(LENGTH clip_dirs count)
-if(NOT count EQUAL 1)
-  message(FATAL_ERROR "${WORK}/render/${stem}: expected one clip folder, found ${count}")
-endif()
-set(report "")
-set(problems "")
-foreach(item IN LISTS expect_pass expect_fail)
-  string(REPLACE ":" ";" parts "${item}")
-  list(GET parts 0 name)
-  list(GET parts 1 frame)
-  # Frame file names have at least four digits.
-  set(number "000${frame}")
-  string(LENGTH "${number}" length)
-  math(EXPR first "${length} - 4")
-  string(SUBSTRING "${number}" ${first} 4 number)
-  execute_process(COMMAND "${DQSKIN}" diff "${clip_dirs}/frame_${number}.png" "${WORK}/shots/${name}.png"
-                          --fail ${pixel} --failpercent ${percent}
-                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
-  string(REGEX REPLACE "\n.*" "" line "${out}")
-  string(REGEX REPLACE "^([A-Z]+) +[^ ]+ +" "\\1 " line "${line}")
-  string(APPEND report "${name} (frame ${frame}): ${line}\n")
-  if(name MATCHES "^fault_")
-    if(NOT status EQUAL 2)
-      string(APPEND problems "${name}: a deliberately wrong decode passed the comparison (exit ${status})\n")
-    endif()
-  elseif(NOT (status EQUAL 0 OR status EQUAL 1))
-    string(APPEND problems "${name}: ${RUNTIME} differs from dqskin render (exit ${status}) ${err}\n")
-  endif()
-endforeach()
-file(WRITE "${WORK}/figures.txt" "${report}")
-message("${report}")
-if(problems)
-  message(FATAL_ERROR "${problems}")
-endif()
+compare_shots("${RUNTIME}")
