@@ -51,6 +51,15 @@ if(NOT out STREQUAL "dqskin ${VERSION}\n")
   message(FATAL_ERROR "installed dqskin --version printed '${out}', expected 'dqskin ${VERSION}'")
 endif()
 
+# The image module (libdqskin_image.so.*, opened at run time beside libdqskin) is installed and found: the
+# installed CLI bakes the built-in rig into a vertex-animation texture (EXR through OpenImageIO) and checks
+# it by reading it back.
+run("installed dqskin bake --format vat" "${PREFIX}/bin/dqskin" bake -o "${WORK_DIR}/vat" --format vat -q)
+file(GLOB_RECURSE textures "${WORK_DIR}/vat/*.exr")
+if(NOT textures)
+  message(FATAL_ERROR "the installed dqskin wrote no EXR texture into ${WORK_DIR}/vat")
+endif()
+
 if(NOT EXISTS "${MODEL}")
   message("install.consumer: SKIPPED running the consumer: shared test model ${MODEL} is absent")
   return()

@@ -1,13 +1,9 @@
 #include "baked_file.hpp"
+#include "diff_image_files.hpp"
 #include "diff_side.hpp"
-#include "image_bands.hpp"
-#include "../base/oiio_message.hpp"
-#include "../base/saturating.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/load.hpp"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cstring>
@@ -118,25 +114,6 @@ BakedPoints read_glb(const std::string& path, const LoadOptions& load) {
   return points;
 }
 
-// An EXR texture: each texel's first three channels (a VAT's position, a bone texture's first values),
-// read a band of rows at a time.
-BakedPoints read_exr(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(oiio_message(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  const size_t channels = size_t(std::max(0, spec.nchannels));
-  if (channels < 1) throw InputError("texture has no channels");
-  if (spec.deep) throw InputError("deep (multi-sample) textures are not compared");
-  BakedPoints points;
-  points.positions.assign(size_t(pixel_count(spec)), glm::vec3(0.0f));
-  const std::string why = read_float_bands(*in, [&points, channels](const float* values, size_t first, size_t count) {
-    for (size_t t = 0; t < count; ++t)
-      for (size_t c = 0; c < std::min<size_t>(channels, 3); ++c) points.positions[first + t][int(c)] = values[t * channels + c];
-  });
-  if (!why.empty()) throw InputError(oiio_message(why));
-  return points;
-}
-
 }  // namespace
 
 bool is_baked_file(const std::string& path) {
@@ -146,15 +123,7 @@ bool is_baked_file(const std::string& path) {
 
 DeclaredSize declared_size(const std::string& path) {
   if (extension_of(path) != ".exr") return {};
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    OIIO::geterror();  // forgotten: read_baked_file says why
-    return {};
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  const uint64_t texels = pixel_count(spec);
-  return {saturating::add(saturating::mul(texels, sizeof(glm::vec3)), band_bytes(spec)), texels,
-          std::to_string(spec.width) + "x" + std::to_string(spec.height) + " texels"};
+  return diff_image_files().exr_declared_size(path);
 }
 
 BakedPoints read_baked_file(const std::string& path, const LoadOptions& load) {
@@ -162,7 +131,7 @@ BakedPoints read_baked_file(const std::string& path, const LoadOptions& load) {
   if (e == ".ply") return read_ply(path);
   if (e == ".obj") return read_obj(path);
   if (e == ".glb") return read_glb(path, load);
-  return read_exr(path);
+  return diff_image_files().read_exr(path);
 }
 
 }  // namespace dqskin::diff_detail

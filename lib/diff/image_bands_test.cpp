@@ -1,6 +1,6 @@
 // Reading images a band of rows at a time (image_bands.hpp), and the image diff's refusal of an image whose
 // declared size needs more than --max-memory.
-#include "image_bands.hpp"
+#include "image_bands_oiio.hpp"
 
 #include "dqskin/image_diff.hpp"
 #include "../test_support/scratch_dir.hpp"

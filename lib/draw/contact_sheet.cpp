@@ -1,16 +1,11 @@
 // Whole-animation review images: contact sheets (a grid of resized frames with their numbers drawn in a
-// built-in digit font) and animated GIFs, both through OpenImageIO and written atomically.
+// built-in digit font) and animated GIFs, both written atomically by the image module (image_files.hpp).
 #include "dqskin/image_output.hpp"
-#include "../base/oiio_message.hpp"
-#include "../base/image_file.hpp"
+#include "image_files.hpp"
 #include "../base/srgb.hpp"
 #include "bitmap_font.hpp"
 
 #include "dqskin/error.hpp"
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <array>
@@ -53,14 +48,7 @@ void ContactSheet::add(const Image& frame, int number) {
     throw InputError("contact sheet frames differ in size");
   frames_width_ = frame.width, frames_height_ = frame.height;
   const int height = std::max(1, int(std::lround(double(cell_width_) * frame.height / frame.width)));
-  OIIO::ImageBuf source(OIIO::ImageSpec(frame.width, frame.height, 4, OIIO::TypeDesc::FLOAT));
-  source.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, frame.rgba.data());
-  OIIO::ImageBuf cell(OIIO::ImageSpec(cell_width_, height, 4, OIIO::TypeDesc::FLOAT));
-  // One thread, so that the result cannot depend on how the work is split.
-  if (!OIIO::ImageBufAlgo::resize(cell, source, "", 0, OIIO::ROI(), 1))
-    throw InputError("contact sheet: " + oiio_message(cell.geterror()));
-  Image resized{cell_width_, height, std::vector<float>(size_t(cell_width_) * size_t(height) * 4)};
-  cell.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, resized.rgba.data());
+  const Image resized = image_files().resize(frame, cell_width_, height);
   cells_.push_back(to_srgb8(resized));
   numbers_.push_back(number);
 }
@@ -93,65 +81,19 @@ Image8 ContactSheet::compose() const {
 Committed ContactSheet::write(const std::string& path, const CommitOptions& options) const {
   const Image8 sheet = compose();
   AtomicFile file(path, false);
-  OIIO::ImageSpec spec(sheet.width, sheet.height, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  io::write_image_file(file, "png", spec, OIIO::TypeDesc::UINT8, sheet.rgba.data());
+  image_files().write_png(file, sheet);
   return file.commit(options);
 }
 
-struct GifWriter::Impl {
-  AtomicFile file;
-  std::string temporary;
-  std::unique_ptr<OIIO::ImageOutput> out;
-  OIIO::ImageSpec spec;
-  double fps;
-  Impl(std::string path, double f) : file(std::move(path), false), temporary(file.hand_over()), fps(f) {}
-  [[noreturn]] void fail() const {
-    throw OutputError(file.path() + ": " + oiio_message(out ? out->geterror() : OIIO::geterror()));
-  }
-};
+GifWriter::GifWriter(std::string path, double fps) : impl_(image_files().open_gif(std::move(path), fps)) {}
 
-GifWriter::GifWriter(std::string path, double fps) : impl_(std::make_unique<Impl>(std::move(path), fps)) {
-  if (!(fps > 0)) throw InputError("a GIF needs frames per second above 0");
-  impl_->out = OIIO::ImageOutput::create("gif");
-  if (!impl_->out) impl_->fail();
-}
-
-GifWriter::~GifWriter() {
-  if (impl_ && impl_->out && frames_ > 0) impl_->out->close();
-}
+GifWriter::~GifWriter() = default;
 
 void GifWriter::add(const Image& frame) {
-  Impl& g = *impl_;
-  if (frames_ > 0 && (frame.width != g.spec.width || frame.height != g.spec.height))
-    throw InputError("GIF frames differ in size");
-  if (frames_ == 0) {
-    g.spec = OIIO::ImageSpec(frame.width, frame.height, 3, OIIO::TypeDesc::UINT8);
-    g.spec.attribute("oiio:ColorSpace", "sRGB");
-    // GIF counts delays in hundredths of a second; a rational keeps fractional rates such as 29.97.
-    // Clamped first: lround of a rate beyond long's range has no defined value.
-    const int rate[2] = {int(std::lround(std::clamp(g.fps, 1e-3, 1e6) * 1000)), 1000};
-    g.spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
-    g.spec.attribute("oiio:Movie", 1);
-    g.spec.attribute("gif:LoopCount", 0);  // loop forever
-  }
-  if (!g.out->open(g.temporary, g.spec, frames_ == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendSubimage))
-    g.fail();
-  // GIF has no partial transparency: color only.
-  const Image8 pixels = to_srgb8(frame);
-  std::vector<uint8_t> rgb(size_t(frame.width) * size_t(frame.height) * 3);
-  for (size_t p = 0; p < rgb.size() / 3; ++p) std::copy_n(pixels.rgba.data() + p * 4, 3, rgb.data() + p * 3);
-  if (!g.out->write_image(OIIO::TypeDesc::UINT8, rgb.data())) g.fail();
+  impl_->add(frame, frames_);
   ++frames_;
 }
 
-Committed GifWriter::commit(const CommitOptions& options) {
-  Impl& g = *impl_;
-  if (frames_ == 0) throw OutputError(g.file.path() + ": a GIF needs at least one frame");
-  if (!g.out->close()) g.fail();
-  g.out.reset();
-  return g.file.commit(options);
-}
+Committed GifWriter::commit(const CommitOptions& options) { return impl_->commit(options, frames_); }
 
 }  // namespace dqskin

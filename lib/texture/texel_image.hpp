@@ -109,8 +109,10 @@ public:
   // file; complete after close().
   uint64_t digest() const;
 
-private:
+  // What the image module does behind these calls (texel_files.hpp).
   struct Impl;
+
+private:
   std::unique_ptr<Impl> impl_;
 };
 
@@ -128,8 +130,10 @@ public:
   // Rows [first, first + rows) into `band` (reallocated to fit). Throws OutputError.
   void read(size_t first, size_t rows, TexelImage& band);
 
-private:
+  // What the image module does behind these calls (texel_files.hpp).
   struct Impl;
+
+private:
   std::unique_ptr<Impl> impl_;
 };
 

@@ -8,6 +8,8 @@ A folder may include itself and the folders its rule lists; a public header (lib
 counts as its owner folder's. Tests (*_test.cpp) are the library's first users, not part of it: they build
 their inputs with the loader and the commands, so they may include any folder, as may app/, fuzz/ and bench/,
 which drive the library. Only the loader compiles tinygltf, Draco and meshoptimizer; its tests may too.
+Only the image module's files (named *_oiio.cpp or *_oiio.hpp, built into libdqskin_image.so and opened
+at run time: lib/base/image_module.hpp) include OpenImageIO; tests and drivers may too.
 Exit status 0 when every include is allowed, 1 otherwise, 2 when a folder or public header has no rule.
 """
 import os
@@ -59,6 +61,8 @@ PUBLIC = {
 # Third-party headers only the loader compiles.
 LOADER_ONLY = re.compile(r"^(tiny_gltf\.h|draco/|meshoptimizer\.h)")
 DRIVERS = ("app", "fuzz", "bench")
+# OpenImageIO: the image module only.
+IMAGE_MODULE_ONLY = re.compile(r"^OpenImageIO/")
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 
@@ -104,6 +108,10 @@ def main():
                     where = f"{rel}:{line_no}: #include {quote}{spelled}{'>' if quote == '<' else quote}"
                     if quote == "<" and LOADER_ONLY.match(spelled) and here != "load" and here not in DRIVERS:
                         problems.append(f"{where}: only lib/load compiles tinygltf, Draco and meshoptimizer")
+                    if (quote == "<" and IMAGE_MODULE_ONLY.match(spelled) and "_oiio." not in name and not is_test
+                            and here not in DRIVERS):
+                        problems.append(f"{where}: only the image module's *_oiio files include OpenImageIO "
+                                        f"(lib/base/image_module.hpp)")
                     if quote == "<" and not spelled.startswith("dqskin/"):
                         continue
                     there = target_folder(root, path, spelled)

@@ -75,8 +75,10 @@ public:
   size_t frames() const { return frames_; }
   Committed commit(const CommitOptions& options = {});
 
-private:
+  // The image module's side of the file (draw/image_files.hpp).
   struct Impl;
+
+private:
   std::unique_ptr<Impl> impl_;
   size_t frames_ = 0;
 };

@@ -1,4 +1,4 @@
-#include "image_file.hpp"
+#include "image_file_oiio.hpp"
 
 #include "dqskin/error.hpp"
 #include "oiio_message.hpp"

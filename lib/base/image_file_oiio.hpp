@@ -1,6 +1,6 @@
-// One whole image written through OpenImageIO into an AtomicFile's temporary (internal to the writers of
-// rendered frames, contact sheets and diff heat maps; streaming writers such as the VAT rows and the GIF
-// keep their own ImageOutput open).
+// One whole image written through OpenImageIO into an AtomicFile's temporary (internal to the image
+// module's writers of rendered frames, contact sheets, PNG textures and diff heat maps; streaming writers
+// such as the VAT rows and the GIF keep their own ImageOutput open).
 #pragma once
 
 #include "dqskin/atomic_file.hpp"

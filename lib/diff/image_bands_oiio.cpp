@@ -1,4 +1,4 @@
-#include "image_bands.hpp"
+#include "image_bands_oiio.hpp"
 
 #include "../base/saturating.hpp"
 
