@@ -1,6 +1,6 @@
 #include "morph_bake.hpp"
 
-#include "keyframe_reduction.hpp"
+#include "../anim/keyframe_reduction.hpp"
 #include "../base/parallel_for.hpp"
 #include "../base/length_text.hpp"
 #include "../write/morph_glb.hpp"

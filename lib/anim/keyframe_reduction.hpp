@@ -1,13 +1,13 @@
-// Keyframe reduction for the morph-target animation (internal to lib/bake): which of a clip's baked frames a
-// viewer must hold as keys so that linear interpolation between the held ones reproduces every baked frame
-// within a budget.
+// Keyframe reduction (internal to lib/): which of a sequence of frames or keys (a morph animation's baked
+// frames, an animation channel's keys) a viewer must hold so that interpolation between the held ones
+// reproduces every one within a budget (bake --format morph, dqskin optimize).
 #pragma once
 
 #include <cstddef>
 #include <functional>
 #include <vector>
 
-namespace dqskin::bake_detail {
+namespace dqskin {
 
 // The error at frame i when a viewer interpolates it linearly between keys a and b (a < i < b), as they are
 // stored (quantized, when they are). Called from several threads at once: it must only read.
@@ -22,4 +22,4 @@ using InterpolationError = std::function<double(size_t i, size_t a, size_t b)>;
 // spread over `threads` threads.
 std::vector<size_t> reduce_keyframes(size_t frames, double budget, const InterpolationError& error, unsigned threads);
 
-}  // namespace dqskin::bake_detail
+}  // namespace dqskin

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-namespace dqskin::bake_detail {
+namespace dqskin {
 namespace {
 
 // A one-dimensional motion x(i), interpolated linearly in the frame index between keys.
@@ -79,4 +79,4 @@ TEST(KeyframeReduction, ThreadsDoNotChangeTheKeys) {
 }
 
 }  // namespace
-}  // namespace dqskin::bake_detail
+}  // namespace dqskin

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <utility>
 
-namespace dqskin::bake_detail {
+namespace dqskin {
 
 std::vector<size_t> reduce_keyframes(size_t frames, double budget, const InterpolationError& error, unsigned threads) {
   if (frames <= 2) {
@@ -34,4 +34,4 @@ std::vector<size_t> reduce_keyframes(size_t frames, double budget, const Interpo
   return keys;
 }
 
-}  // namespace dqskin::bake_detail
+}  // namespace dqskin
