@@ -37,6 +37,7 @@ Command add_report_command(CLI::App& app);
 Command add_lint_command(CLI::App& app);
 Command add_verify_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
+Command add_optimize_command(CLI::App& app);
 
 // How every command that reads glTF files reads them (--resource-root, --max-memory), shared so that info,
 // bake and render read the same flags the same way.

@@ -28,13 +28,15 @@ int dqskin::cli::run_cli(int argc, const char* const* argv) {
              "  dqskin bake Fox.glb -o out --format glb,vat\n"
              "  dqskin report Fox.glb -o reports\n"
              "  dqskin lint *.glb --junit lint.xml\n"
+             "  dqskin optimize Fox.glb -o Fox.small.glb --max-error 0.1%\n"
              "  dqskin verify out\n"
              "  dqskin bench --quick");
 
 
   const Command commands[] = {add_info_command(app), add_bench_command(app), add_bake_command(app),
                               add_render_command(app), add_diff_command(app), add_report_command(app),
-                              add_lint_command(app), add_verify_command(app), add_merge_command(app)};
+                              add_lint_command(app), add_optimize_command(app), add_verify_command(app),
+                              add_merge_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -35,7 +35,7 @@ MAY_INCLUDE = {
 }
 # The commands: each may include every folder above, never another command, and nothing includes them but
 # app/ (and the drivers beside it).
-COMMANDS = ["bake", "render", "diff", "lint", "report", "verify", "info", "bench"]
+COMMANDS = ["bake", "render", "diff", "lint", "report", "verify", "info", "optimize", "bench"]
 for command in COMMANDS:
     MAY_INCLUDE[command] = [f for f in MAY_INCLUDE if f != "test_support"]
 MAY_INCLUDE["test_support"] = [f for f in MAY_INCLUDE if f not in COMMANDS and f != "test_support"]
@@ -53,7 +53,7 @@ PUBLIC = {
     "glb_images": "write",
     "camera": "draw", "renderer": "draw", "image_output": "draw",
     "job": "job",
-    "bake": "bake", "render": "render", "lint": "lint", "report": "report", "verify": "verify", "info": "info",
+    "bake": "bake", "render": "render", "lint": "lint", "optimize": "optimize", "report": "report", "verify": "verify", "info": "info",
     "bench": "bench",
     "image_diff": "diff", "diff_report": "diff", "geometry_diff": "diff", "geometry_report": "diff",
 }

@@ -1,0 +1,337 @@
+// `dqskin optimize` (dqskin/optimize.hpp): per clip, a search for the largest per-channel budget whose
+// reduced channels keep the surface within the error budget, then the file written and measured again as
+// read back (docs/DESIGN.md §3.12).
+#include "dqskin/optimize.hpp"
+
+#include "channel_reduction.hpp"
+#include "levers.hpp"
+#include "surface_error.hpp"
+#include "../asset/source_document.hpp"
+#include "../load/animation_glb.hpp"
+
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace dqskin {
+namespace {
+
+using nlohmann::json;
+using optimize_detail::ReducedChannel;
+
+// The search accepts a candidate whose fast-deformer error is within this share of the budget: the
+// written file is measured again by the double-precision reference, whose figures differ from the float
+// deformer's by float rounding.
+constexpr double kSearchMargin = 0.98;
+
+// Where an Asset channel comes from in the file: its animation's channel and sampler, and the output's
+// component type. Channels that cannot be rewritten on their own (a sampler shared with another channel,
+// a KHR_animation_pointer target) have none.
+struct ChannelSource {
+  bool rewritable = false;
+  size_t channel = 0, sampler = 0;
+  int component = 5126;
+};
+
+// The file channels of animation `a` matched to clip channels by node and path. A clip with pointer or
+// duplicate channels is matched not at all (`why` says so): its channels are kept as they are.
+std::vector<ChannelSource> match_channels(const json& doc, size_t a, const Clip& clip, std::string& why) {
+  std::vector<ChannelSource> sources(clip.channels.size());
+  if (!doc.contains("animations") || a >= doc["animations"].size()) {
+    why = "its animation is not in the document";
+    return sources;
+  }
+  const json& animation = doc["animations"][a];
+  const json& channels = animation.value("channels", json::array());
+  const json& accessors = doc.value("accessors", json::array());
+  std::map<size_t, int> sampler_users;
+  for (const json& c : channels) ++sampler_users[c.value("sampler", size_t(0))];
+  std::map<std::pair<int, std::string>, size_t> by_target;
+  for (size_t c = 0; c < channels.size(); ++c) {
+    const json& target = channels[c].value("target", json::object());
+    if (!target.contains("node") || target.value("path", std::string()) == "pointer") {
+      why = "it has KHR_animation_pointer channels, which are kept as they are";
+      return std::vector<ChannelSource>(clip.channels.size());
+    }
+    if (!by_target.emplace(std::make_pair(target["node"].get<int>(), target.value("path", std::string())), c).second) {
+      why = "it has two channels with one target, which are kept as they are";
+      return std::vector<ChannelSource>(clip.channels.size());
+    }
+  }
+  for (size_t i = 0; i < clip.channels.size(); ++i) {
+    const Channel& ch = clip.channels[i];
+    const auto it = by_target.find({ch.node, target_path_name(ch.path)});
+    if (it == by_target.end()) continue;
+    const size_t s = channels[it->second].value("sampler", size_t(0));
+    if (sampler_users[s] != 1) continue;
+    const json& sampler = animation["samplers"][s];
+    const size_t output = sampler.value("output", size_t(0));
+    sources[i] = {true, it->second, s, output < accessors.size() ? accessors[output].value("componentType", 5126) : 5126};
+  }
+  return sources;
+}
+
+// The node's rest value of a channel's path as floats (null for weights: a weights channel is never dropped).
+const float* rest_value(const Asset& asset, const Channel& ch, float (&out)[4]) {
+  if (ch.node < 0 || ch.path == TargetPath::kWeights) return nullptr;
+  const LocalTransform& t = asset.nodes[size_t(ch.node)].local;
+  if (t.has_matrix) return nullptr;
+  switch (ch.path) {
+    case TargetPath::kTranslation: out[0] = float(t.translation.x), out[1] = float(t.translation.y), out[2] = float(t.translation.z); break;
+    case TargetPath::kScale: out[0] = float(t.scale.x), out[1] = float(t.scale.y), out[2] = float(t.scale.z); break;
+    case TargetPath::kRotation:
+      out[0] = float(t.rotation.x), out[1] = float(t.rotation.y), out[2] = float(t.rotation.z), out[3] = float(t.rotation.w);
+      break;
+    case TargetPath::kWeights: return nullptr;
+  }
+  return out;
+}
+
+// How many of the clip's rewritable channels one vertex can feel at most: the largest dependency set's
+// count (docs/DESIGN.md §3.12: the budget is shared by the channels of one chain).
+size_t channels_on_a_chain(const optimize_detail::Levers& levers, const Clip& clip,
+                           const std::vector<ChannelSource>& sources) {
+  std::map<int, size_t> per_node;  // node → channels; -1 - node for its weights
+  for (size_t i = 0; i < clip.channels.size(); ++i) {
+    if (!sources[i].rewritable) continue;
+    const Channel& ch = clip.channels[i];
+    ++per_node[ch.path == TargetPath::kWeights ? -1 - ch.node : ch.node];
+  }
+  size_t most = 0;
+  for (const std::vector<int>& set : levers.dependency_sets) {
+    size_t n = 0;
+    for (int node : set) {
+      const auto it = per_node.find(node);
+      if (it != per_node.end()) n += it->second;
+    }
+    most = std::max(most, n);
+  }
+  return most;
+}
+
+struct Candidate {
+  Clip clip;
+  std::vector<ReducedChannel> reduced;  // per input channel
+  bool changed = false;
+};
+
+// The clip with every rewritable channel reduced under `channel_budget`, its end kept where it was.
+Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<ChannelSource>& sources,
+                      const optimize_detail::Levers& levers, double channel_budget, const OptimizeOptions& options) {
+  Candidate c;
+  c.clip = clip;
+  c.clip.channels.clear();
+  c.reduced.resize(clip.channels.size());
+  for (size_t i = 0; i < clip.channels.size(); ++i) {
+    const Channel& ch = clip.channels[i];
+    ReducedChannel& r = c.reduced[i];
+    const bool moves = ch.node >= 0 && levers.nodes[size_t(ch.node)].moves_vertices;
+    if (!sources[i].rewritable || !moves || !options.remove_keys) {
+      r.channel = ch;
+    } else {
+      float rest[4] = {0, 0, 0, 0};
+      r = optimize_detail::reduce_channel(ch, levers.nodes[size_t(ch.node)], channel_budget,
+                                          rest_value(asset, ch, rest), options.drop_channels, options.threads);
+    }
+    c.changed = c.changed || r.dropped || r.channel.times.size() != ch.times.size();
+    if (!r.dropped) c.clip.channels.push_back(r.channel);
+  }
+  // A clip lasts until its last key (glTF time starts at 0): if every channel that reached the end lost its
+  // last key, the first of them keeps its last value there (a repeat is exact: the value is held).
+  double end = 0;
+  for (const Channel& ch : c.clip.channels)
+    if (!ch.times.empty()) end = std::max(end, double(ch.times.back()));
+  if (end < clip.last_key) {
+    for (size_t i = 0; i < clip.channels.size(); ++i) {
+      ReducedChannel& r = c.reduced[i];
+      if (r.dropped || double(clip.channels[i].times.back()) < clip.last_key || r.channel.interpolation == Interpolation::kCubicSpline)
+        continue;
+      const size_t n = size_t(r.channel.components);
+      r.channel.times.push_back(clip.channels[i].times.back());
+      r.channel.values.insert(r.channel.values.end(), r.channel.values.end() - std::ptrdiff_t(n), r.channel.values.end());
+      break;
+    }
+    c.clip.channels.clear();
+    for (const ReducedChannel& r : c.reduced)
+      if (!r.dropped) c.clip.channels.push_back(r.channel);
+  }
+  return c;
+}
+
+size_t key_count(const Clip& clip) {
+  size_t keys = 0;
+  for (const Channel& ch : clip.channels) keys += ch.times.size();
+  return keys;
+}
+
+uint64_t file_size_of(const std::string& path) {
+  std::error_code error;
+  const auto size = std::filesystem::file_size(path, error);
+  return error ? 0 : uint64_t(size);
+}
+
+}  // namespace
+
+OptimizeSummary optimize(const std::string& input, const std::string& output, const OptimizeOptions& options) {
+  if (!(options.max_error_percent >= 0) && !(options.max_error >= 0 && std::isfinite(options.max_error)))
+    throw InputError("--max-error must be a length of at least 0, not " + std::to_string(options.max_error));
+  if (options.max_error_percent >= 0 && !std::isfinite(options.max_error_percent))
+    throw InputError("--max-error must be a finite percentage");
+  LoadOptions load = options.load;
+  load.keep_source = true;
+  const Asset asset = load_asset(input, load);
+  if (asset.clips.empty()) throw InputError(input + ": has no animation to optimize");
+  if (!asset.cannot_deform.empty()) throw InputError(input + ": " + asset.cannot_deform.front());
+  check_cancelled(options.cancel);
+
+  OptimizeSummary summary;
+  summary.input = input;
+  summary.output = output;
+  summary.mode = options.mode;
+  const std::vector<MeshInstance> instances = mesh_instances(asset, choose_scene(asset, -1));
+  if (instances.empty()) throw InputError(input + ": its scene draws no mesh, so no error can be measured");
+  const optimize_detail::Levers levers = optimize_detail::compute_levers(asset, instances, options.mode);
+  summary.diagonal = levers.diagonal;
+  summary.budget = options.max_error_percent >= 0 ? options.max_error_percent / 100 * levers.diagonal : options.max_error;
+  const double budget = summary.budget;
+  const json& doc = asset.source->json;
+  // Made now, so that an output that cannot be written fails before the search (removed on any failure).
+  AtomicFile file(output);
+
+  gltf::AnimationEdits edits;
+  std::vector<Candidate> chosen(asset.clips.size());
+  for (size_t a = 0; a < asset.clips.size(); ++a) {
+    const Clip& clip = asset.clips[a];
+    std::string why;
+    const std::vector<ChannelSource> sources = match_channels(doc, a, clip, why);
+    if (!why.empty()) summary.notes.push_back("clip '" + clip.name + "' is kept as it is: " + why);
+    const std::vector<double> times = optimize_detail::judged_times(clip);
+    const size_t chain = std::max<size_t>(1, channels_on_a_chain(levers, clip, sources));
+    // The largest factor k whose channel budget k × budget / chain keeps the surface within the budget:
+    // k = 1 shares the budget exactly along the longest chain; the errors of a chain's channels seldom add
+    // up, so larger factors are tried, up to all of it per channel (k = chain) and four times that, for
+    // the levers' bounds are loose. Bisection halves the factor's logarithm 5 times: 7 measurements.
+    auto error_at = [&](double k, Candidate& out) {
+      out = reduce_clip(asset, clip, sources, levers, k * budget / double(chain), options);
+      check_cancelled(options.cancel);
+      if (!out.changed) return 0.0;
+      const double e = optimize_detail::surface_error(asset, clip, asset, out.clip, instances, times, budget,
+                                                      options.mode, Backend::kFastCpu, options.threads).max;
+      check_cancelled(options.cancel);
+      return e;
+    };
+    Candidate best;
+    double best_k = 0;
+    Candidate trial;
+    double k = 1;
+    for (int halvings = 0; halvings <= 6; ++halvings, k /= 2)
+      if (error_at(k, trial) <= kSearchMargin * budget) {
+        best = std::move(trial);
+        best_k = k;
+        break;
+      }
+    if (best_k > 0) {
+      double lo = best_k, hi = 4.0 * double(chain);
+      if (error_at(hi, trial) <= kSearchMargin * budget) {
+        best = std::move(trial), best_k = hi;
+      } else {
+        for (int step = 0; step < 5; ++step) {
+          const double mid = std::sqrt(lo * hi);
+          if (error_at(mid, trial) <= kSearchMargin * budget) best = std::move(trial), best_k = lo = mid;
+          else hi = mid;
+        }
+      }
+    } else {
+      summary.notes.push_back("clip '" + clip.name + "' is kept as it is: no reduction met the budget");
+    }
+    chosen[a] = std::move(best);
+    ClipOptimization c;
+    c.name = clip.name;
+    c.channels_before = clip.channels.size();
+    c.keys_before = key_count(clip);
+    c.judged_times = times.size();
+    c.scale_factor = chosen[a].changed ? best_k : 0;
+    summary.clips.push_back(c);
+  }
+
+  // The edits: a new sampler for every channel that changed, and the channels dropped.
+  for (size_t a = 0; a < asset.clips.size(); ++a) {
+    const Candidate& c = chosen[a];
+    if (!c.changed) continue;  // its samplers stay as they are, bufferViews and all
+    std::string ignored;
+    const std::vector<ChannelSource> sources = match_channels(doc, a, asset.clips[a], ignored);
+    for (size_t i = 0; i < c.reduced.size(); ++i) {
+      const ReducedChannel& r = c.reduced[i];
+      if (!sources[i].rewritable) continue;
+      if (r.dropped) {
+        edits.drop_channels.emplace_back(a, sources[i].channel);
+        continue;
+      }
+      // Every sampler is written again, changed or not: exporters pack a clip's keys into shared
+      // bufferViews, which only leave the file when no old accessor uses them any more.
+      gltf::SamplerEdit e;
+      e.animation = a;
+      e.sampler = sources[i].sampler;
+      e.times = r.channel.times;
+      e.values = r.channel.values;
+      e.components = r.channel.path == TargetPath::kWeights ? 1 : r.channel.components;
+      e.component = sources[i].component;
+      e.interpolation = r.channel.interpolation == Interpolation::kStep          ? "STEP"
+                        : r.channel.interpolation == Interpolation::kCubicSpline ? "CUBICSPLINE"
+                                                                                   : "LINEAR";
+      edits.samplers.push_back(std::move(e));
+    }
+  }
+  // glTF 2.0 §5.9: an animation has at least one channel; the last of one that would lose them all stays.
+  for (size_t a = 0; a < asset.clips.size(); ++a) {
+    size_t dropped = 0, channels = doc["animations"][a]["channels"].size();
+    for (const auto& d : edits.drop_channels) dropped += d.first == a;
+    if (dropped == channels && channels > 0) {
+      const auto last = std::find_if(edits.drop_channels.rbegin(), edits.drop_channels.rend(),
+                                     [a](const auto& d) { return d.first == a; });
+      edits.drop_channels.erase(std::next(last).base());
+    }
+  }
+
+  check_cancelled(options.cancel);
+  const gltf::AnimationGlb written = gltf::animation_glb(input, load, edits);
+  if (!written.kept_unused.empty()) summary.notes.push_back("unused data is kept: " + written.kept_unused);
+  file.write(written.glb);
+
+  // Measured again on the file as written, by the double-precision reference deformer.
+  LoadOptions reread = options.load;
+  const Asset out = load_asset(file.hand_over(), reread);
+  if (out.clips.size() != asset.clips.size()) throw OutputError(output + ": read back with a different clip count");
+  for (size_t a = 0; a < asset.clips.size(); ++a) {
+    ClipOptimization& c = summary.clips[a];
+    c.channels_after = out.clips[a].channels.size();
+    c.keys_after = key_count(out.clips[a]);
+    const optimize_detail::SurfaceError e = optimize_detail::surface_error(
+        asset, asset.clips[a], out, out.clips[a], instances, optimize_detail::judged_times(asset.clips[a]), budget,
+        options.mode, Backend::kCpu, options.threads);
+    check_cancelled(options.cancel);
+    if (e.max > budget)
+      throw OutputError(output + ": clip '" + c.name + "' is off by " + std::to_string(e.max) +
+                        " as written, over the budget " + std::to_string(budget) + " (please report this file)");
+    c.max_error = e.max;
+    c.p99_error = e.p99;
+    c.max_error_time = e.max_time;
+    c.max_error_joint = e.max > 0 ? optimize_detail::vertex_joint(asset, instances, e.max_instance, e.max_primitive, e.max_vertex) : "";
+  }
+  summary.animation_bytes_before = written.animation_bytes_before;
+  summary.animation_bytes_after = written.animation_bytes_after;
+  summary.file_bytes_before = file_size_of(input);
+  summary.file_bytes_after = written.glb.size();
+  if (std::none_of(chosen.begin(), chosen.end(), [](const Candidate& c) { return c.changed; }))
+    summary.notes.push_back("no key or channel could go within the budget: the output's animation is the input's");
+  check_cancelled(options.cancel);
+  file.commit(Overwrite::kReplace);
+  return summary;
+}
+
+}  // namespace dqskin
