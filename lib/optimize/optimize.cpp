@@ -147,14 +147,30 @@ Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<Ch
   for (const Channel& ch : c.clip.channels)
     if (!ch.times.empty()) end = std::max(end, double(ch.times.back()));
   if (end < clip.last_key) {
-    for (size_t i = 0; i < clip.channels.size(); ++i) {
+    bool extended = false;
+    for (size_t i = 0; i < clip.channels.size() && !extended; ++i) {
       ReducedChannel& r = c.reduced[i];
       if (r.dropped || double(clip.channels[i].times.back()) < clip.last_key || r.channel.interpolation == Interpolation::kCubicSpline)
         continue;
       const size_t n = size_t(r.channel.components);
       r.channel.times.push_back(clip.channels[i].times.back());
       r.channel.values.insert(r.channel.values.end(), r.channel.values.end() - std::ptrdiff_t(n), r.channel.values.end());
-      break;
+      extended = true;
+    }
+    // Every channel that reached the end was dropped: the first comes back as its node's rest value held
+    // from its first key to the end (within the budget, as the drop was).
+    for (size_t i = 0; i < clip.channels.size() && !extended; ++i) {
+      ReducedChannel& r = c.reduced[i];
+      float rest[4] = {0, 0, 0, 0};
+      const Channel& ch = clip.channels[i];
+      if (!r.dropped || double(ch.times.back()) < clip.last_key || !rest_value(asset, ch, rest)) continue;
+      r.dropped = false;
+      r.channel = ch;
+      r.channel.interpolation = Interpolation::kLinear;
+      r.channel.times = {ch.times.front(), ch.times.back()};
+      r.channel.values.assign(rest, rest + ch.components);
+      r.channel.values.insert(r.channel.values.end(), rest, rest + ch.components);
+      extended = true;
     }
     c.clip.channels.clear();
     for (const ReducedChannel& r : c.reduced)
