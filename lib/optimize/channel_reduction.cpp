@@ -31,8 +31,7 @@ void slerp(const float* a, const float* b, double u, double* out) {
 
 }  // namespace
 
-ChannelError::ChannelError(const Channel& channel, const NodeLevers& levers)
-    : path_(channel.path), components_(channel.components) {
+ChannelError::ChannelError(const Channel& channel, const NodeLevers& levers) : path_(channel.path), lever_(0) {
   switch (channel.path) {
     case TargetPath::kRotation: lever_ = levers.rotation; break;
     case TargetPath::kTranslation: lever_ = levers.translation; break;

@@ -19,7 +19,6 @@ public:
 
 private:
   TargetPath path_;
-  int components_;
   double lever_;
   std::vector<double> weight_levers_;
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 namespace dqskin::optimize_detail {
@@ -27,7 +28,7 @@ Levers compute_levers(const Asset& asset, const std::vector<MeshInstance>& insta
   const Pose rest = sample_pose(asset, nullptr, 0.0);
   const DeformedFrame frame = deform_frame(asset, instances, rest, mode);
 
-  Vec3<double> lo(INFINITY), hi(-INFINITY);
+  Vec3<double> lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   std::set<std::vector<int>> sets;
   std::vector<int> chain;
   // Walks from `node` to the root, widening each node's levers for vertex `p`, and adds the nodes to `chain`.

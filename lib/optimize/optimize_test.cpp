@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -162,7 +163,7 @@ TEST(Optimize, BadBudgetsAndInputsWriteNothing) {
   fs::remove(output);
   EXPECT_THROW(optimize(rig("bending_arm.gltf"), output.string(), budget(-1)), InputError);
   EXPECT_THROW(optimize(rig("bending_arm.gltf"), output.string(), budget(std::nan(""))), InputError);
-  EXPECT_THROW(optimize(rig("bending_arm.gltf"), output.string(), budget(INFINITY)), InputError);
+  EXPECT_THROW(optimize(rig("bending_arm.gltf"), output.string(), budget(std::numeric_limits<double>::infinity())), InputError);
   json doc = json::parse(read_file(rig("bending_arm.gltf")));
   doc.erase("animations");
   const fs::path still = scratch("still.gltf");
