@@ -55,7 +55,9 @@ trap 'rm -rf "$WORK"' EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
 # A copy of the binary, so that a rebuild during the benchmark does not change or remove it mid-run.
-cp "$ROOT/build/release/app/dqskin" "$WORK/dqskin"
+# A snapshot of this build that later rebuilds cannot change: the installed tree finds its own library.
+cmake --install "$ROOT/build/release" --prefix "$WORK/prefix" >/dev/null
+ln -sf prefix/bin/dqskin "$WORK/dqskin"
 DQSKIN="$WORK/dqskin"
 
 make_rig() {  # make_rig FILE VERTICES

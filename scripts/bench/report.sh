@@ -24,7 +24,9 @@ models=("$@")
 
 [ -x build/release/app/dqskin ] || { cmake --preset release >/dev/null && cmake --build --preset release -j "$(nproc)"; }
 mkdir -p "$TMP"
-cp build/release/app/dqskin "$TMP/dqskin"
+# A snapshot of this build that later rebuilds cannot change: the installed tree finds its own library.
+cmake --install build/release --prefix "$TMP/prefix" >/dev/null
+ln -sf prefix/bin/dqskin "$TMP/dqskin"
 DQSKIN="$TMP/dqskin"
 
 # shellcheck source=median.sh

@@ -63,7 +63,9 @@ WORK="$(mktemp -d "${BENCH_TMP:-$BENCH}/dqskin-shards.XXXXXX")"
 trap 'rm -rf "$WORK"' EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
-cp "$ROOT/build/release/app/dqskin" "$WORK/dqskin"
+# A snapshot of this build that later rebuilds cannot change: the installed tree finds its own library.
+cmake --install "$ROOT/build/release" --prefix "$WORK/prefix" >/dev/null
+ln -sf prefix/bin/dqskin "$WORK/dqskin"
 DQSKIN="$WORK/dqskin"
 OUT="$WORK/out"
 

@@ -53,7 +53,9 @@ fi
 mkdir -p "${BENCH_TMP:-$BENCH}"
 WORK="$(mktemp -d "${BENCH_TMP:-$BENCH}/dqskin-bench-textures.XXXXXX")"
 trap 'rm -rf "$WORK"' EXIT
-cp "$ROOT/build/release/app/dqskin" "$WORK/dqskin"
+# A snapshot of this build that later rebuilds cannot change: the installed tree finds its own library.
+cmake --install "$ROOT/build/release" --prefix "$WORK/prefix" >/dev/null
+ln -sf prefix/bin/dqskin "$WORK/dqskin"
 cp "$ROOT/build/release/bench/dqskin_bench_exr" "$WORK/bench_exr"
 DQSKIN="$WORK/dqskin"
 
