@@ -119,8 +119,19 @@ size_t channels_on_a_chain(const optimize_detail::Levers& levers, const Clip& cl
 struct Candidate {
   Clip clip;
   std::vector<ReducedChannel> reduced;  // per input channel
+  std::vector<bool> quantized;          // per input channel: its rotations stored as normalized shorts
   bool changed = false;
 };
+
+// A rotation channel's values as normalized 16-bit integers store them (glTF 2.0 §3.11 allows it for
+// rotations): c = round(v · 32767), read back as max(c / 32767, −1), as the loader decodes them, so that the
+// search measures what the file will hold. Halves a rotation's bytes.
+void quantize_rotations(Channel& channel) {
+  for (float& v : channel.values) {
+    const double c = std::round(std::clamp(double(v), -1.0, 1.0) * 32767.0);
+    v = float(std::max(c / 32767.0, -1.0));
+  }
+}
 
 // The clip with every rewritable channel reduced under `channel_budget`, its end kept where it was.
 Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<ChannelSource>& sources,
@@ -129,6 +140,7 @@ Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<Ch
   c.clip = clip;
   c.clip.channels.clear();
   c.reduced.resize(clip.channels.size());
+  c.quantized.assign(clip.channels.size(), false);
   for (size_t i = 0; i < clip.channels.size(); ++i) {
     const Channel& ch = clip.channels[i];
     ReducedChannel& r = c.reduced[i];
@@ -140,7 +152,13 @@ Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<Ch
       r = optimize_detail::reduce_channel(ch, levers.nodes[size_t(ch.node)], channel_budget,
                                           rest_value(asset, ch, rest), options.drop_channels, options.threads);
     }
-    c.changed = c.changed || r.dropped || r.channel.times.size() != ch.times.size();
+    if (options.quantize_rotations && sources[i].rewritable && moves && !r.dropped &&
+        ch.path == TargetPath::kRotation && sources[i].component == 5126 &&
+        ch.interpolation != Interpolation::kCubicSpline) {  // tangents may leave [-1, 1]
+      quantize_rotations(r.channel);
+      c.quantized[i] = true;
+    }
+    c.changed = c.changed || r.dropped || c.quantized[i] || r.channel.times.size() != ch.times.size();
     if (!r.dropped) c.clip.channels.push_back(r.channel);
   }
   // A clip lasts until its last key (glTF time starts at 0): if every channel that reached the end lost its
@@ -223,7 +241,7 @@ gltf::AnimationEdits make_edits(const json& doc, const Asset& asset, const std::
       e.times = r.channel.times;
       e.values = r.channel.values;
       e.components = r.channel.path == TargetPath::kWeights ? 1 : r.channel.components;
-      e.component = sources[i].component;
+      e.component = c.quantized[i] ? 5122 : sources[i].component;
       e.interpolation = r.channel.interpolation == Interpolation::kStep          ? "STEP"
                         : r.channel.interpolation == Interpolation::kCubicSpline ? "CUBICSPLINE"
                                                                                    : "LINEAR";
@@ -283,27 +301,31 @@ OptimizeSummary optimize(const std::string& input, const std::string& output, co
     // The largest factor k whose channel budget k × budget / chain keeps the surface within the budget:
     // k = 1 shares the budget exactly along the longest chain; the errors of a chain's channels seldom add
     // up, so larger factors are tried, up to all of it per channel (k = chain) and four times that, for
-    // the levers' bounds are loose. Bisection halves the factor's logarithm 5 times: 7 measurements.
-    auto error_at = [&](double k, Candidate& out) {
-      out = reduce_clip(asset, clip, sources, levers, k * budget / double(chain), options);
-      check_cancelled(options.cancel);
-      if (!out.changed) return 0.0;
-      const double e = optimize_detail::surface_error(asset, clip, asset, out.clip, instances, times, budget,
-                                                      options.mode, Backend::kFastCpu, options.threads).max;
-      check_cancelled(options.cancel);
-      return e;
-    };
+    // the levers' bounds are loose; then 5 geometric bisections. With quantized rotations first; when
+    // their rounding alone is over the budget, again with floats. At most 13 measurements a pass.
     Candidate best;
     double best_k = 0;
-    Candidate trial;
-    double k = 1;
-    for (int halvings = 0; halvings <= 6; ++halvings, k /= 2)
-      if (error_at(k, trial) <= kSearchMargin * budget) {
-        best = std::move(trial);
-        best_k = k;
-        break;
-      }
-    if (best_k > 0) {
+    OptimizeOptions pass = options;
+    for (int attempt = 0; attempt < 2 && best_k == 0; ++attempt, pass.quantize_rotations = false) {
+      if (attempt == 1 && !options.quantize_rotations) break;
+      auto error_at = [&](double k, Candidate& out) {
+        out = reduce_clip(asset, clip, sources, levers, k * budget / double(chain), pass);
+        check_cancelled(options.cancel);
+        if (!out.changed) return 0.0;
+        const double e = optimize_detail::surface_error(asset, clip, asset, out.clip, instances, times, budget,
+                                                        options.mode, Backend::kFastCpu, options.threads).max;
+        check_cancelled(options.cancel);
+        return e;
+      };
+      Candidate trial;
+      double k = 1;
+      for (int halvings = 0; halvings <= 6; ++halvings, k /= 2)
+        if (error_at(k, trial) <= kSearchMargin * budget) {
+          best = std::move(trial);
+          best_k = k;
+          break;
+        }
+      if (best_k == 0) continue;
       double lo = best_k, hi = 4.0 * double(chain);
       if (error_at(hi, trial) <= kSearchMargin * budget) {
         best = std::move(trial), best_k = hi;
@@ -314,9 +336,8 @@ OptimizeSummary optimize(const std::string& input, const std::string& output, co
           else hi = mid;
         }
       }
-    } else {
-      summary.notes.push_back("clip '" + clip.name + "' is kept as it is: no reduction met the budget");
     }
+    if (best_k == 0) summary.notes.push_back("clip '" + clip.name + "' is kept as it is: no reduction met the budget");
     chosen[a] = std::move(best);
     ClipOptimization c;
     c.name = clip.name;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -148,6 +149,37 @@ TEST(Optimize, MeshesSkinsAndRestTransformsStay) {
   for (size_t c = 0; c < a.clips.size(); ++c) {
     EXPECT_EQ(a.clips[c].name, b.clips[c].name);
     EXPECT_EQ(a.clips[c].last_key, b.clips[c].last_key) << "a clip keeps its length";
+  }
+}
+
+// The JSON chunk of a .glb (§4.4: 12-byte header, then the chunk's length and type, then the JSON).
+json glb_json(const fs::path& path) {
+  const std::string bytes = read_file(path);
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return json::parse(bytes.substr(20, length));
+}
+
+// Float rotations go out as normalized shorts (glTF 2.0 §3.11), within the budget; --keep-float keeps floats.
+TEST(Optimize, RotationsAreStoredAsNormalizedShorts) {
+  for (bool quantize : {true, false}) {
+    const fs::path output = scratch(quantize ? "shorts.glb" : "floats.glb");
+    OptimizeOptions o = budget(0.02);
+    o.quantize_rotations = quantize;
+    const OptimizeSummary s = optimize(rig("walk_run_legs.gltf"), output.string(), o);
+    for (const ClipOptimization& c : s.clips) EXPECT_LE(c.max_error, 0.02) << c.name;
+    const json doc = glb_json(output);
+    size_t rotations = 0;
+    for (const json& animation : doc["animations"])
+      for (const json& channel : animation["channels"]) {
+        if (channel["target"]["path"] != "rotation") continue;
+        const json& accessor = doc["accessors"][animation["samplers"][channel["sampler"].get<size_t>()]["output"].get<size_t>()];
+        EXPECT_EQ(accessor["componentType"], quantize ? 5122 : 5126);
+        EXPECT_EQ(accessor.value("normalized", false), quantize);
+        ++rotations;
+      }
+    EXPECT_GT(rotations, 0u);
+    EXPECT_LE(worst_distance(rig("walk_run_legs.gltf"), output.string(), BlendMode::kLbs), 0.02 * (1 + 1e-9));
   }
 }
 

@@ -19,6 +19,7 @@ struct OptimizeOptions {
   BlendMode mode = BlendMode::kLbs;  // the skinning the file's runtime does (viewers and engines: LBS)
   bool remove_keys = true;           // keys of LINEAR and STEP channels that interpolation reproduces
   bool drop_channels = true;         // channels that stay within the budget of the node's rest value
+  bool quantize_rotations = true;    // float rotation outputs stored as normalized shorts (glTF 2.0 §3.11)
   unsigned threads = 0;              // 0: every core
   const std::atomic<bool>* cancel = nullptr;
 };
