@@ -25,17 +25,29 @@ bool exists(const std::string& path) {
 OutputJournal::~OutputJournal() { roll_back(); }
 
 void OutputJournal::make_folders(const std::string& folder) {
-  // The missing ancestors, outermost first.
-  std::vector<std::string> missing;
-  for (std::filesystem::path p(folder); !p.empty() && !exists(p.string()); p = p.parent_path()) {
-    missing.insert(missing.begin(), p.string());
-    if (p == p.parent_path()) break;
-  }
-  for (const std::string& f : missing) {
-    if (::mkdir(f.c_str(), 0777) != 0 && errno != EEXIST)
-      throw OutputError(f + ": cannot create folder: " + std::strerror(errno));
-    const std::lock_guard<std::mutex> lock(mutex_);
-    folders_.push_back(f);
+  // Another process may remove an empty ancestor between our look and our mkdir (it made the folder
+  // and is rolling back, as two bakes into siblings of a new folder do); mkdir then says ENOENT, and we
+  // look again. A few rounds settle it: each needs the other process to roll back again.
+  for (int round = 0;; ++round) {
+    // The missing ancestors, outermost first.
+    std::vector<std::string> missing;
+    for (std::filesystem::path p(folder); !p.empty() && !exists(p.string()); p = p.parent_path()) {
+      missing.insert(missing.begin(), p.string());
+      if (p == p.parent_path()) break;
+    }
+    bool vanished = false;
+    for (const std::string& f : missing) {
+      if (::mkdir(f.c_str(), 0777) == 0) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        folders_.push_back(f);
+      } else if (errno == ENOENT && round < 16) {
+        vanished = true;
+        break;
+      } else if (errno != EEXIST) {
+        throw OutputError(f + ": cannot create folder: " + std::strerror(errno));
+      }
+    }
+    if (!vanished) return;
   }
 }
 

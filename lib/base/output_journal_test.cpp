@@ -9,6 +9,9 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
 
 namespace dqskin {
 namespace {
@@ -100,6 +103,32 @@ TEST_F(OutputJournalTest, PendingBackupsAreDeletedByAStopThatCannotWait) {
   remove_pending_files();
   EXPECT_EQ(tree(dir_), before_);
   journal.keep();
+}
+
+// Two bakes into siblings of a new folder, as two processes do: each makes the shared parent when it finds
+// none and removes it again when it rolls back, so a parent one of them saw can vanish before its mkdir.
+// Neither may fail for that.
+TEST_F(OutputJournalTest, AParentRemovedByAnotherRollBackIsMadeAgain) {
+  const fs::path parent = dir_ / "undeformable_out";
+  std::vector<std::string> errors(2);
+  auto bake = [&](std::size_t id) {
+    for (int i = 0; i < 4000 && errors[id].empty(); ++i) {
+      try {
+        OutputJournal journal;
+        journal.make_folders((parent / ("case_" + std::to_string(id))).string());
+      } catch (const std::exception& e) {
+        errors[id] = e.what();
+      }
+    }
+  };
+  std::thread other(bake, std::size_t{1});
+  bake(std::size_t{0});
+  other.join();
+  EXPECT_EQ(errors[0], "");
+  EXPECT_EQ(errors[1], "");
+  // Each removes what it made; the parent stays (empty) when its maker's rmdir found the other's folder in it.
+  EXPECT_FALSE(fs::exists(parent / "case_0"));
+  EXPECT_FALSE(fs::exists(parent / "case_1"));
 }
 
 }  // namespace
