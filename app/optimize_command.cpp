@@ -20,7 +20,7 @@ namespace {
 
 struct OptimizeSettings {
   std::string input, output, max_error, mode = "lbs";
-  bool keep_keys = false, keep_channels = false, keep_float = false, json = false;
+  bool keep_keys = false, keep_channels = false, keep_interpolation = false, keep_float = false, json = false;
   LoadSettings load;
 };
 
@@ -71,7 +71,8 @@ int run_optimize(OptimizeSettings& s) {
   if (s.output.size() < 5 || s.output.substr(s.output.size() - 4) != ".glb") throw InputError("-o must name a .glb file");
   o.remove_keys = !s.keep_keys;
   o.drop_channels = !s.keep_channels;
-  o.quantize_rotations = !s.keep_float;
+  o.convert_interpolation = !s.keep_interpolation;
+  o.quantize_rotations = o.quantize_weights = !s.keep_float;
   o.load = to_load_options(s.load);
   o.cancel = catch_interrupts("optimize");
   const OptimizeSummary summary = optimize(s.input, s.output, o);
@@ -103,16 +104,19 @@ Command add_optimize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--keep-keys", s.keep_keys, "Remove no keys");
   cmd->add_flag("--keep-channels", s.keep_channels, "Drop no channel, even one that stays at the node's rest value");
+  cmd->add_flag("--keep-interpolation", s.keep_interpolation,
+                "Keep every channel's interpolation (else LINEAR may become STEP and CUBICSPLINE LINEAR, where smaller)");
   cmd->add_flag("--keep-float", s.keep_float,
-                "Store rotations as floats (else as normalized 16-bit integers, half the bytes, within the budget)");
+                "Store rotations and morph weights as floats (else as normalized integers within the budget)");
   add_load_settings(*cmd, s.load);
   cmd->add_flag("--json", s.json, "Print the summary as one JSON document on stdout");
   cmd->footer(
       "Keys of LINEAR and STEP channels are removed where interpolation reproduces them, a channel that does not\n"
-      "change becomes one key, and one that stays at its node's rest value goes; float rotations are stored as\n"
-      "normalized shorts (glTF 2.0 allows them for rotations; --keep-float keeps floats); each channel's share of the\n"
+      "change becomes one key, and one that stays at its node's rest value goes; LINEAR becomes STEP and\n"
+      "CUBICSPLINE LINEAR where that is smaller within the budget; float rotations and morph weights are stored as\n"
+      "normalized integers (glTF 2.0 allows them for both; --keep-float keeps floats); each channel's share of the\n"
       "budget is searched for per clip and the result measured on the written file, read back, by the\n"
-      "double-precision deformer. CUBICSPLINE channels, the mesh, the skin and node rest transforms are kept.\n"
+      "double-precision deformer. The mesh, the skin and node rest transforms are kept.\n"
       "Exit status: 0 written, 2 usage or input error (nothing written).\n"
       "Examples:\n"
       "  dqskin optimize Fox.glb -o Fox.small.glb --max-error 0.1%\n"

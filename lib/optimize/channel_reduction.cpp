@@ -2,6 +2,8 @@
 
 #include "../anim/keyframe_reduction.hpp"
 
+#include "dqskin/animation.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -84,22 +86,60 @@ double ChannelError::operator()(const float* a, const float* b) const {
   return 0;
 }
 
-ReducedChannel reduce_channel(const Channel& channel, const NodeLevers& levers, double budget, const float* rest,
-                              bool may_drop, unsigned threads) {
+namespace {
+
+// The keys a viewer needs of a LINEAR channel (times and values of n components a key), by the
+// Douglas–Peucker split of reduce_keyframes, judged through `error`.
+std::vector<size_t> linear_keys(const Channel& channel, const ChannelError& error, double budget, unsigned threads) {
+  const size_t n = size_t(channel.components);
+  const float* values = channel.values.data();
+  return reduce_keyframes(channel.times.size(), budget, [&](size_t i, size_t a, size_t b) {
+    const double u = (double(channel.times[i]) - double(channel.times[a])) /
+                     (double(channel.times[b]) - double(channel.times[a]));
+    std::vector<double> interpolated(std::max<size_t>(n, 4));
+    std::vector<float> value(n);
+    if (channel.path == TargetPath::kRotation) {
+      slerp(values + a * n, values + b * n, u, interpolated.data());
+    } else {
+      for (size_t c = 0; c < n; ++c) interpolated[c] = (1 - u) * double(values[a * n + c]) + u * double(values[b * n + c]);
+    }
+    for (size_t c = 0; c < n; ++c) value[c] = float(interpolated[c]);
+    return error(values + i * n, value.data());
+  }, threads);
+}
+
+// The keys of a LINEAR channel as STEP, exact to the budget at every time: a run holds its first value
+// h until the next run starts, while the linear curve goes through the run's keys and on to the next
+// run's first; the distance of a linear segment to a fixed value is largest at one of its ends, so every
+// key of the run and the next run's first within the budget of h keeps all of it within. Each run
+// extends as far as it can (it ends at the key before the first one out of reach, which starts the
+// next). Empty when one segment alone changes by more than the budget.
+std::vector<size_t> step_keys(const Channel& channel, const ChannelError& error, double budget) {
+  const size_t n = size_t(channel.components), keys = channel.times.size();
+  auto key = [&](size_t k) { return channel.values.data() + k * n; };
+  std::vector<size_t> starts = {0};
+  for (size_t k = 1; k < keys; ++k) {
+    if (error(key(k), key(starts.back())) <= budget) continue;
+    if (k - 1 == starts.back() || error(key(k), key(k - 1)) > budget) return {};
+    starts.push_back(k - 1);
+  }
+  return starts;
+}
+
+// A LINEAR or STEP channel reduced (see reduce_channel).
+ReducedChannel reduce_piecewise(const Channel& channel, const ChannelError& error, double budget, const float* rest,
+                                ReductionLevers allowed, unsigned threads) {
   ReducedChannel out;
   out.channel = channel;
-  const size_t keys = channel.times.size(), n = size_t(std::max(0, channel.components));
-  if (keys == 0 || n == 0 || channel.interpolation == Interpolation::kCubicSpline) return out;
-  const ChannelError error(channel, levers);
-  const float* values = channel.values.data();
-  auto key = [&](size_t k) { return values + k * n; };
+  const size_t keys = channel.times.size(), n = size_t(channel.components);
+  auto key = [&](size_t k) { return channel.values.data() + k * n; };
 
   double from_first = 0, from_rest = 0;
   for (size_t k = 0; k < keys; ++k) {
     from_first = std::max(from_first, error(key(k), key(0)));
     if (rest) from_rest = std::max(from_rest, error(key(k), rest));
   }
-  if (rest && may_drop && from_rest <= budget) {
+  if (rest && allowed.drop && from_rest <= budget) {
     out.dropped = true;
     return out;
   }
@@ -110,19 +150,14 @@ ReducedChannel reduce_channel(const Channel& channel, const NodeLevers& levers, 
     for (size_t k = 0; k < keys; ++k)
       if (k == 0 || !std::equal(key(k), key(k) + n, key(kept.back()))) kept.push_back(k);
   } else {
-    kept = reduce_keyframes(keys, budget, [&](size_t i, size_t a, size_t b) {
-      const double u = (double(channel.times[i]) - double(channel.times[a])) /
-                       (double(channel.times[b]) - double(channel.times[a]));
-      std::vector<double> interpolated(std::max<size_t>(n, 4));
-      std::vector<float> value(n);
-      if (channel.path == TargetPath::kRotation) {
-        slerp(key(a), key(b), u, interpolated.data());
-      } else {
-        for (size_t c = 0; c < n; ++c) interpolated[c] = (1 - u) * double(key(a)[c]) + u * double(key(b)[c]);
+    kept = linear_keys(channel, error, budget, threads);
+    if (allowed.interpolation) {
+      const std::vector<size_t> steps = step_keys(channel, error, budget);
+      if (!steps.empty() && steps.size() < kept.size()) {
+        kept = steps;
+        out.channel.interpolation = Interpolation::kStep;
       }
-      for (size_t c = 0; c < n; ++c) value[c] = float(interpolated[c]);
-      return error(key(i), value.data());
-    }, threads);
+    }
   }
   if (kept.size() == keys) return out;
   out.channel.times.clear();
@@ -132,6 +167,77 @@ ReducedChannel reduce_channel(const Channel& channel, const NodeLevers& levers, 
     out.channel.values.insert(out.channel.values.end(), key(k), key(k) + n);
   }
   return out;
+}
+
+constexpr int kCubicSamples = 8;   // a CUBICSPLINE segment's samples for its linear equivalent
+constexpr int kCubicChecks = 32;   // the points of each segment where the equivalent is checked
+
+// The CUBICSPLINE channel sampled at cubic_sample_times as LINEAR keys.
+Channel sampled_linear(const Channel& channel) {
+  Channel dense = channel;
+  dense.interpolation = Interpolation::kLinear;
+  dense.times = cubic_sample_times(channel);
+  dense.values.clear();
+  for (float t : dense.times)
+    for (double v : sample_channel(channel, double(t))) dense.values.push_back(float(v));
+  return dense;
+}
+
+// Whether `reduced` stays within `budget` of the CUBICSPLINE `channel` at kCubicChecks points of each
+// of its segments (the dropped channel as the node's rest value).
+bool follows_curve(const Channel& channel, const ReducedChannel& reduced, const float* rest, const ChannelError& error,
+                   double budget) {
+  const size_t n = size_t(channel.components);
+  std::vector<float> a(n), b(n);
+  for (size_t k = 0; k + 1 < channel.times.size(); ++k)
+    for (int j = 0; j < kCubicChecks; ++j) {
+      const double t = double(channel.times[k]) + (double(channel.times[k + 1]) - double(channel.times[k])) * j / kCubicChecks;
+      const std::vector<double> curve = sample_channel(channel, t);
+      for (size_t c = 0; c < n; ++c) a[c] = float(curve[c]);
+      if (reduced.dropped) {
+        std::copy(rest, rest + n, b.begin());
+      } else {
+        const std::vector<double> line = sample_channel(reduced.channel, t);
+        for (size_t c = 0; c < n; ++c) b[c] = float(line[c]);
+      }
+      if (error(a.data(), b.data()) > budget) return false;
+    }
+  return true;
+}
+
+// Bytes of a channel's keys as floats: its time and one value (three for CUBICSPLINE).
+size_t float_bytes(const Channel& channel) {
+  const size_t per_key = size_t(channel.components) * (channel.interpolation == Interpolation::kCubicSpline ? 3 : 1);
+  return channel.times.size() * 4 * (1 + per_key);
+}
+
+}  // namespace
+
+std::vector<float> cubic_sample_times(const Channel& channel) {
+  std::vector<float> times;
+  auto add = [&](float t) {
+    if (times.empty() || t > times.back()) times.push_back(t);  // float time resolution may merge two
+  };
+  for (size_t k = 0; k + 1 < channel.times.size(); ++k) {
+    const double a = double(channel.times[k]), b = double(channel.times[k + 1]);
+    for (int j = 0; j < kCubicSamples; ++j) add(float(a + (b - a) * j / kCubicSamples));
+  }
+  if (!channel.times.empty()) add(channel.times.back());
+  return times;
+}
+
+ReducedChannel reduce_channel(const Channel& channel, const NodeLevers& levers, double budget, const float* rest,
+                              ReductionLevers allowed, unsigned threads) {
+  const size_t keys = channel.times.size(), n = size_t(std::max(0, channel.components));
+  const ChannelError error(channel, levers);
+  if (keys == 0 || n == 0) return ReducedChannel{false, channel};
+  if (channel.interpolation != Interpolation::kCubicSpline)
+    return reduce_piecewise(channel, error, budget, rest, allowed, threads);
+  if (!allowed.interpolation || keys < 2) return ReducedChannel{false, channel};
+  ReducedChannel linear = reduce_piecewise(sampled_linear(channel), error, budget / 2, rest, allowed, threads);
+  const bool smaller = linear.dropped || float_bytes(linear.channel) < float_bytes(channel);
+  if (!smaller || !follows_curve(channel, linear, rest, error, budget)) return ReducedChannel{false, channel};
+  return linear;
 }
 
 }  // namespace dqskin::optimize_detail

@@ -23,18 +23,36 @@ private:
   std::vector<double> weight_levers_;
 };
 
+// The times a CUBICSPLINE channel is sampled at for its linear equivalent: 8 a segment, its keys among
+// them (float times, strictly increasing). The search judges a clip at these too (judged_times).
+std::vector<float> cubic_sample_times(const Channel& channel);
+
 struct ReducedChannel {
   bool dropped = false;  // the channel goes: the node's rest value is within the budget at every key
   Channel channel;       // else its keys (a subset of the input's, or one key when it does not change)
 };
 
-// `channel` with the keys a viewer needs so that every input key is reproduced within `budget` (scene
-// units, through ChannelError): LINEAR channels by a Douglas–Peucker split (reduce_keyframes; rotations
-// are compared with the shortest-path slerp the viewer does), STEP channels lose keys that repeat the
-// previous value, CUBICSPLINE channels are kept. A channel whose every key is within the budget of its
-// first becomes one key; with `may_drop`, one whose every key is within the budget of the node's rest
-// value (`rest`, components floats) is dropped. `rest` is null for weights (never dropped).
+// What reduce_channel may change besides removing keys.
+struct ReductionLevers {
+  bool drop = true;            // a channel at its node's rest value goes
+  bool interpolation = true;   // LINEAR becomes STEP, CUBICSPLINE becomes LINEAR, where either is smaller
+};
+
+// `channel` with the keys a viewer needs so that its value stays within `budget` (scene units, through
+// ChannelError) of the input's:
+// - LINEAR channels by a Douglas–Peucker split (reduce_keyframes; rotations compared with the
+//   shortest-path slerp the viewer does), which holds at every time, as the difference of two linear
+//   segments is largest at their ends; then, where fewer keys do, as STEP: runs whose held value is within
+//   the budget of every key of the run and of the next run's first, so that the linear segments between
+//   them never leave it either (exact to the budget at every time, not only at keys);
+// - STEP channels lose keys that repeat the previous value;
+// - CUBICSPLINE channels become LINEAR where that takes fewer bytes (three values a key against one): the
+//   Hermite curve sampled 8 times a segment, reduced as above with half the budget, and kept only if the
+//   linear keys are within the budget at 32 points of every segment; else they stay as they are.
+// A channel whose every key is within the budget of its first becomes one key; with `levers.drop`, one
+// whose every key is within the budget of the node's rest value (`rest`, components floats) is dropped.
+// `rest` is null for weights (never dropped).
 ReducedChannel reduce_channel(const Channel& channel, const NodeLevers& levers, double budget, const float* rest,
-                              bool may_drop, unsigned threads);
+                              ReductionLevers allowed, unsigned threads);
 
 }  // namespace dqskin::optimize_detail

@@ -119,18 +119,48 @@ size_t channels_on_a_chain(const optimize_detail::Levers& levers, const Clip& cl
 struct Candidate {
   Clip clip;
   std::vector<ReducedChannel> reduced;  // per input channel
-  std::vector<bool> quantized;          // per input channel: its rotations stored as normalized shorts
+  std::vector<int> stored;              // per input channel: the normalized integer type it is stored as, or 0
   bool changed = false;
 };
 
-// A rotation channel's values as normalized 16-bit integers store them (glTF 2.0 §3.11 allows it for
-// rotations): c = round(v · 32767), read back as max(c / 32767, −1), as the loader decodes them, so that the
-// search measures what the file will hold. Halves a rotation's bytes.
-void quantize_rotations(Channel& channel) {
-  for (float& v : channel.values) {
-    const double c = std::round(std::clamp(double(v), -1.0, 1.0) * 32767.0);
-    v = float(std::max(c / 32767.0, -1.0));
+// A normalized integer component type of glTF 2.0 §3.11 ("Animation samplers" allows them for rotations
+// and weights): a value v is stored as c = round(v · scale) and read back as max(c / scale, −1), as the
+// loader decodes it, so that the search measures what the file will hold.
+struct Normalized {
+  int component;
+  double scale;
+  double lowest;  // the smallest value it holds
+};
+constexpr Normalized kByte{5120, 127, -1}, kUnsignedByte{5121, 255, 0}, kShort{5122, 32767, -1},
+    kUnsignedShort{5123, 65535, 0};
+
+float stored_value(float v, const Normalized& type) {
+  const double c = std::round(std::clamp(double(v), type.lowest, 1.0) * type.scale);
+  return float(std::max(c / type.scale, -1.0));
+}
+
+void store_as(Channel& channel, const Normalized& type) {
+  for (float& v : channel.values) v = stored_value(v, type);
+}
+
+// The smallest normalized type whose rounding keeps a weights channel within `budget` (through its levers),
+// or null: 8 bits, else 16. Weights outside [−1, 1] stay floats (glTF leaves their range open).
+const Normalized* weights_type(const Channel& channel, const optimize_detail::NodeLevers& levers, double budget) {
+  if (channel.values.empty()) return nullptr;
+  const auto [lo, hi] = std::minmax_element(channel.values.begin(), channel.values.end());
+  if (*lo < -1 || *hi > 1) return nullptr;
+  const bool negative = *lo < 0;
+  const optimize_detail::ChannelError error(channel, levers);
+  const size_t n = size_t(channel.components);
+  for (const Normalized* type : {negative ? &kByte : &kUnsignedByte, negative ? &kShort : &kUnsignedShort}) {
+    Channel rounded = channel;
+    store_as(rounded, *type);
+    double worst = 0;
+    for (size_t k = 0; k < channel.times.size(); ++k)
+      worst = std::max(worst, error(&channel.values[k * n], &rounded.values[k * n]));
+    if (worst <= budget) return type;
   }
+  return nullptr;
 }
 
 // The clip with every rewritable channel reduced under `channel_budget`, its end kept where it was.
@@ -140,25 +170,35 @@ Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<Ch
   c.clip = clip;
   c.clip.channels.clear();
   c.reduced.resize(clip.channels.size());
-  c.quantized.assign(clip.channels.size(), false);
+  c.stored.assign(clip.channels.size(), 0);
   for (size_t i = 0; i < clip.channels.size(); ++i) {
     const Channel& ch = clip.channels[i];
     ReducedChannel& r = c.reduced[i];
-    const bool moves = ch.node >= 0 && levers.nodes[size_t(ch.node)].moves_vertices;
+    // A node's transform moves the vertices skinned to its subtree or drawn under it; its weights move its
+    // mesh's morph targets (a skinned mesh's node moves nothing by its transform, but its weights do).
+    const optimize_detail::NodeLevers* node = ch.node >= 0 ? &levers.nodes[size_t(ch.node)] : nullptr;
+    const bool moves = node && (ch.path == TargetPath::kWeights ? !node->weights.empty() : node->moves_vertices);
     if (!sources[i].rewritable || !moves || !options.remove_keys) {
       r.channel = ch;
     } else {
       float rest[4] = {0, 0, 0, 0};
-      r = optimize_detail::reduce_channel(ch, levers.nodes[size_t(ch.node)], channel_budget,
-                                          rest_value(asset, ch, rest), options.drop_channels, options.threads);
+      r = optimize_detail::reduce_channel(ch, levers.nodes[size_t(ch.node)], channel_budget, rest_value(asset, ch, rest),
+                                          {options.drop_channels, options.convert_interpolation}, options.threads);
     }
-    if (options.quantize_rotations && sources[i].rewritable && moves && !r.dropped &&
-        ch.path == TargetPath::kRotation && sources[i].component == 5126 &&
-        ch.interpolation != Interpolation::kCubicSpline) {  // tangents may leave [-1, 1]
-      quantize_rotations(r.channel);
-      c.quantized[i] = true;
+    // Normalized integers for floats of LINEAR and STEP channels (CUBICSPLINE tangents may leave [−1, 1]).
+    if (sources[i].rewritable && moves && !r.dropped && sources[i].component == 5126 &&
+        r.channel.interpolation != Interpolation::kCubicSpline) {
+      const Normalized* type = nullptr;
+      if (ch.path == TargetPath::kRotation && options.quantize_rotations) type = &kShort;
+      if (ch.path == TargetPath::kWeights && options.quantize_weights)
+        type = weights_type(r.channel, levers.nodes[size_t(ch.node)], channel_budget);
+      if (type) {
+        store_as(r.channel, *type);
+        c.stored[i] = type->component;
+      }
     }
-    c.changed = c.changed || r.dropped || c.quantized[i] || r.channel.times.size() != ch.times.size();
+    c.changed = c.changed || r.dropped || c.stored[i] != 0 || r.channel.times.size() != ch.times.size() ||
+                r.channel.interpolation != ch.interpolation;
     if (!r.dropped) c.clip.channels.push_back(r.channel);
   }
   // A clip lasts until its last key (glTF time starts at 0): if every channel that reached the end lost its
@@ -241,7 +281,7 @@ gltf::AnimationEdits make_edits(const json& doc, const Asset& asset, const std::
       e.times = r.channel.times;
       e.values = r.channel.values;
       e.components = r.channel.path == TargetPath::kWeights ? 1 : r.channel.components;
-      e.component = c.quantized[i] ? 5122 : sources[i].component;
+      e.component = c.stored[i] != 0 ? c.stored[i] : sources[i].component;
       e.interpolation = r.channel.interpolation == Interpolation::kStep          ? "STEP"
                         : r.channel.interpolation == Interpolation::kCubicSpline ? "CUBICSPLINE"
                                                                                    : "LINEAR";
@@ -306,8 +346,8 @@ OptimizeSummary optimize(const std::string& input, const std::string& output, co
     Candidate best;
     double best_k = 0;
     OptimizeOptions pass = options;
-    for (int attempt = 0; attempt < 2 && best_k == 0; ++attempt, pass.quantize_rotations = false) {
-      if (attempt == 1 && !options.quantize_rotations) break;
+    for (int attempt = 0; attempt < 2 && best_k == 0; ++attempt, pass.quantize_rotations = pass.quantize_weights = false) {
+      if (attempt == 1 && !options.quantize_rotations && !options.quantize_weights) break;
       auto error_at = [&](double k, Candidate& out) {
         out = reduce_clip(asset, clip, sources, levers, k * budget / double(chain), pass);
         check_cancelled(options.cancel);

@@ -183,6 +183,58 @@ TEST(Optimize, RotationsAreStoredAsNormalizedShorts) {
   }
 }
 
+// The component type of every output accessor of channels with `path`, over all animations.
+std::multiset<int> output_types(const json& doc, const std::string& path) {
+  std::multiset<int> types;
+  for (const json& animation : doc["animations"])
+    for (const json& channel : animation["channels"]) {
+      if (channel["target"]["path"] != path) continue;
+      const json& accessor = doc["accessors"][animation["samplers"][channel["sampler"].get<size_t>()]["output"].get<size_t>()];
+      types.insert(accessor["componentType"].get<int>() * (accessor.value("normalized", false) ? 1 : -1));
+    }
+  return types;
+}
+
+// Morph weights in [0, 1] go out as normalized unsigned bytes or shorts (glTF 2.0 §3.11 allows them for
+// weights), whichever is the smallest within the budget; --keep-float keeps floats.
+TEST(Optimize, MorphWeightsAreStoredAsNormalizedIntegers) {
+  for (bool quantize : {true, false}) {
+    const fs::path output = scratch(quantize ? "weights_quantized.glb" : "weights_float.glb");
+    OptimizeOptions o = budget(0);
+    o.max_error_percent = 1;
+    o.quantize_weights = o.quantize_rotations = quantize;
+    const OptimizeSummary s = optimize(rig("morph_skin.gltf"), output.string(), o);
+    const std::multiset<int> types = output_types(glb_json(output), "weights");
+    ASSERT_EQ(types.size(), 1u);
+    if (quantize) EXPECT_TRUE(*types.begin() == 5121 || *types.begin() == 5123) << *types.begin();
+    else EXPECT_EQ(*types.begin(), -5126);
+    EXPECT_LE(worst_distance(rig("morph_skin.gltf"), output.string(), BlendMode::kLbs), s.budget * (1 + 1e-9));
+  }
+}
+
+// interpolation_modes.gltf's CUBICSPLINE clip: a channel becomes LINEAR where that is smaller, STEP stays
+// STEP, and the surface stays within the budget (between keys too: the linear keys are checked along the
+// curve, the union of both files' keys and midpoints here).
+TEST(Optimize, CubicSplineBecomesLinearWhereSmaller) {
+  for (bool convert : {true, false}) {
+    const fs::path output = scratch(convert ? "cubic_linear.glb" : "cubic_kept.glb");
+    OptimizeOptions o = budget(0);
+    o.max_error_percent = 1;
+    o.convert_interpolation = convert;
+    const OptimizeSummary s = optimize(rig("interpolation_modes.gltf"), output.string(), o);
+    const json doc = glb_json(output);
+    std::multiset<std::string> modes;
+    for (const json& animation : doc["animations"])
+      for (const json& sampler : animation["samplers"]) modes.insert(sampler.value("interpolation", std::string("LINEAR")));
+    // Of the two 3-key channels, the linear equivalent of one takes fewer bytes; the other stays cubic.
+    if (convert) EXPECT_LT(modes.count("CUBICSPLINE"), 2u);
+    else EXPECT_EQ(modes.count("CUBICSPLINE"), 2u);
+    EXPECT_EQ(modes.count("STEP"), 1u);
+    EXPECT_LT(s.animation_bytes_after, s.animation_bytes_before);
+    EXPECT_LE(worst_distance(rig("interpolation_modes.gltf"), output.string(), BlendMode::kLbs), s.budget * (1 + 1e-9));
+  }
+}
+
 TEST(Optimize, TheSameInputAndFlagsWriteTheSameBytes) {
   const fs::path one = scratch("one.glb"), two = scratch("two.glb");
   optimize(rig("walk_run_legs.gltf"), one.string(), budget(0.02));

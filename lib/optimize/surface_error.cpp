@@ -1,5 +1,7 @@
 #include "surface_error.hpp"
 
+#include "channel_reduction.hpp"
+
 #include "dqskin/deformed_batch.hpp"
 
 #include <algorithm>
@@ -24,7 +26,12 @@ std::vector<std::pair<size_t, size_t>> primitive_owners(const Asset& asset, cons
 
 std::vector<double> judged_times(const Clip& clip) {
   std::set<float> keys;
-  for (const Channel& c : clip.channels) keys.insert(c.times.begin(), c.times.end());
+  for (const Channel& c : clip.channels) {
+    keys.insert(c.times.begin(), c.times.end());
+    if (c.interpolation != Interpolation::kCubicSpline) continue;
+    const std::vector<float> samples = cubic_sample_times(c);  // where a linear equivalent may put its keys
+    keys.insert(samples.begin(), samples.end());
+  }
   std::vector<double> times;
   double previous = 0;
   bool first = true;

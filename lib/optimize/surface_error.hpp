@@ -19,8 +19,9 @@ struct SurfaceError {
   size_t samples = 0;     // times
 };
 
-// The times a clip is judged at: every key time of every channel of `clip`, and the midpoint between each
-// two consecutive ones.
+// The times a clip is judged at: every key time of every channel of `clip`, the times a CUBICSPLINE
+// channel's linear equivalent may put its keys at (cubic_sample_times), and the midpoint between each two
+// consecutive ones.
 std::vector<double> judged_times(const Clip& clip);
 
 // `candidate` against `reference` at `times`, on `asset`'s mesh instances, deformed by `backend` in
