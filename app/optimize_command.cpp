@@ -20,7 +20,7 @@ namespace {
 
 struct OptimizeSettings {
   std::string input, output, max_error, mode = "lbs";
-  bool keep_keys = false, keep_channels = false, keep_interpolation = false, keep_float = false, json = false;
+  bool keep_keys = false, keep_channels = false, keep_interpolation = false, keep_times = false, keep_float = false, json = false;
   LoadSettings load;
 };
 
@@ -72,6 +72,7 @@ int run_optimize(OptimizeSettings& s) {
   o.remove_keys = !s.keep_keys;
   o.drop_channels = !s.keep_channels;
   o.convert_interpolation = !s.keep_interpolation;
+  o.share_times = !s.keep_times;
   o.quantize_rotations = o.quantize_weights = !s.keep_float;
   o.load = to_load_options(s.load);
   o.cancel = catch_interrupts("optimize");
@@ -106,6 +107,8 @@ Command add_optimize_command(CLI::App& app) {
   cmd->add_flag("--keep-channels", s.keep_channels, "Drop no channel, even one that stays at the node's rest value");
   cmd->add_flag("--keep-interpolation", s.keep_interpolation,
                 "Keep every channel's interpolation (else LINEAR may become STEP and CUBICSPLINE LINEAR, where smaller)");
+  cmd->add_flag("--keep-times", s.keep_times,
+                "Keep each channel's key times (else LINEAR channels may be resampled onto one shared grid, where smaller)");
   cmd->add_flag("--keep-float", s.keep_float,
                 "Store rotations and morph weights as floats (else as normalized integers within the budget)");
   add_load_settings(*cmd, s.load);
@@ -113,7 +116,8 @@ Command add_optimize_command(CLI::App& app) {
   cmd->footer(
       "Keys of LINEAR and STEP channels are removed where interpolation reproduces them, a channel that does not\n"
       "change becomes one key, and one that stays at its node's rest value goes; LINEAR becomes STEP and\n"
-      "CUBICSPLINE LINEAR where that is smaller within the budget; float rotations and morph weights are stored as\n"
+      "CUBICSPLINE LINEAR where that is smaller within the budget, and LINEAR channels may share one resampled grid\n"
+      "of key times; float rotations and morph weights are stored as\n"
       "normalized integers (glTF 2.0 allows them for both; --keep-float keeps floats); each channel's share of the\n"
       "budget is searched for per clip and the result measured on the written file, read back, by the\n"
       "double-precision deformer. The mesh, the skin and node rest transforms are kept.\n"

@@ -5,6 +5,7 @@
 
 #include "channel_reduction.hpp"
 #include "levers.hpp"
+#include "shared_grid.hpp"
 #include "surface_error.hpp"
 #include "../asset/source_document.hpp"
 #include "../load/animation_glb.hpp"
@@ -171,22 +172,33 @@ Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<Ch
   c.clip.channels.clear();
   c.reduced.resize(clip.channels.size());
   c.stored.assign(clip.channels.size(), 0);
+  std::vector<bool> moves(clip.channels.size(), false), on_grid(clip.channels.size(), false);
+  std::vector<size_t> value_bytes(clip.channels.size(), 0);
   for (size_t i = 0; i < clip.channels.size(); ++i) {
     const Channel& ch = clip.channels[i];
     ReducedChannel& r = c.reduced[i];
     // A node's transform moves the vertices skinned to its subtree or drawn under it; its weights move its
     // mesh's morph targets (a skinned mesh's node moves nothing by its transform, but its weights do).
     const optimize_detail::NodeLevers* node = ch.node >= 0 ? &levers.nodes[size_t(ch.node)] : nullptr;
-    const bool moves = node && (ch.path == TargetPath::kWeights ? !node->weights.empty() : node->moves_vertices);
-    if (!sources[i].rewritable || !moves || !options.remove_keys) {
+    moves[i] = node && (ch.path == TargetPath::kWeights ? !node->weights.empty() : node->moves_vertices);
+    if (!sources[i].rewritable || !moves[i] || !options.remove_keys) {
       r.channel = ch;
-    } else {
-      float rest[4] = {0, 0, 0, 0};
-      r = optimize_detail::reduce_channel(ch, levers.nodes[size_t(ch.node)], channel_budget, rest_value(asset, ch, rest),
-                                          {options.drop_channels, options.convert_interpolation}, options.threads);
+      continue;
     }
+    float rest[4] = {0, 0, 0, 0};
+    r = optimize_detail::reduce_channel(ch, levers.nodes[size_t(ch.node)], channel_budget, rest_value(asset, ch, rest),
+                                        {options.drop_channels, options.convert_interpolation}, options.threads);
+    on_grid[i] = options.share_times && !r.dropped && ch.interpolation == Interpolation::kLinear &&
+                 r.channel.interpolation == Interpolation::kLinear;
+    const bool shorts = ch.path == TargetPath::kRotation && options.quantize_rotations && sources[i].component == 5126;
+    value_bytes[i] = size_t(ch.components) * (shorts ? 2 : ch.path == TargetPath::kWeights ? 1 : 4);
+  }
+  optimize_detail::share_grid(clip, c.reduced, on_grid, value_bytes, levers, channel_budget);
+  for (size_t i = 0; i < clip.channels.size(); ++i) {
+    const Channel& ch = clip.channels[i];
+    ReducedChannel& r = c.reduced[i];
     // Normalized integers for floats of LINEAR and STEP channels (CUBICSPLINE tangents may leave [−1, 1]).
-    if (sources[i].rewritable && moves && !r.dropped && sources[i].component == 5126 &&
+    if (sources[i].rewritable && moves[i] && !r.dropped && sources[i].component == 5126 &&
         r.channel.interpolation != Interpolation::kCubicSpline) {
       const Normalized* type = nullptr;
       if (ch.path == TargetPath::kRotation && options.quantize_rotations) type = &kShort;
@@ -197,7 +209,7 @@ Candidate reduce_clip(const Asset& asset, const Clip& clip, const std::vector<Ch
         c.stored[i] = type->component;
       }
     }
-    c.changed = c.changed || r.dropped || c.stored[i] != 0 || r.channel.times.size() != ch.times.size() ||
+    c.changed = c.changed || r.dropped || c.stored[i] != 0 || r.channel.times != ch.times ||
                 r.channel.interpolation != ch.interpolation;
     if (!r.dropped) c.clip.channels.push_back(r.channel);
   }

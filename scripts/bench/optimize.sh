@@ -10,10 +10,13 @@
 #
 # Usage: scripts/bench/optimize.sh [--quick]
 #   --quick  CesiumMan and Fox only, no timing
+# Without --quick the 1M-vertex generated character (scripts/testdata/make_big_rig.py: a tube skinned to a
+# 64-joint chain, one 4 s clip of 10 keys a second) comes last, with its optimize time and peak memory.
 # Environment:
 #   DQSKIN     the binary (default build/release/app/dqskin)
 #   TOOLS      the npm prefix of scripts/install/node_tools.sh (default build/release/tools)
 #   BENCH_TMP  folder for the outputs (default build/bench/optimize)
+#   MODELS     the models' paths, space-separated, instead of the list (big_rig: the generated character)
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -29,8 +32,15 @@ done
 [[ -d "$SHARED" ]] || { echo "optimize.sh: the shared test models are not at $SHARED" >&2; exit 2; }
 mkdir -p "$TMP"
 
-models=(CesiumMan/CesiumMan.glb Fox/Fox.glb)
-[[ $QUICK == 1 ]] || models+=(RiggedFigure/RiggedFigure.glb BrainStem/BrainStem.glb)
+models=("$SHARED/CesiumMan/CesiumMan.glb" "$SHARED/Fox/Fox.glb")
+if [[ $QUICK == 0 ]]; then
+  python3 "$ROOT/scripts/testdata/make_big_rig.py" "$TMP/big_rig.glb" --vertices 1000000 >/dev/null
+  models+=("$SHARED/RiggedFigure/RiggedFigure.glb" "$SHARED/BrainStem/BrainStem.glb" "$TMP/big_rig.glb")
+fi
+if [[ -n "${MODELS:-}" ]]; then
+  read -r -a models <<<"${MODELS//big_rig/$TMP/big_rig.glb}"
+  QUICK=1  # no timing section
+fi
 
 # Animation bytes of a .glb, and the largest error of B against A over every clip (absolute, relative).
 animation_bytes() {
@@ -64,7 +74,7 @@ print("%.4g %.3g%%" % (max(c["max_error"] for c in clips), 100 * max(c["max_erro
 
 printf "%-14s %-34s %12s %12s %12s\n" model variant "anim bytes" "max error" "of diagonal"
 for model in "${models[@]}"; do
-  input="$SHARED/$model"
+  input="$model"
   stem="$(basename "$model" .glb)"
   printf "%-14s %-34s %12s %12s %12s\n" "$stem" "input" "$(animation_bytes "$input")" 0 "0%"
   # Runs one variant and prints its row; its absolute error is left in $abs.
@@ -106,3 +116,7 @@ rm -rf "$TMP/ply"
 t_opt=$(time_of "$DQSKIN" optimize "$input" -o "$TMP/BrainStem.timed.glb" --max-error 0.1%)
 t_ply=$(time_of "$DQSKIN" bake "$input" -o "$TMP/ply" --format ply -q)
 printf "BrainStem: optimize --max-error 0.1%% %.2f s, bake --format ply %.2f s, ratio %.2f\n" "$t_opt" "$t_ply" "$(echo "$t_opt / $t_ply" | bc -l)"
+# The 1M-vertex character: its ply bake would write gigabytes, so its time and peak memory alone.
+/usr/bin/time -f "%e %M" -o "$TMP/big_rig.time" "$DQSKIN" optimize "$TMP/big_rig.glb" -o "$TMP/big_rig.timed.glb" --max-error 0.1% >/dev/null 2>&1
+read -r seconds kib < "$TMP/big_rig.time"
+printf "big_rig (1M vertices): optimize --max-error 0.1%% %.2f s, peak memory %d MiB\n" "$seconds" "$((kib / 1024))"

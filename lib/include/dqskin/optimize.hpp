@@ -20,6 +20,7 @@ struct OptimizeOptions {
   bool remove_keys = true;           // keys of LINEAR and STEP channels that interpolation reproduces
   bool drop_channels = true;         // channels that stay within the budget of the node's rest value
   bool convert_interpolation = true; // LINEAR to STEP, CUBICSPLINE to LINEAR, where smaller within the budget
+  bool share_times = true;           // LINEAR channels resampled onto one shared grid of key times, where smaller
   bool quantize_rotations = true;    // float rotation outputs stored as normalized shorts (glTF 2.0 §3.11)
   bool quantize_weights = true;      // float morph weights in [0, 1] or [-1, 1] stored as normalized integers
   unsigned threads = 0;              // 0: every core
