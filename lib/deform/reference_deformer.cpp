@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <thread>
 
 namespace dqskin::deform {
@@ -24,16 +25,41 @@ public:
         threads_(int(options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency()))) {}
 
   void run(const Clip* clip, std::span<const double> times, const std::function<void(const DeformedBatch&)>& sink) override {
+    const DeformedOutputs outputs = options_.positions_only ? DeformedOutputs::kPositions : DeformedOutputs::kAll;
     for (size_t first = 0; first < times.size(); first += kFramesPerBatch) {
       if (options_.before_batch) options_.before_batch();
-      std::vector<DeformedFrame> frames;
-      for (size_t f = first; f < std::min(times.size(), first + kFramesPerBatch); ++f) {
-        Clock::time_point start = Clock::now();
-        const Pose pose = sample_pose(asset_, clip, times[f]);
-        stats_.sample_seconds += since(start);
-        start = Clock::now();
-        frames.push_back(deform_frame(asset_, instances_, pose, options_.mode, threads_));
-        stats_.deform_seconds += since(start);
+      const size_t count = std::min(times.size() - first, kFramesPerBatch);
+      std::vector<DeformedFrame> frames(count);
+      std::vector<double> sample_seconds(count, 0), deform_seconds(count, 0);
+      // Frames are independent, so threads share a batch's frames; a batch of fewer frames than threads
+      // splits each frame's vertices instead (a mesh of many small primitives splits badly: each primitive
+      // under 2048 vertices stays on one thread). Either way every frame's bits are the same.
+      const size_t workers = std::min<size_t>(size_t(threads_), count);
+      const int vertex_threads = workers > 1 ? 1 : threads_;
+      std::vector<std::exception_ptr> failures(std::max<size_t>(workers, 1));  // a memory ceiling may throw
+      auto deform = [&](size_t w) {
+        try {
+          for (size_t i = w; i < count; i += std::max<size_t>(workers, 1)) {
+            Clock::time_point start = Clock::now();
+            const Pose pose = sample_pose(asset_, clip, times[first + i]);
+            sample_seconds[i] = since(start);
+            start = Clock::now();
+            frames[i] = deform_frame(asset_, instances_, pose, options_.mode, vertex_threads, outputs);
+            deform_seconds[i] = since(start);
+          }
+        } catch (...) {
+          failures[w] = std::current_exception();
+        }
+      };
+      std::vector<std::thread> pool;
+      for (size_t w = 1; w < workers; ++w) pool.emplace_back(deform, w);
+      deform(0);
+      for (std::thread& t : pool) t.join();
+      for (const std::exception_ptr& failure : failures)
+        if (failure) std::rethrow_exception(failure);
+      for (size_t i = 0; i < count; ++i) {
+        stats_.sample_seconds += sample_seconds[i];
+        stats_.deform_seconds += deform_seconds[i];
       }
       sink(to_batch(frames, first));
     }

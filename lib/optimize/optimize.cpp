@@ -360,14 +360,20 @@ OptimizeSummary optimize(const std::string& input, const std::string& output, co
     OptimizeOptions pass = options;
     for (int attempt = 0; attempt < 2 && best_k == 0; ++attempt, pass.quantize_rotations = pass.quantize_weights = false) {
       if (attempt == 1 && !options.quantize_rotations && !options.quantize_weights) break;
+      // A failing candidate is known at its first chunk of times past the bound; the next one is looked at
+      // first where the last one failed. Only pass or fail matters here, so the decisions are those of a
+      // full measurement.
+      double failed_at = -1;
       auto error_at = [&](double k, Candidate& out) {
         out = reduce_clip(asset, clip, sources, levers, k * budget / double(chain), pass);
         check_cancelled(options.cancel);
         if (!out.changed) return 0.0;
-        const double e = optimize_detail::surface_error(asset, clip, asset, out.clip, instances, times, budget,
-                                                        options.mode, Backend::kFastCpu, options.threads).max;
+        const optimize_detail::SurfaceError e = optimize_detail::surface_error(
+            asset, clip, asset, out.clip, instances, times, budget, options.mode, Backend::kFastCpu, options.threads,
+            kSearchMargin * budget, failed_at);
+        if (e.max > kSearchMargin * budget) failed_at = e.max_time;
         check_cancelled(options.cancel);
-        return e;
+        return e.max;
       };
       Candidate trial;
       double k = 1;

@@ -77,7 +77,7 @@ VertexTransform blend(const Influences& in, const JointTransforms& jt, BlendMode
 
 void deform_range(const Primitive& prim, std::span<const double> morph, const VertexTransform* rigid_instance,
                   const JointTransforms* jt, BlendMode mode, size_t begin, size_t end, DeformedPrimitive& out) {
-  const bool has_normals = !prim.normals.empty(), has_tangents = !prim.tangents.empty();
+  const bool has_normals = !out.normals.empty(), has_tangents = !out.tangents.empty();
   for (size_t v = begin; v < end; ++v) {
     // Morph targets first (§3.7.2.2): base + Σ weight · offset.
     Vec3<double> p(prim.positions[v]);
@@ -105,12 +105,12 @@ void deform_range(const Primitive& prim, std::span<const double> morph, const Ve
       if (x.is_matrix) {
         const Mat3<double> a(x.matrix);
         p = Vec3<double>(x.matrix * DVec4(p, 1));
-        n = cofactor(a) * n;
-        t = a * t;
+        if (has_normals) n = cofactor(a) * n;
+        if (has_tangents) t = a * t;
       } else {
         p = transform_point(x.rigid, x.scale * p);
-        n = rotate_vector(x.rigid, cofactor(x.scale) * n);
-        t = rotate_vector(x.rigid, x.scale * t);
+        if (has_normals) n = rotate_vector(x.rigid, cofactor(x.scale) * n);
+        if (has_tangents) t = rotate_vector(x.rigid, x.scale * t);
       }
     }
     out.positions[v] = p;
@@ -123,15 +123,17 @@ void deform_range(const Primitive& prim, std::span<const double> morph, const Ve
 }  // namespace
 
 DeformedPrimitive deform_primitive(const Asset& asset, const MeshInstance& instance, size_t primitive,
-                                   const Pose& pose, const JointTransforms* joints, BlendMode mode, int threads) {
+                                   const Pose& pose, const JointTransforms* joints, BlendMode mode, int threads,
+                                   DeformedOutputs outputs) {
   const Primitive& prim = asset.meshes[size_t(instance.mesh)].primitives[primitive];
   if (prim.influences > kMaxInfluences)  // the Asset's contract (asset.hpp); the loader never makes more
     throw std::invalid_argument("deform_primitive: more than kMaxInfluences influences per vertex");
   const size_t n = prim.vertex_count();
   DeformedPrimitive out;
   out.positions.resize(n);
-  if (!prim.normals.empty()) out.normals.resize(n);
-  if (!prim.tangents.empty()) out.tangents.resize(n);
+  // deform_range computes what `out` has room for.
+  if (outputs == DeformedOutputs::kAll && !prim.normals.empty()) out.normals.resize(n);
+  if (outputs == DeformedOutputs::kAll && !prim.tangents.empty()) out.tangents.resize(n);
 
   VertexTransform rigid;
   const bool skinned = instance.skin >= 0 && joints;
@@ -151,7 +153,7 @@ DeformedPrimitive deform_primitive(const Asset& asset, const MeshInstance& insta
 }
 
 DeformedFrame deform_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const Pose& pose,
-                           BlendMode mode, int threads) {
+                           BlendMode mode, int threads, DeformedOutputs outputs) {
   DeformedFrame frame;
   std::vector<JointTransforms> skins(asset.skins.size());
   std::vector<char> computed(asset.skins.size(), 0);
@@ -165,7 +167,7 @@ DeformedFrame deform_frame(const Asset& asset, const std::vector<MeshInstance>& 
       jt = &skins[size_t(inst.skin)];
     }
     for (size_t p = 0; p < asset.meshes[size_t(inst.mesh)].primitives.size(); ++p)
-      frame.primitives.push_back(deform_primitive(asset, inst, p, pose, jt, mode, threads));
+      frame.primitives.push_back(deform_primitive(asset, inst, p, pose, jt, mode, threads, outputs));
   }
   return frame;
 }

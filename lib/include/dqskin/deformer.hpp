@@ -55,6 +55,7 @@ struct DeformerOptions {
   Backend backend = Backend::kAuto;
   size_t gpu_memory = size_t(512) << 20;  // GPU: bytes of output buffers (--gpu-memory)
   unsigned threads = 0;                   // CPU deformers: threads, 0 for every core (results do not depend on it)
+  bool positions_only = false;            // the CPU reference: no normals or tangents (a measurement of positions)
   std::function<void()> before_batch;     // CPU deformers: called before each batch (a cancellation point)
 };
 

@@ -59,11 +59,14 @@ struct DeformedFrame {
 // Normals use the cofactor of the blended 3×3 (det · A⁻ᵀ, defined even for singular A); tangents the
 // matrix itself, keeping their handedness w. `joints` is the skin's transforms (ignored for rigid
 // instances). Vertices are split across `threads` threads; the result does not depend on their number.
+// With kPositions, normals and tangents are left empty (a measurement of the surface needs only positions).
+enum class DeformedOutputs { kAll, kPositions };
 DeformedPrimitive deform_primitive(const Asset& asset, const MeshInstance& instance, size_t primitive,
-                                   const Pose& pose, const JointTransforms* joints, BlendMode mode, int threads = 1);
+                                   const Pose& pose, const JointTransforms* joints, BlendMode mode, int threads = 1,
+                                   DeformedOutputs outputs = DeformedOutputs::kAll);
 
 DeformedFrame deform_frame(const Asset& asset, const std::vector<MeshInstance>& instances, const Pose& pose,
-                           BlendMode mode, int threads = 1);
+                           BlendMode mode, int threads = 1, DeformedOutputs outputs = DeformedOutputs::kAll);
 
 // Warnings about skin weights that the deformer corrects (one per primitive): sums away from 1, and
 // vertices with no weight at all.
