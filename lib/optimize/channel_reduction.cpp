@@ -172,17 +172,6 @@ ReducedChannel reduce_piecewise(const Channel& channel, const ChannelError& erro
 constexpr int kCubicSamples = 8;   // a CUBICSPLINE segment's samples for its linear equivalent
 constexpr int kCubicChecks = 32;   // the points of each segment where the equivalent is checked
 
-// The CUBICSPLINE channel sampled at cubic_sample_times as LINEAR keys.
-Channel sampled_linear(const Channel& channel) {
-  Channel dense = channel;
-  dense.interpolation = Interpolation::kLinear;
-  dense.times = cubic_sample_times(channel);
-  dense.values.clear();
-  for (float t : dense.times)
-    for (double v : sample_channel(channel, double(t))) dense.values.push_back(float(v));
-  return dense;
-}
-
 // Whether `reduced` stays within `budget` of the CUBICSPLINE `channel` at kCubicChecks points of each
 // of its segments (the dropped channel as the node's rest value).
 bool follows_curve(const Channel& channel, const ReducedChannel& reduced, const float* rest, const ChannelError& error,
@@ -213,6 +202,16 @@ size_t float_bytes(const Channel& channel) {
 
 }  // namespace
 
+Channel sampled_at(const Channel& channel, const std::vector<float>& times) {
+  Channel out = channel;
+  out.interpolation = Interpolation::kLinear;
+  out.times = times;
+  out.values.clear();
+  for (float t : times)
+    for (double v : sample_channel(channel, double(t))) out.values.push_back(float(v));
+  return out;
+}
+
 std::vector<float> cubic_sample_times(const Channel& channel) {
   std::vector<float> times;
   auto add = [&](float t) {
@@ -234,7 +233,7 @@ ReducedChannel reduce_channel(const Channel& channel, const NodeLevers& levers, 
   if (channel.interpolation != Interpolation::kCubicSpline)
     return reduce_piecewise(channel, error, budget, rest, allowed, threads);
   if (!allowed.interpolation || keys < 2) return ReducedChannel{false, channel};
-  ReducedChannel linear = reduce_piecewise(sampled_linear(channel), error, budget / 2, rest, allowed, threads);
+  ReducedChannel linear = reduce_piecewise(sampled_at(channel, cubic_sample_times(channel)), error, budget / 2, rest, allowed, threads);
   const bool smaller = linear.dropped || float_bytes(linear.channel) < float_bytes(channel);
   if (!smaller || !follows_curve(channel, linear, rest, error, budget)) return ReducedChannel{false, channel};
   return linear;

@@ -27,6 +27,9 @@ private:
 // them (float times, strictly increasing). The search judges a clip at these too (judged_times).
 std::vector<float> cubic_sample_times(const Channel& channel);
 
+// `channel` sampled at `times` (sample_channel, as every command samples) as LINEAR keys of the same target.
+Channel sampled_at(const Channel& channel, const std::vector<float>& times);
+
 struct ReducedChannel {
   bool dropped = false;  // the channel goes: the node's rest value is within the budget at every key
   Channel channel;       // else its keys (a subset of the input's, or one key when it does not change)

@@ -11,16 +11,6 @@ namespace {
 
 constexpr size_t kLargestStep = 8;
 
-// `input` sampled at `times` as LINEAR keys of the same channel.
-Channel sampled_at(const Channel& input, const std::vector<float>& times) {
-  Channel out = input;
-  out.times = times;
-  out.values.clear();
-  for (float t : times)
-    for (double v : sample_channel(input, double(t))) out.values.push_back(float(v));
-  return out;
-}
-
 // Whether `candidate` (LINEAR) reproduces every key of `input` within `budget`. Both are piecewise linear
 // (slerp for rotations) between keys the candidate's grid shares with the input's union, so the error
 // between keys is bounded by the error at them (docs/DESIGN.md §3.12).

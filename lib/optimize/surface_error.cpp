@@ -124,10 +124,7 @@ SurfaceError surface_error(const Asset& asset, const Clip& reference, const Asse
     if (chunk != order.end()) std::rotate(order.begin(), chunk, chunk + 1);
   }
   for (const size_t first : order) {
-    if (e.max > stop_above) {
-      e.stopped = true;
-      break;
-    }
+    if (e.max > stop_above) break;
     const size_t count = std::min(kTimesPerChunk, times.size() - first);
     const std::span<const double> chunk(times.data() + first, count);
     held.assign(owners.size(), {});

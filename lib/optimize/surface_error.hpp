@@ -18,7 +18,6 @@ struct SurfaceError {
   double max_time = 0;    // where the max was found
   size_t max_instance = 0, max_primitive = 0, max_vertex = 0;
   size_t samples = 0;     // times
-  bool stopped = false;   // ended early past `stop_above`: max is then a lower bound, the p99 not measured
 };
 
 // The times a clip is judged at: every key time of every channel of `clip`, the times a CUBICSPLINE
@@ -29,7 +28,8 @@ std::vector<double> judged_times(const Clip& clip);
 // `candidate` against `reference` at `times`, on `asset`'s mesh instances, deformed by `backend` in
 // `mode`. `candidate_asset` is the asset the candidate clip belongs to (the same mesh; may be `asset`).
 // `scale` (the budget) sets the p99's resolution. A search that only asks whether the error is within a
-// bound passes it as `stop_above`: the measurement ends with the first chunk of times past it, and begins
+// bound passes it as `stop_above`: the measurement ends with the first chunk of times past it (max is then
+// a lower bound past the bound, the p99 not measured), and begins
 // with the chunk holding `look_first` (the time a previous candidate failed at; < 0: in order).
 SurfaceError surface_error(const Asset& asset, const Clip& reference, const Asset& candidate_asset,
                            const Clip& candidate, const std::vector<MeshInstance>& instances,
