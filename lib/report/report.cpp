@@ -128,7 +128,7 @@ ReportResult report(const std::vector<std::string>& inputs, const ReportOptions&
         // lbs, dqs and dib agree on a file without a skin: there is nothing to compare, and a batch goes on
         // (as bake bakes such a file) with a warning instead of failing it.
         if (plan.skins.empty()) {
-          input_result.warnings.push_back("no skinned mesh in the scene: nothing to report; no report is written for it");
+          input_result.warnings.emplace_back("no skinned mesh in the scene: nothing to report; no report is written for it");
           return;
         }
         InputData data = measure_input(plan, options, counter);
