@@ -1,0 +1,34 @@
+// FLIP, the perceptual difference of two LDR images as a person sees them alternate (Andersson, Nilsson,
+// Akenine-Möller, Oskarsson, Åström and Fairchild, "FLIP: A Difference Evaluator for Alternating Images",
+// PACMCGIT 3(2), 2020): per pixel a value from 0 (no visible difference) to 1, from a colour pipeline
+// (contrast-sensitivity filtering in an opponent space, Hunt-adjusted L*a*b*, the HyAB distance) and a
+// feature pipeline (edges and points on luminance), ΔE = ΔE_c ^ (1 − ΔE_f). Computed in double precision;
+// the authors' tools use float, which moves their means by up to about 5e-5 (they sum in float too).
+// Internal to lib/diff until the command line uses it.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace dqskin {
+
+// Pixels per degree of visual angle for an observer `distance_m` metres from a monitor `width_m` metres
+// wide showing `width_px` pixels across (small-angle form, as the paper's viewing conditions). The
+// paper's default, 0.7 m from a 0.7 m wide 3840-pixel monitor, gives 67.02.
+double pixels_per_degree(double distance_m, double width_px, double width_m);
+inline constexpr double kDefaultPixelsPerDegree = 67.02064327658226;  // 3840 π / 180
+
+// Two images of width × height pixels, interleaved RGB of sRGB-encoded display values from 0 to 1 (as an
+// 8-bit PNG reads, v / 255); values outside are clamped. Returns ΔE per pixel, row by row.
+std::vector<double> flip_error_map(const float* reference_srgb, const float* test_srgb, size_t width, size_t height,
+                                   double pixels_per_degree = kDefaultPixelsPerDegree);
+
+// The figures FLIP's tools report for an error map: the mean, the weighted quartiles (each pixel weighted
+// by its own error: the smallest value at which the ascending running sum exceeds p of the total), the
+// extremes.
+struct FlipPool {
+  double mean = 0, q1 = 0, weighted_median = 0, q3 = 0, min = 0, max = 0;
+};
+FlipPool pool_flip(const std::vector<double>& errors);
+
+}  // namespace dqskin

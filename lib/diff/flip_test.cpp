@@ -1,0 +1,114 @@
+// FLIP on cases whose value follows from the paper's equations, and on hand-made images against an
+// independent implementation written from the paper (a NumPy prototype in double precision; its figures,
+// printed to 6 or 7 digits, are the expected values below, so the tolerance is 1e-6).
+#include "flip.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+namespace dqskin {
+namespace {
+
+struct Image {
+  size_t width, height;
+  std::vector<float> rgb;
+  Image(size_t w, size_t h, float value) : width(w), height(h), rgb(3 * w * h, value) {}
+  void set(size_t x, size_t y, float value) { std::fill_n(rgb.begin() + long(3 * (y * width + x)), 3, value); }
+};
+
+std::vector<double> flip(const Image& reference, const Image& test) {
+  return flip_error_map(reference.rgb.data(), test.rgb.data(), reference.width, reference.height);
+}
+
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double e : v) sum += e;
+  return sum / double(v.size());
+}
+
+// Deterministic noise from 0 to 1 (a linear congruential generator: the same pixels on every machine).
+Image noise(size_t w, size_t h, uint32_t seed) {
+  Image image(w, h, 0);
+  for (float& v : image.rgb) {
+    seed = seed * 1664525u + 1013904223u;
+    v = float(seed >> 8) / float(1u << 24);
+  }
+  return image;
+}
+
+TEST(Flip, PixelsPerDegreeOfThePapersViewingConditions) {
+  // 0.7 m from a 0.7 m wide monitor of 3840 pixels: 3840 π / 180.
+  EXPECT_NEAR(pixels_per_degree(0.7, 3840, 0.7), 3840 * std::numbers::pi / 180, 1e-12);
+  EXPECT_NEAR(pixels_per_degree(0.7, 3840, 0.7), kDefaultPixelsPerDegree, 1e-12);
+}
+
+TEST(Flip, IdenticalImagesAreZeroEverywhere) {
+  const Image image = noise(40, 30, 7);
+  for (double e : flip(image, image)) ASSERT_EQ(e, 0.0);
+}
+
+TEST(Flip, AUniformGreyShiftIsTheColourPipelineAlone) {
+  // A constant image is its own filtered image and has no edges or points, so ΔE_f = 0 and ΔE = ΔE_c.
+  // For greys a* = b* = 0 and the HyAB distance is |ΔL*|, with L* = 116 Y^(1/3) − 16 and Y the linear
+  // value (the XYZ matrix's Y row sums to 1). c_max = HyAB(green, blue)^0.7 = 203.301655^0.7.
+  const auto lightness = [](double srgb) { return 116 * std::cbrt(std::pow((srgb + 0.055) / 1.055, 2.4)) - 16; };
+  const double e = std::pow(lightness(0.55) - lightness(0.5), 0.7);
+  const double c_max = std::pow(203.301655, 0.7);
+  const double expected = 0.95 / (0.4 * c_max) * e;  // below 0.4 c_max: the first, linear part of the map
+  EXPECT_NEAR(expected, 0.176461, 1e-6);             // the prototype's value
+  for (double v : flip(Image(32, 32, 0.5f), Image(32, 32, 0.55f))) ASSERT_NEAR(v, expected, 1e-6);
+}
+
+TEST(Flip, OneChangedPixel) {
+  Image reference(64, 64, 0), test(64, 64, 0);
+  test.set(32, 32, 1);
+  const std::vector<double> error = flip(reference, test);
+  const auto worst = std::max_element(error.begin(), error.end());
+  EXPECT_EQ(worst - error.begin(), 32 * 64 + 32);  // at the pixel itself
+  EXPECT_NEAR(*worst, 0.864906, 1e-6);
+  EXPECT_NEAR(mean(error), 0.0034940, 1e-6);
+  EXPECT_EQ(error[0], 0.0);  // beyond both filters' reach nothing differs
+}
+
+TEST(Flip, AnEdgeMovedByOnePixel) {
+  Image reference(64, 64, 0), test(64, 64, 0);
+  for (size_t y = 0; y < 64; ++y)
+    for (size_t x = 0; x < 64; ++x) {
+      if (x >= 32) reference.set(x, y, 1);
+      if (x >= 31) test.set(x, y, 1);
+    }
+  const std::vector<double> error = flip(reference, test);
+  EXPECT_NEAR(*std::max_element(error.begin(), error.end()), 0.772916, 1e-6);
+  EXPECT_NEAR(mean(error), 0.051723, 1e-6);
+}
+
+TEST(Flip, TheSameBothWaysAndWithinZeroAndOne) {
+  const Image a = noise(33, 21, 1), b = noise(33, 21, 2);
+  const std::vector<double> ab = flip(a, b), ba = flip(b, a);
+  EXPECT_EQ(ab, ba);
+  for (double e : ab) {
+    ASSERT_GE(e, 0.0);
+    ASSERT_LE(e, 1.0);
+  }
+}
+
+TEST(Flip, PoolingWeighsEachPixelByItsError) {
+  // Running sums of the sorted values 0.1, 0.3, 0.6, 1.0: the first above 0.25, 0.5 and 0.75 of the total.
+  const FlipPool pool = pool_flip({0.4, 0.1, 0.3, 0.2});
+  EXPECT_DOUBLE_EQ(pool.mean, 0.25);
+  EXPECT_EQ(pool.q1, 0.2);
+  EXPECT_EQ(pool.weighted_median, 0.3);
+  EXPECT_EQ(pool.q3, 0.4);
+  EXPECT_EQ(pool.min, 0.1);
+  EXPECT_EQ(pool.max, 0.4);
+  const FlipPool zero = pool_flip({0, 0});
+  EXPECT_EQ(zero.weighted_median, 0.0);
+}
+
+}  // namespace
+}  // namespace dqskin
