@@ -43,7 +43,7 @@ TEST_P(FastCpuMatchesReference, EveryFrameOfEveryClip) {
 
   testing_support::AccuracyMeter meter;
   for (const Clip* clip : clips_or_rest(asset)) {
-    const std::vector<double> times = accuracy_times(clip);
+    const std::vector<double> times = accuracy_times(clip, testing_support::kSweepFps);
     fast->run(clip, times, [&](const DeformedBatch& batch) {
       for (size_t f = 0; f < batch.frame_count; ++f)
         meter.add(asset, instances, c.mode, clip, times[batch.first_frame + f], batch, f);
