@@ -18,7 +18,7 @@ set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_hostile_genera
 
 # dqskin_limit_test(NAME EXPECTED ARGS ... [TIMEOUT s] [options of dqskin_outcome_case])
 # One case, limits.NAME: `dqskin ARGS` run in the generated folder under a 4 GiB address-space cap, with
-# TIMEOUT seconds (default 60; four times that in sanitizer builds) for the command. Label "limits".
+# TIMEOUT seconds (default 60; DQSKIN_TIMEOUT_SCALE times that in the sanitizer build) for the command. Label "limits".
 set(limits_scratch ${CMAKE_CURRENT_BINARY_DIR}/limits)
 file(MAKE_DIRECTORY ${limits_scratch})
 include(${CMAKE_CURRENT_LIST_DIR}/outcome_test.cmake)
@@ -27,9 +27,7 @@ function(dqskin_limit_test name expected)
   if(NOT DEFINED T_TIMEOUT)
     set(T_TIMEOUT 60)
   endif()
-  if(DQSKIN_SANITIZE)  # AddressSanitizer makes the work three to five times slower; a hang stays a hang
-    math(EXPR T_TIMEOUT "${T_TIMEOUT} * 4")
-  endif()
+  math(EXPR T_TIMEOUT "${T_TIMEOUT} * ${DQSKIN_TIMEOUT_SCALE}")  # longer under the sanitizers (CMakeLists.txt)
   math(EXPR ctest_timeout "${T_TIMEOUT} + 60")
   dqskin_outcome_case(limits.${name} ${expected} WORKING_DIRECTORY ${DQSKIN_HOSTILE_DIR} LABEL limits
     MEMORY_LIMIT_MB 4096 TIMEOUT ${T_TIMEOUT} CTEST_TIMEOUT ${ctest_timeout} ${T_UNPARSED_ARGUMENTS})

@@ -27,15 +27,10 @@ if(DQSKIN_PRLIMIT AND NOT DQSKIN_SANITIZE)
 endif()
 
 # Timeouts: 20 s for one `info` (a quadratic pass over valid_deep_hierarchy.gltf took 45 s in a Release
-# build), 60 s for the three commands of an undeformable case; four times that in sanitizer builds, where
-# AddressSanitizer makes the loader three to five times slower (as in command_limits.cmake): a hang or a
-# quadratic walk still runs past it.
-set(_timeout_scale 1)
-if(DQSKIN_SANITIZE)
-  set(_timeout_scale 4)
-endif()
-math(EXPR _info_timeout "20 * ${_timeout_scale}")
-math(EXPR _undeformable_timeout "60 * ${_timeout_scale}")
+# build), 60 s for the three commands of an undeformable case; DQSKIN_TIMEOUT_SCALE times that in the
+# sanitizer build (CMakeLists.txt).
+math(EXPR _info_timeout "20 * ${DQSKIN_TIMEOUT_SCALE}")
+math(EXPR _undeformable_timeout "60 * ${DQSKIN_TIMEOUT_SCALE}")
 
 file(STRINGS ${DQSKIN_MALFORMED_DIR}/valid.txt _valid_files)
 foreach(_file IN LISTS _valid_files)

@@ -80,14 +80,11 @@ struct Plane {
   size_t width = 0, height = 0;
   std::vector<double> v;
   Plane(size_t w, size_t h) : width(w), height(h), v(w * h) {}
-  double& at(size_t x, size_t y) { return v[y * width + x]; }
-  double at(size_t x, size_t y) const { return v[y * width + x]; }
 };
 
 // Correlates along rows (horizontal) or columns with an odd kernel centred on its middle, the border
-// pixels repeated beyond the edge.
-// Rows go through a padded copy and columns are summed a whole row at a time, so that the inner loops run
-// over contiguous memory without a clamp per tap.
+// pixels repeated beyond the edge. Rows go through a padded copy and columns are summed a whole row at a
+// time, so that the inner loops run over contiguous memory without a clamp per tap.
 Plane correlate(const Plane& in, const std::vector<double>& kernel, bool horizontal) {
   Plane out(in.width, in.height);
   const size_t r = kernel.size() / 2, w = in.width, h = in.height;
@@ -186,8 +183,10 @@ struct Features {
 };
 
 Features features(const Plane& luminance, const FeatureKernels& k) {
+  const Plane smoothed_along_x = correlate(luminance, k.gaussian, true);  // shared by both detectors' y response
   const auto magnitude = [&](const std::vector<double>& d) {
-    const Plane dx = separable(luminance, d, k.gaussian), dy = separable(luminance, k.gaussian, d);
+    const Plane dx = correlate(correlate(luminance, d, true), k.gaussian, false);
+    const Plane dy = correlate(smoothed_along_x, d, false);
     Plane m(luminance.width, luminance.height);
     for (size_t i = 0; i < m.v.size(); ++i) m.v[i] = std::hypot(dx.v[i], dy.v[i]);
     return m;

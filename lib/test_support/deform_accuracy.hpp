@@ -70,18 +70,6 @@ inline std::vector<const Clip*> clips_or_rest(const Asset& asset) {
   return v;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kUnderAddressSanitizer = true;  // GCC
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kUnderAddressSanitizer = true;  // clang
-#else
-inline constexpr bool kUnderAddressSanitizer = false;
-#endif
-#else
-inline constexpr bool kUnderAddressSanitizer = false;
-#endif
-
 // The times the accuracy tests deform: every frame at 10 fps, enough to cross every key interval of the
 // test models' clips; the rest pose once.
 inline std::vector<double> accuracy_times(const Clip* clip, double fps = 10) {
@@ -91,10 +79,14 @@ inline std::vector<double> accuracy_times(const Clip* clip, double fps = 10) {
 }
 
 // The frame rate of the sweeps that compare a deformer with the reference over every clip of every model:
-// 10 fps, and 2 under AddressSanitizer. That build looks for memory and undefined-behaviour errors, which
+// 10 fps, and 2 in the sanitizer build (CMakeLists.txt defines DQSKIN_SANITIZER_BUILD). That build looks for memory and undefined-behaviour errors, which
 // every code path meets in the first frames as in the last, while the Release build checks the accuracy
 // of every frame (BrainStem's eight sweeps took 80 s each under ASan at 10 fps).
-inline constexpr double kSweepFps = kUnderAddressSanitizer ? 2 : 10;
+#ifdef DQSKIN_SANITIZER_BUILD
+inline constexpr double kSweepFps = 2;
+#else
+inline constexpr double kSweepFps = 10;
+#endif
 
 // The largest differences of a float deformer's batch from the reference, frame by frame.
 struct AccuracyMeter {
