@@ -15,9 +15,14 @@
 #include "dqskin/geometry_report.hpp"
 #include "dqskin/image_diff.hpp"
 #include "interrupt.hpp"
+#include "../lib/diff/flip.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <thread>
+#include <vector>
 #include <iostream>
 #include <memory>
 
@@ -27,6 +32,11 @@ namespace {
 struct DiffSettings {
   std::string a, b;
   DiffThresholds thresholds;  // idiff's defaults
+  std::vector<CLI::Option*> threshold_options;  // which of them were given (FLIP takes those only)
+  std::string metric = "idiff";
+  double ppd = 0;                // FLIP's pixels per degree; 0: from --viewing, or the paper's default
+  std::vector<double> viewing;   // distance, screen width (metres), screen pixels across
+  unsigned threads = 0;          // 0: one per core
   std::string out_dir;        // heat maps of failing pairs; none when empty
   bool json = false;
   std::string junit;          // JUnit XML report; none when empty
@@ -91,6 +101,37 @@ int exit_status(DiffStatus status) {
   return kDiffFail;
 }
 
+constexpr double kOff = std::numeric_limits<double>::infinity();
+
+// The threshold options given on the command line, by their long name ("--failmean").
+std::vector<std::string> given_thresholds(const DiffSettings& s) {
+  std::vector<std::string> names;
+  for (const CLI::Option* o : s.threshold_options)
+    if (o->count() > 0) names.push_back("--" + o->get_lnames().front());
+  // A percentage counts pixels over a value: with FLIP, whose value has no default, it needs that value.
+  const auto has = [&names](const char* n) { return std::find(names.begin(), names.end(), n) != names.end(); };
+  if (has("--failpercent") && !has("--fail")) throw InputError("--failpercent needs --fail with --metric flip (the FLIP value it counts pixels over)");
+  if (has("--warnpercent") && !has("--warn")) throw InputError("--warnpercent needs --warn with --metric flip (the FLIP value it counts pixels over)");
+  return names;
+}
+
+// FLIP's pixels per degree from --ppd or --viewing; the paper's viewing conditions when neither is given.
+double viewing_ppd(const DiffSettings& s) {
+  if (s.ppd != 0 && !s.viewing.empty()) throw InputError("give --ppd or --viewing, not both");
+  if (!s.viewing.empty()) {
+    const double distance = s.viewing[0], width = s.viewing[1], pixels = s.viewing[2];
+    if (!(distance > 0 && distance <= 100)) throw InputError("--viewing: the distance must be above 0 and at most 100 m");
+    if (!(width > 0 && width <= 100)) throw InputError("--viewing: the screen width must be above 0 and at most 100 m");
+    if (!(pixels >= 1 && pixels <= 1e6)) throw InputError("--viewing: the pixels across must be from 1 to 1000000");
+    const double ppd = pixels_per_degree(distance, pixels, width);
+    if (!(ppd >= 1 && ppd <= 1000)) throw InputError("--viewing gives " + std::to_string(ppd) + " pixels per degree; FLIP takes 1 to 1000");
+    return ppd;
+  }
+  if (s.ppd == 0) return kDefaultPixelsPerDegree;
+  if (!(s.ppd >= 1 && s.ppd <= 1000)) throw InputError("--ppd must be from 1 to 1000 pixels per degree");
+  return s.ppd;
+}
+
 // Compares two images or two folders of images. Returns 0 (all pass), 1 (warnings only) or 2 (a failure,
 // or a usage or input error).
 int run_diff(const DiffSettings& settings) {
@@ -99,9 +140,25 @@ int run_diff(const DiffSettings& settings) {
     if (!bad.empty()) throw InputError(bad);
     if (is_gltf_file(settings.a) != is_gltf_file(settings.b))
       throw InputError("compare two glTF files (.gltf, .glb, .vrm) or two images or folders of images, not one of each");
-    if (is_gltf_file(settings.a)) return run_geometry_diff(settings);
-    if (is_bake_folder(settings.a) && is_bake_folder(settings.b)) return run_geometry_diff(settings);
-    DiffOptions options{settings.thresholds, settings.out_dir};
+    const bool geometry = is_gltf_file(settings.a) || (is_bake_folder(settings.a) && is_bake_folder(settings.b));
+    if (geometry && settings.metric != "idiff")
+      throw InputError("--metric " + settings.metric + " compares images; glTF files and bakes are compared by distance");
+    if (geometry && (settings.thresholds.fail_mean != kOff || settings.thresholds.warn_mean != kOff))
+      throw InputError("--failmean and --warnmean judge images; glTF files and bakes are judged by distance");
+    if (geometry) return run_geometry_diff(settings);
+    DiffOptions options;
+    options.thresholds = settings.thresholds;
+    options.heat_map_dir = settings.out_dir;
+    if (settings.metric == "flip") {
+      options.metric = DiffMetric::kFlip;
+      options.thresholds = flip_thresholds(settings.thresholds, given_thresholds(settings));
+      options.pixels_per_degree = viewing_ppd(settings);
+    } else if (settings.metric != "idiff") {
+      throw InputError("--metric '" + settings.metric + "' is not one of idiff, flip");
+    } else if (settings.ppd != 0 || !settings.viewing.empty()) {
+      throw InputError("--ppd and --viewing are FLIP's viewing conditions: give them with --metric flip");
+    }
+    options.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
     options.cancel = catch_interrupts("diff");
     const DiffReport report = diff_images(settings.a, settings.b, options);
@@ -126,28 +183,48 @@ Command add_diff_command(CLI::App& app) {
   diff_cmd->add_option("B", diff.b,
                        "glTF file, image or folder to check (for an image A and a folder B: B/<name of A>)")
       ->required();
-  diff_cmd->add_option("--fail", diff.thresholds.fail, "A pixel is over --fail when any channel differs by more")
+  std::vector<CLI::Option*>& thresholds = diff.threshold_options;
+  thresholds.push_back(diff_cmd->add_option("--fail", diff.thresholds.fail, "A pixel is over --fail when any channel differs by more (FLIP: its FLIP value)")
       ->type_name("VAL")
-      ->capture_default_str();
-  diff_cmd->add_option("--failpercent", diff.thresholds.fail_percent,
-                       "A pair fails when more than this percentage of its pixels are over --fail")
+      ->capture_default_str());
+  thresholds.push_back(diff_cmd->add_option("--failpercent", diff.thresholds.fail_percent,
+                       "A pair fails when more than this percentage of its pixels are over --fail (a percentile: "
+                       "--failpercent 1 fails a 99th percentile over --fail)")
       ->type_name("PERCENT")
-      ->capture_default_str();
-  diff_cmd->add_option("--hardfail", diff.thresholds.hard_fail,
-                       "A pair fails when any channel differs by more, whatever the percentage")
+      ->capture_default_str());
+  thresholds.push_back(diff_cmd->add_option("--hardfail", diff.thresholds.hard_fail,
+                       "A pair fails when any channel differs by more, whatever the percentage (FLIP: its max)")
       ->type_name("VAL")
-      ->capture_default_str();
-  diff_cmd->add_option("--warn", diff.thresholds.warn, "A pixel is over --warn when any channel differs by more")
+      ->capture_default_str());
+  thresholds.push_back(diff_cmd->add_option("--failmean", diff.thresholds.fail_mean, "A pair fails when its mean error is over this")
+      ->type_name("VAL"));
+  thresholds.push_back(diff_cmd->add_option("--warn", diff.thresholds.warn, "A pixel is over --warn when any channel differs by more")
       ->type_name("VAL")
-      ->capture_default_str();
-  diff_cmd->add_option("--warnpercent", diff.thresholds.warn_percent,
+      ->capture_default_str());
+  thresholds.push_back(diff_cmd->add_option("--warnpercent", diff.thresholds.warn_percent,
                        "A pair warns when more than this percentage of its pixels are over --warn")
       ->type_name("PERCENT")
-      ->capture_default_str();
-  diff_cmd->add_option("--hardwarn", diff.thresholds.hard_warn,
+      ->capture_default_str());
+  thresholds.push_back(diff_cmd->add_option("--hardwarn", diff.thresholds.hard_warn,
                        "A pair warns when any channel differs by more, whatever the percentage")
       ->type_name("VAL")
+      ->capture_default_str());
+  thresholds.push_back(diff_cmd->add_option("--warnmean", diff.thresholds.warn_mean, "A pair warns when its mean error is over this")
+      ->type_name("VAL"));
+  diff_cmd->add_option("--metric", diff.metric,
+                       "Images: idiff (each pixel's largest channel difference) or flip (NVIDIA's FLIP: how visible the "
+                       "difference is, 0 to 1)")
+      ->type_name("idiff|flip")
       ->capture_default_str();
+  diff_cmd->add_option("--ppd", diff.ppd, "FLIP: pixels per degree of visual angle (default 67.02: 0.7 m from a 0.7 m "
+                                          "wide 3840-pixel monitor)")
+      ->type_name("PPD");
+  diff_cmd->add_option("--viewing", diff.viewing, "FLIP: the viewing conditions as the distance and the screen's width "
+                                                  "in metres and its pixels across; sets --ppd")
+      ->type_name("M M PX")
+      ->expected(3);
+  diff_cmd->add_option("-j,--threads", diff.threads, "FLIP: rows of an image measured at once (default: one per core)")
+      ->type_name("N");
   diff_cmd->add_option("-o,--out", diff.out_dir,
                        "Write a heat map DIR/<name>.diff.png of every failing pair, or for glTF files of every failing clip "
                        "(folders created when missing)")
@@ -179,6 +256,11 @@ Command add_diff_command(CLI::App& app) {
       "are idiff's: any difference over 1e-6 fails. For warnings, set --fail above --warn or a --failpercent.\n"
       "Images of different sizes or channel counts, files missing from one folder and unreadable files FAIL.\n"
       "Pixels are read as float (8-bit 255 = 1.0); the first subimage is compared.\n"
+      "--metric flip: each pixel's FLIP value (Andersson et al. 2020), 0 to 1, for an observer --ppd pixels per\n"
+      "degree away, on the first three channels (one or two: the first as grey; colours with alpha seen over\n"
+      "black). Integer files are display values; float files (EXR, HDR) are clamped to 0-1 and sRGB-encoded.\n"
+      "The thresholds given judge FLIP values and no others; with none given, any visible difference (a mean over\n"
+      "0) fails. Heat maps: magma from black (0) to light yellow (1), with its colour bar.\n"
       "Folders: image files (exr, png, jpg, jpeg, tif, tiff, gif, hdr, tga, webp, ...) found recursively, paired\n"
       "by relative path; other files are ignored.\n"
       "Heat maps: each pixel's largest channel difference; black at most --fail, then viridis from dark purple (just\n"
@@ -202,7 +284,8 @@ Command add_diff_command(CLI::App& app) {
       "Examples:\n"
       "  dqskin diff Fox.glb Fox.optimized.glb --fail 1e-3 --relative --out diffs --junit diff.xml\n"
       "  dqskin diff golden/frame_0000.png out/frame_0000.png\n"
-      "  dqskin diff golden out --fail 0.02 --warn 0.004 --failpercent 0.1 --out diffs --junit diff.xml");
+      "  dqskin diff golden out --fail 0.02 --warn 0.004 --failpercent 0.1 --out diffs --junit diff.xml\n"
+      "  dqskin diff golden out --metric flip --failmean 0.05 --fail 0.5 --failpercent 1 --out diffs");
   return {diff_cmd, [settings] { return run_diff(*settings); }};
 }
 

@@ -90,7 +90,7 @@ dqskin_diff_test(folders_pair_by_relative_path 2 ARGS diff ${d}/A ${d}/B --fail 
 dqskin_diff_test(image_and_folder_compare_the_same_name 0 ARGS diff ${d}/A/same.ppm ${d}/B
   STDOUT "^PASS  [^\n]*/A/same.ppm  ")
 dqskin_diff_test(json_is_one_document 2 ARGS diff ${d}/A ${d}/B --json
-  STDOUT "^{\n  \"a\": \"[^\n]*/A\",\n  \"b\": \"[^\n]*/B\",\n  \"thresholds\": {\n    \"fail\": 1e-06,\n.*\"name\": \"sub/slight.ppm\",.*\"psnr\": 58.92[0-9]*,\n.*\"summary\": {\n    \"status\": \"FAIL\",\n    \"pairs\": 4,\n    \"pass\": 1,\n    \"warn\": 0,\n    \"fail\": 3\n  }\n}\n$"
+  STDOUT "^{\n  \"a\": \"[^\n]*/A\",\n  \"b\": \"[^\n]*/B\",\n  \"metric\": \"idiff\",\n  \"thresholds\": {\n    \"fail\": 1e-06,\n.*\"name\": \"sub/slight.ppm\",.*\"psnr\": 58.92[0-9]*,\n.*\"summary\": {\n    \"status\": \"FAIL\",\n    \"pairs\": 4,\n    \"pass\": 1,\n    \"warn\": 0,\n    \"fail\": 3\n  }\n}\n$"
   STDERR "^$")
 dqskin_diff_test(junit_report_is_written 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --fail 0.01 --warn 0.001 --junit ${diff_scratch}/junit.xml
   STDOUT "^WARN  ")
@@ -99,6 +99,44 @@ set_tests_properties(cli.diff_junit_report_content PROPERTIES
   PASS_REGULAR_EXPRESSION "^<\\?xml version=\"1.0\" encoding=\"UTF-8\"\\?>\n<testsuites name=\"dqskin diff\" tests=\"1\" failures=\"0\" errors=\"0\">\n.*<testcase classname=\"dqskin.diff\" name=\"[^\"]*/a.ppm\">\n      <system-out>WARN: 1 pixel \\(25%\\) over --warn 0.001, more than --warnpercent 0\n.*</testsuites>\n$"
   FIXTURES_REQUIRED diff_junit)
 set_tests_properties(cli.diff_junit_report_is_written PROPERTIES FIXTURES_SETUP diff_junit)
+
+# --metric flip: FLIP values judged by the thresholds given, and by none others; none given, any difference fails.
+set(flip_number "[0-9.e-]+")
+dqskin_diff_test(flip_identical_passes 0 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric flip
+  STDOUT "^PASS  [^\n]*/a.ppm  FLIP mean 0  weighted quartiles 0 0 0  max 0  over warn 0 \\(0%\\)  over fail 0 \\(0%\\)\nsummary: PASS " STDERR "^$")
+dqskin_diff_test(flip_any_difference_fails_by_default 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm --metric flip
+  STDOUT "^FAIL  [^\n]*/a.ppm  FLIP mean ${flip_number}  weighted quartiles [^\n]* max ${flip_number} at \\(1, 0\\)  over warn 0 \\(0%\\)  over fail 0 \\(0%\\)\n" STDERR "^$")
+dqskin_diff_test(flip_mean_under_failmean_passes 0 ARGS diff ${d}/a.ppm ${d}/slight.ppm --metric flip --failmean 0.2
+  STDOUT "^PASS  ")
+dqskin_diff_test(flip_max_over_hardwarn_warns 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --metric flip --failmean 0.2 --hardwarn 0.001
+  STDOUT "^WARN  ")
+dqskin_diff_test(flip_very_different_fails_with_a_heat_map 2 ARGS diff ${d}/a.ppm ${d}/very.ppm --metric flip --failmean 0.2
+  --out ${diff_scratch}/flip_heat STDOUT "heat map [^\n]*/flip_heat/a.ppm.diff.png\n")
+dqskin_diff_test(flip_viewing_conditions_give_ppd 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm --metric flip --viewing 0.7 0.7 3840 --json
+  STDOUT "\"metric\": \"flip\",\n  \"pixels_per_degree\": 67.0206432765822[0-9]*,\n")
+dqskin_diff_test(flip_ppd_in_junit 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm --metric flip --ppd 30 --junit ${diff_scratch}/flip.xml
+  STDOUT "^FAIL  ")
+dqskin_diff_test(metric_unknown_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric yee
+  STDOUT "^$" STDERR "^dqskin: --metric 'yee' is not one of idiff, flip\n$")
+dqskin_diff_test(flip_failpercent_needs_fail_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric flip --failpercent 1
+  STDOUT "^$" STDERR "^dqskin: --failpercent needs --fail with --metric flip \\(the FLIP value it counts pixels over\\)\n$")
+dqskin_diff_test(flip_ppd_out_of_range_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric flip --ppd 0.5
+  STDOUT "^$" STDERR "^dqskin: --ppd must be from 1 to 1000 pixels per degree\n$")
+dqskin_diff_test(flip_ppd_and_viewing_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric flip --ppd 40 --viewing 1 1 1000
+  STDOUT "^$" STDERR "^dqskin: give --ppd or --viewing, not both\n$")
+dqskin_diff_test(flip_viewing_needs_three_values_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric flip --viewing 1 1
+  STDOUT "^$" STDERR "^dqskin: [^\n]*--viewing[^\n]*\n$")
+dqskin_diff_test(ppd_without_flip_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --ppd 40
+  STDOUT "^$" STDERR "^dqskin: --ppd and --viewing are FLIP's viewing conditions: give them with --metric flip\n$")
+dqskin_diff_test(flip_on_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --metric flip
+  STDOUT "^$" STDERR "^dqskin: --metric flip compares images. glTF files and bakes are compared by distance\n$")
+dqskin_diff_test(negative_failmean_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --metric flip --failmean -0.1
+  STDOUT "^$" STDERR "^dqskin: --failmean must be at least 0, not -0.1\n$")
+add_test(NAME cli.diff_flip_junit_content COMMAND ${CMAKE_COMMAND} -E cat ${diff_scratch}/flip.xml)
+set_tests_properties(cli.diff_flip_junit_content PROPERTIES
+  PASS_REGULAR_EXPRESSION "<property name=\"metric\" value=\"flip\"/>\n.*<property name=\"failmean\" value=\"0\"/>\n.*<property name=\"pixels_per_degree\" value=\"30\"/>\n.*FLIP mean: "
+  FIXTURES_REQUIRED diff_flip_junit)
+set_tests_properties(cli.diff_flip_ppd_in_junit PROPERTIES FIXTURES_SETUP diff_flip_junit)
 
 # Usage and input errors: one line, exit status 2, no report.
 dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1

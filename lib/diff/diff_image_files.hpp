@@ -15,7 +15,7 @@ namespace dqskin::diff_detail {
 
 // The verdict and, unless it is PASS, the rule that decided it, in words (image_diff.cpp).
 std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_error, uint64_t over_warn,
-                                         uint64_t over_fail, uint64_t pixels);
+                                         uint64_t over_fail, uint64_t pixels, double mean_error);
 
 class DiffImageFiles {
 public:

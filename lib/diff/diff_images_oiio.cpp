@@ -3,6 +3,8 @@
 // the image module (base/image_module.hpp).
 #include "diff_image_files.hpp"
 #include "diff_numbers.hpp"
+#include "flip_heat_map.hpp"
+#include "flip_pair.hpp"
 #include "image_bands_oiio.hpp"
 #include "../base/byte_size.hpp"
 #include "../base/file_kind.hpp"
@@ -88,24 +90,38 @@ std::string read_pixels(OIIO::ImageInput& in, FloatImage& image) {
 // colormap (floats), its color (3 floats) and the 8-bit RGB written.
 constexpr uint64_t kHeatMapBytesPerPixel = 4 + 4 + 12 + 3;
 
-// Why reading image `i` (0: A, 1: B) of a pair needs more memory than `budget`, or "": A is read first,
-// then B beside it, then the heat map (when one may be written) beside both. `a` and `b` are what the
-// files declare; b is unused for A.
-std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, bool heat_map, uint64_t budget) {
+// Why reading image `i` (0: A, 1: B) of a pair needs more memory than the budget, or "": A is read first,
+// then B beside it, then the measuring (FLIP's) and the heat map (when one may be written) beside both.
+// `a` and `b` are what the files declare; b is unused for A.
+std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const DiffOptions& options) {
   using saturating::add;
   using saturating::mul;
+  const bool heat_map = !options.heat_map_dir.empty();
   const OIIO::ImageSpec& s = i == 0 ? a : b;
   const uint64_t other = i == 0 ? 0 : diff_detail::float_bytes(a);
-  uint64_t beside = diff_detail::band_bytes(s);  // the most held beside the images: reading, or the heat map
-  if (i == 1 && heat_map) beside = std::max(beside, mul(diff_detail::pixel_count(a), kHeatMapBytesPerPixel));
+  uint64_t beside = diff_detail::band_bytes(s);  // the most held beside the images: reading, measuring or the heat map
+  if (i == 1 && options.metric == DiffMetric::kFlip) {
+    const size_t w = size_t(std::max(a.width, 0)), h = size_t(std::max(a.height, 0)) * size_t(std::max(a.depth, 1));
+    beside = std::max(beside, add(diff_detail::flip_pair_bytes(w, h, options), heat_map ? diff_detail::flip_heat_map_bytes(w, h) : 0));
+  } else if (i == 1 && heat_map) {
+    beside = std::max(beside, mul(diff_detail::pixel_count(a), kHeatMapBytesPerPixel));
+  }
   const uint64_t need = add(add(other, diff_detail::float_bytes(s)), beside);
-  if (need <= budget) return "";
+  if (need <= options.max_memory) return "";
   std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
   if (s.depth > 1) size.append("x").append(std::to_string(s.depth));
   size += " pixels of " + std::to_string(s.nchannels) + (s.nchannels == 1 ? " channel" : " channels");
+  const char* measuring = options.metric == DiffMetric::kFlip ? (heat_map ? ", FLIP and a heat map" : " and FLIP")
+                                                              : (heat_map ? " and a heat map" : "");
   return "comparing it needs about " + byte_size(need) + " (its " + size + " as float" +
-         (i == 0 ? std::string() : ", beside " + byte_size(other) + " for the other image" + (heat_map ? " and a heat map" : "")) +
-         "), more than --max-memory " + byte_size(budget);
+         (i == 0 ? std::string() : ", beside " + byte_size(other) + " for the other image" + measuring) +
+         "), more than --max-memory " + byte_size(options.max_memory);
+}
+
+// Floats of a file's type that hold linear light (half, float, double), not display values.
+bool is_linear(const OIIO::ImageSpec& declared) {
+  const OIIO::TypeDesc::BASETYPE t = OIIO::TypeDesc::BASETYPE(declared.format.basetype);
+  return t == OIIO::TypeDesc::HALF || t == OIIO::TypeDesc::FLOAT || t == OIIO::TypeDesc::DOUBLE;
 }
 
 std::string window_text(const OIIO::ImageSpec& s) {
@@ -221,7 +237,7 @@ public:
         std::string why = open_image(*paths[i], in);
         if (why.empty()) {
           declared[i] = in->spec();
-          why = over_budget(i, declared[0], declared[i], !options.heat_map_dir.empty(), options.max_memory);
+          why = over_budget(i, declared[0], declared[i], options);
         }
         try {
           if (why.empty()) why = read_pixels(*in, images[i]);
@@ -246,6 +262,7 @@ public:
       }
 
       const DiffThresholds& t = options.thresholds;
+      if (options.metric == DiffMetric::kFlip) return flip(pair, declared[0], images, options, d);
       const OIIO::ImageBufAlgo::CompareResults cr =
           OIIO::ImageBufAlgo::compare(a, b, float(t.fail), float(t.warn), 0.0f, 0.0f, {}, 1);
       // `error` is also set whenever a pixel is over `fail` (OpenImageIO 2.4); a real error leaves a message.
@@ -268,12 +285,32 @@ public:
       d.pixels = uint64_t(a.spec().width) * uint64_t(a.spec().height) * uint64_t(a.spec().depth);
       d.over_warn = cr.nwarn;
       d.over_fail = cr.nfail;
-      std::tie(d.status, d.reason) = judge(t, d.max_error, d.over_warn, d.over_fail, d.pixels);
+      std::tie(d.status, d.reason) = judge(t, d.max_error, d.over_warn, d.over_fail, d.pixels, d.mean_error);
       if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {
         d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
         write_heat_map(d.heat_map, images[0], images[1], t.fail);
       }
       return d;
+  }
+
+  // The pair of same-sized images measured by FLIP (flip_pair.hpp), judged, and its heat map written.
+  static ImageDiff flip(const DiffPair& pair, const OIIO::ImageSpec& declared, const FloatImage (&images)[2],
+                        const DiffOptions& options, ImageDiff& d) {
+    const OIIO::ImageSpec& spec = images[0].buffer.spec();
+    if (spec.depth != 1) {
+      d.problem = "FLIP compares flat images, not volumes (depth " + std::to_string(spec.depth) + ")";
+      d.reason = d.problem;
+      return d;
+    }
+    const diff_detail::PixelLayout layout{size_t(spec.width), size_t(spec.height), size_t(spec.nchannels), is_linear(declared)};
+    const std::vector<double> errors = diff_detail::flip_pair(images[0].pixels.get(), images[1].pixels.get(), layout, options, d);
+    d.compared = true;
+    std::tie(d.status, d.reason) = judge(options.thresholds, d.max_error, d.over_warn, d.over_fail, d.pixels, d.mean_error);
+    if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {
+      d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
+      diff_detail::write_flip_heat_map(d.heat_map, errors, layout.width, layout.height);
+    }
+    return d;
   }
 
   // An EXR texture: each texel's first three channels (a VAT's position, a bone texture's first values),

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace dqskin {
 namespace {
@@ -26,14 +27,28 @@ Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : 
 std::string max_text(const ImageDiff& d) {
   std::string text = number(d.max_error);
   if (d.max_error != 0)
-    text += " at (" + std::to_string(d.max_x) + ", " + std::to_string(d.max_y) + ", " + d.max_channel + ")";
+    text += " at (" + std::to_string(d.max_x) + ", " + std::to_string(d.max_y) +
+            (d.max_channel.empty() ? "" : ", " + d.max_channel) + ")";
   return text;
+}
+
+bool is_flip(const ImageDiff& d) { return d.metric == DiffMetric::kFlip; }
+
+// FLIP's pooled figures after its mean: the weighted quartiles.
+std::string quartiles_text(const ImageDiff& d, const char* separator) {
+  return "weighted quartiles " + number(d.flip_q1) + separator + number(d.flip_median) + separator + number(d.flip_q3);
 }
 
 // The metrics of a compared pair, one per line, for JUnit's failure text.
 std::string metrics_lines(const ImageDiff& d) {
   std::string text = "A: " + (d.a.empty() ? "(missing)" : d.a) + "\nB: " + (d.b.empty() ? "(missing)" : d.b) + "\n";
   if (!d.compared) return text + d.problem + "\n";
+  if (is_flip(d))
+    text += "FLIP mean: " + number(d.mean_error) + "\nFLIP " + quartiles_text(d, ", ") + "\nFLIP max: " + max_text(d) +
+            "\npixels over --warn: " + std::to_string(d.over_warn) +
+            " (" + percent(d.over_warn, d.pixels) + ")\npixels over --fail: " + std::to_string(d.over_fail) + " (" +
+            percent(d.over_fail, d.pixels) + ")\npixels: " + std::to_string(d.pixels) + "\n";
+  else
   text += "max error: " + max_text(d) + "\nmean error: " + number(d.mean_error) + "\nRMS error: " +
           number(d.rms_error) + "\nPSNR: " + number(d.psnr) + " dB\npixels over --warn: " + std::to_string(d.over_warn) +
           " (" + percent(d.over_warn, d.pixels) + ")\npixels over --fail: " + std::to_string(d.over_fail) + " (" +
@@ -58,9 +73,13 @@ std::string diff_text(const DiffReport& report) {
       text += printable(d.problem) + "\n";
       continue;
     }
-    text += "max " + max_text(d) + "  mean " + number(d.mean_error) + "  RMS " + number(d.rms_error) + "  PSNR " +
-            number(d.psnr) + " dB  over warn " + std::to_string(d.over_warn) + " (" + percent(d.over_warn, d.pixels) +
-            ")  over fail " + std::to_string(d.over_fail) + " (" + percent(d.over_fail, d.pixels) + ")";
+    if (is_flip(d))
+      text += "FLIP mean " + number(d.mean_error) + "  " + quartiles_text(d, " ") + "  max " + max_text(d);
+    else
+      text += "max " + max_text(d) + "  mean " + number(d.mean_error) + "  RMS " + number(d.rms_error) + "  PSNR " +
+              number(d.psnr) + " dB";
+    text += "  over warn " + std::to_string(d.over_warn) + " (" + percent(d.over_warn, d.pixels) + ")  over fail " +
+            std::to_string(d.over_fail) + " (" + percent(d.over_fail, d.pixels) + ")";
     if (!d.heat_map.empty()) text += "  heat map " + printable(d.heat_map);
     text += "\n";
   }
@@ -82,8 +101,10 @@ std::string diff_json(const DiffReport& report) {
     } else {
       p["reason"] = d.reason.empty() ? Json(nullptr) : Json(d.reason);
       p["max_error"] = finite_or_null(d.max_error);
-      p["max_at"] = {{"x", d.max_x}, {"y", d.max_y}, {"channel", d.max_channel}};
+      p["max_at"] = {{"x", d.max_x}, {"y", d.max_y}};
+      if (!is_flip(d)) p["max_at"]["channel"] = d.max_channel;
       p["mean_error"] = finite_or_null(d.mean_error);
+      if (is_flip(d)) p["weighted_quartiles"] = {d.flip_q1, d.flip_median, d.flip_q3};
       p["rms_error"] = finite_or_null(d.rms_error);
       p["psnr"] = finite_or_null(d.psnr);
       p["pixels"] = d.pixels;
@@ -96,9 +117,12 @@ std::string diff_json(const DiffReport& report) {
   Json doc;
   doc["a"] = report.a;
   doc["b"] = report.b;
+  doc["metric"] = metric_name(report.metric);
+  if (report.metric == DiffMetric::kFlip) doc["pixels_per_degree"] = report.pixels_per_degree;
   doc["thresholds"] = {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
                        {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
-                       {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)}};
+                       {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)},
+                       {"fail_mean", finite_or_null(t.fail_mean)}, {"warn_mean", finite_or_null(t.warn_mean)}};
   doc["pairs"] = std::move(pairs);
   doc["summary"] = {{"status", status_name(report.status())},
                     {"pairs", report.pairs.size()},
@@ -118,15 +142,19 @@ std::string diff_junit(const DiffReport& report) {
   x += "  <testsuite name=\"" + xml("dqskin diff " + report.a + " " + report.b, true) + "\" tests=\"" + tests +
        "\" failures=\"" + failures + "\" errors=\"0\" skipped=\"0\">\n";
   x += "    <properties>\n";
-  const std::pair<const char*, std::string> properties[] = {
+  std::vector<std::pair<const char*, std::string>> properties = {
       {"a", report.a},
       {"b", report.b},
+      {"metric", metric_name(report.metric)},
       {"fail", number(t.fail)},
       {"failpercent", number(t.fail_percent)},
       {"hardfail", number(t.hard_fail)},
       {"warn", number(t.warn)},
       {"warnpercent", number(t.warn_percent)},
-      {"hardwarn", number(t.hard_warn)}};
+      {"hardwarn", number(t.hard_warn)},
+      {"failmean", number(t.fail_mean)},
+      {"warnmean", number(t.warn_mean)}};
+  if (report.metric == DiffMetric::kFlip) properties.emplace_back("pixels_per_degree", number(report.pixels_per_degree));
   for (const auto& [name, value] : properties)
     x += "      <property name=\"" + std::string(name) + "\" value=\"" + xml(value, true) + "\"/>\n";
   x += "    </properties>\n";

@@ -4,10 +4,11 @@
 // (contrast-sensitivity filtering in an opponent space, Hunt-adjusted L*a*b*, the HyAB distance) and a
 // feature pipeline (edges and points on luminance), ΔE = ΔE_c ^ (1 − ΔE_f). Computed in double precision;
 // the authors' tools use float, which moves their means by up to about 5e-5 (they sum in float too).
-// Internal to lib/diff until the command line uses it.
+// Internal to lib/diff: `dqskin diff --metric flip` (image_diff.hpp) is its interface.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace dqskin {
@@ -18,10 +19,24 @@ namespace dqskin {
 double pixels_per_degree(double distance_m, double width_px, double width_m);
 inline constexpr double kDefaultPixelsPerDegree = 67.02064327658226;  // 3840 π / 180
 
+struct FlipOptions {
+  double ppd = kDefaultPixelsPerDegree;  // the viewing conditions: pixels per degree of visual angle
+  unsigned threads = 1;                  // bands of rows computed at once
+  size_t band_rows = 0;                  // output rows per band; 0: about 256k pixels' worth (tests set it)
+  // Compute only within reach of the pixels that differ (elsewhere ΔE is exactly 0); false computes every
+  // pixel, which gives the same values (the tests compare both).
+  bool skip_equal = true;
+};
+
 // Two images of width × height pixels, interleaved RGB of sRGB-encoded display values from 0 to 1 (as an
-// 8-bit PNG reads, v / 255); values outside are clamped. Returns ΔE per pixel, row by row.
+// 8-bit PNG reads, v / 255); values outside are clamped. Returns ΔE per pixel, row by row. Computed in
+// bands of rows, each with the rows its filters reach beyond it, on up to options.threads threads: the
+// result is the same, bit for bit, whatever the band size, thread count and skip_equal.
 std::vector<double> flip_error_map(const float* reference_srgb, const float* test_srgb, size_t width, size_t height,
-                                   double pixels_per_degree = kDefaultPixelsPerDegree);
+                                   const FlipOptions& options = {});
+
+// The most memory flip_error_map holds beside its inputs and its result (the bands being computed).
+uint64_t flip_working_bytes(size_t width, size_t height, const FlipOptions& options);
 
 // The figures FLIP's tools report for an error map: the mean, the weighted quartiles (each pixel weighted
 // by its own error: the smallest value at which the ascending running sum exceeds p of the total), the

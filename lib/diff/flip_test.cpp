@@ -97,6 +97,47 @@ TEST(Flip, TheSameBothWaysAndWithinZeroAndOne) {
   }
 }
 
+TEST(Flip, BandsAndThreadsGiveTheWholeImagesValuesBitForBit) {
+  // The filters reach about 10 rows at 67 pixels per degree: bands of 1, 7 and 16 rows each need rows of
+  // their neighbours, and the image's top and bottom bands its repeated border rows.
+  const Image a = noise(37, 45, 3), b = noise(37, 45, 4);
+  const std::vector<double> whole = flip_error_map(a.rgb.data(), b.rgb.data(), 37, 45, {kDefaultPixelsPerDegree, 1, 45});
+  for (size_t rows : {size_t(1), size_t(7), size_t(16)})
+    for (unsigned threads : {1u, 3u})
+      EXPECT_EQ(flip_error_map(a.rgb.data(), b.rgb.data(), 37, 45, {kDefaultPixelsPerDegree, threads, rows}), whole)
+          << rows << " rows per band, " << threads << " threads";
+  // At 10 pixels per degree the filters are narrow: the figures change, not the banding's equality.
+  const std::vector<double> near = flip_error_map(a.rgb.data(), b.rgb.data(), 37, 45, {10, 1, 45});
+  EXPECT_NE(near, whole);
+  EXPECT_EQ(flip_error_map(a.rgb.data(), b.rgb.data(), 37, 45, {10, 2, 4}), near);
+}
+
+TEST(Flip, OnlyTheReachOfTheChangedPixelsIsComputedWithTheSameValues) {
+  // Two changes far apart in a 120 × 90 image, one near the right edge: everything beyond the filters'
+  // reach of both is exactly 0, and the pixels within it are those of the whole computation.
+  Image a = noise(120, 90, 5), b = a;
+  b.set(20, 30, 0.9f);
+  b.set(117, 70, 0.1f);
+  FlipOptions whole{kDefaultPixelsPerDegree, 1, 0, false};
+  const std::vector<double> expected = flip_error_map(a.rgb.data(), b.rgb.data(), 120, 90, whole);
+  for (size_t rows : {size_t(0), size_t(5)})
+    for (unsigned threads : {1u, 2u})
+      EXPECT_EQ(flip_error_map(a.rgb.data(), b.rgb.data(), 120, 90, {kDefaultPixelsPerDegree, threads, rows, true}), expected)
+          << rows << " rows per band, " << threads << " threads";
+  EXPECT_EQ(expected[0], 0.0);
+  EXPECT_GT(expected[30 * 120 + 25], 0.0);  // within reach of a change
+  const Image same = noise(50, 40, 9);
+  for (double e : flip_error_map(same.rgb.data(), same.rgb.data(), 50, 40)) ASSERT_EQ(e, 0.0);
+}
+
+TEST(Flip, WorkingMemoryGrowsWithThreadsNotHeight) {
+  const FlipOptions one{kDefaultPixelsPerDegree, 1, 0}, four{kDefaultPixelsPerDegree, 4, 0};
+  EXPECT_EQ(flip_working_bytes(2048, 2048, one), flip_working_bytes(2048, 8192, one));
+  EXPECT_EQ(flip_working_bytes(2048, 2048, four), 4 * flip_working_bytes(2048, 2048, one));
+  // The whole image at once would hold some 24 planes of doubles (800 MB at 2048²); one band an eighth of that.
+  EXPECT_LT(flip_working_bytes(2048, 2048, one), uint64_t(2048) * 2048 * 24 * 8 / 8);
+}
+
 TEST(Flip, PoolingWeighsEachPixelByItsError) {
   // Running sums of the sorted values 0.1, 0.3, 0.6, 1.0: the first above 0.25, 0.5 and 0.75 of the total.
   const FlipPool pool = pool_flip({0.4, 0.1, 0.3, 0.2});

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <system_error>
 #include <utility>
@@ -36,7 +37,7 @@ namespace diff_detail {
 // idiff's rule (OpenImageIO 2.4 src/idiff/idiff.cpp) without its --allowfailures short cut, which in 2.4
 // also skips the warning tests whenever no pixel is over --fail.
 std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_error, uint64_t over_warn,
-                                         uint64_t over_fail, uint64_t pixels) {
+                                         uint64_t over_fail, uint64_t pixels, double mean_error) {
   const double n = double(std::max<uint64_t>(pixels, 1));
   if (!std::isfinite(max_error))
     return {DiffStatus::kFail, "max error " + number(max_error) + ": a NaN or infinity in one image only"};
@@ -45,11 +46,15 @@ std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_err
                                    number(t.fail) + ", more than --failpercent " + number(t.fail_percent)};
   if (max_error > t.hard_fail)
     return {DiffStatus::kFail, "max error " + number(max_error) + " over --hardfail " + number(t.hard_fail)};
+  if (mean_error > t.fail_mean)
+    return {DiffStatus::kFail, "mean error " + number(mean_error) + " over --failmean " + number(t.fail_mean)};
   if (double(over_warn) > t.warn_percent / 100.0 * n)
     return {DiffStatus::kWarn, pixels_text(over_warn) + " (" + percent(over_warn, pixels) + ") over --warn " +
                                    number(t.warn) + ", more than --warnpercent " + number(t.warn_percent)};
   if (max_error > t.hard_warn)
     return {DiffStatus::kWarn, "max error " + number(max_error) + " over --hardwarn " + number(t.hard_warn)};
+  if (mean_error > t.warn_mean)
+    return {DiffStatus::kWarn, "mean error " + number(mean_error) + " over --warnmean " + number(t.warn_mean)};
   return {DiffStatus::kPass, ""};
 }
 
@@ -61,8 +66,9 @@ const DiffImageFiles& diff_image_files() {
 }  // namespace diff_detail
 
 std::string check_thresholds(const DiffThresholds& t) {
-  const std::pair<const char*, double> values[] = {
-      {"--fail", t.fail}, {"--warn", t.warn}, {"--hardfail", t.hard_fail}, {"--hardwarn", t.hard_warn}};
+  const std::pair<const char*, double> values[] = {{"--fail", t.fail},         {"--warn", t.warn},
+                                                   {"--hardfail", t.hard_fail}, {"--hardwarn", t.hard_warn},
+                                                   {"--failmean", t.fail_mean}, {"--warnmean", t.warn_mean}};
   for (const auto& [name, value] : values)
     if (!(value >= 0)) return std::string(name) + " must be at least 0, not " + number(value);
   const std::pair<const char*, double> percents[] = {{"--failpercent", t.fail_percent},
@@ -71,6 +77,27 @@ std::string check_thresholds(const DiffThresholds& t) {
     if (!(value >= 0 && value <= 100)) return std::string(name) + " must be from 0 to 100, not " + number(value);
   return "";
 }
+
+DiffThresholds flip_thresholds(const DiffThresholds& values, const std::vector<std::string>& given) {
+  constexpr double kOff = std::numeric_limits<double>::infinity();
+  const auto has = [&given](const char* name) { return std::find(given.begin(), given.end(), name) != given.end(); };
+  DiffThresholds t{kOff, 0, kOff, kOff, 0, kOff, kOff, kOff};
+  if (given.empty()) {
+    t.fail_mean = 0;
+    return t;
+  }
+  if (has("--fail")) t.fail = values.fail;
+  if (has("--failpercent")) t.fail_percent = values.fail_percent;
+  if (has("--hardfail")) t.hard_fail = values.hard_fail;
+  if (has("--warn")) t.warn = values.warn;
+  if (has("--warnpercent")) t.warn_percent = values.warn_percent;
+  if (has("--hardwarn")) t.hard_warn = values.hard_warn;
+  if (has("--failmean")) t.fail_mean = values.fail_mean;
+  if (has("--warnmean")) t.warn_mean = values.warn_mean;
+  return t;
+}
+
+const char* metric_name(DiffMetric metric) { return metric == DiffMetric::kFlip ? "flip" : "idiff"; }
 
 const char* status_name(DiffStatus status) {
   switch (status) {
@@ -82,8 +109,8 @@ const char* status_name(DiffStatus status) {
 }
 
 DiffStatus diff_verdict(const DiffThresholds& thresholds, double max_error, uint64_t over_warn, uint64_t over_fail,
-                        uint64_t pixels) {
-  return diff_detail::judge(thresholds, max_error, over_warn, over_fail, pixels).first;
+                        uint64_t pixels, double mean_error) {
+  return diff_detail::judge(thresholds, max_error, over_warn, over_fail, pixels, mean_error).first;
 }
 
 DiffStatus DiffReport::status() const {
@@ -164,6 +191,8 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   report.a = a;
   report.b = b;
   report.thresholds = options.thresholds;
+  report.metric = options.metric;
+  report.pixels_per_degree = options.pixels_per_degree;
   for (const DiffPair& pair : pair_inputs(a, b)) {
     check_cancelled(options.cancel);
     report.pairs.push_back(diff_pair(pair, options));

@@ -14,8 +14,8 @@ constexpr int kGlyphWidth = 5, kGlyphHeight = 7, kAdvance = 6;  // a column of s
 // One byte per row from the top, bit 4 the leftmost pixel.
 using Glyph = std::array<uint8_t, kGlyphHeight>;
 
-// The glyph of `c`: digits, ". - + = %", the letters "c e k m s t u" (units and times), and space; any
-// other character is drawn as '?'.
+// The glyph of `c`: digits, ". - + = %", the letters "c e k m s t u" (units and times), "F I L P" (FLIP)
+// and space; any other character is drawn as '?'.
 const Glyph& glyph(char c);
 
 // Width in pixels of `text` drawn with every font pixel a `scale` square (without the last gap).

@@ -21,6 +21,7 @@ namespace dqskin {
 // warn_percent % are over `warn`, or any channel differs by more than hard_warn; otherwise it passes.
 // With the defaults (warn = fail) any difference over 1e-6 fails: warnings need a `fail` above `warn`
 // or a nonzero fail_percent.
+// Beyond idiff: fail_mean and warn_mean judge the mean error (off by default).
 struct DiffThresholds {
   double fail = 1e-6;
   double fail_percent = 0;
@@ -28,11 +29,26 @@ struct DiffThresholds {
   double warn = 1e-6;
   double warn_percent = 0;
   double hard_warn = std::numeric_limits<double>::infinity();
+  double fail_mean = std::numeric_limits<double>::infinity();
+  double warn_mean = std::numeric_limits<double>::infinity();
 };
+
+// What a pixel's error is. kIdiff: its largest channel difference, as idiff. kFlip: FLIP's perceptual
+// difference (Andersson et al. 2020), from 0 (none seen) to 1, under the viewing conditions of
+// DiffOptions::pixels_per_degree; the thresholds then apply to FLIP values.
+enum class DiffMetric { kIdiff, kFlip };
+
+// "idiff" or "flip".
+const char* metric_name(DiffMetric metric);
 
 // Empty when the thresholds are usable; otherwise what is wrong, naming the option ("--fail must be at
 // least 0"). Thresholds are at least 0 (hard ones may be infinite), percentages from 0 to 100, none NaN.
 std::string check_thresholds(const DiffThresholds& thresholds);
+
+// Thresholds for FLIP: the rules given (named by their option, "--failmean", in `given`) and none of the
+// others; when none is given, any visible difference fails (a mean above 0). idiff's defaults do not fit
+// FLIP: every pixel near a change has a FLIP value, so "no pixel over 1e-6" is the same as "identical".
+DiffThresholds flip_thresholds(const DiffThresholds& values, const std::vector<std::string>& given);
 
 enum class DiffStatus { kPass, kWarn, kFail };
 
@@ -43,7 +59,7 @@ const char* status_name(DiffStatus status);
 // 1). A max error that is not finite (a NaN or infinity where the other image has something else) fails
 // whatever the thresholds: idiff would let it pass unless --hardfail is finite.
 DiffStatus diff_verdict(const DiffThresholds& thresholds, double max_error, uint64_t over_warn, uint64_t over_fail,
-                        uint64_t pixels);
+                        uint64_t pixels, double mean_error = 0);
 
 // Two files to compare; in folder mode `name` is their relative path, and a side that is missing is empty.
 struct DiffPair {
@@ -63,11 +79,15 @@ struct ImageDiff {
   std::string read_error;  // and why (one line: "No such file or directory", OpenImageIO's message)
   std::string reason;      // why it failed or warned, in words ("3 pixels (18.8%) over --fail 1e-06"); empty on PASS
 
-  // ImageBufAlgo::compare's results (first subimage, MIP level 0; pixels read as float).
+  // ImageBufAlgo::compare's results (first subimage, MIP level 0; pixels read as float), or FLIP's: its
+  // max, mean and RMS over the pixels, no PSNR (NaN), no channel.
+  DiffMetric metric = DiffMetric::kIdiff;
   double max_error = 0, mean_error = 0, rms_error = 0;
   double psnr = 0;                   // +infinity for identical images
   int max_x = 0, max_y = 0;          // where max_error was found (0, 0 when it is 0)
-  std::string max_channel;           // the channel's name there ("R"), or its index when unnamed
+  std::string max_channel;           // the channel's name there ("R"), or its index when unnamed; empty for FLIP
+  // FLIP only: its weighted quartiles, each pixel weighted by its own error (FLIP's pooling).
+  double flip_q1 = 0, flip_median = 0, flip_q3 = 0;
   uint64_t pixels = 0;               // width × height × depth
   uint64_t over_warn = 0, over_fail = 0;
 
@@ -76,14 +96,21 @@ struct ImageDiff {
 
 struct DiffOptions {
   DiffThresholds thresholds;
+  DiffMetric metric = DiffMetric::kIdiff;
+  // FLIP's viewing conditions: pixels per degree of visual angle; the FLIP paper's 0.7 m from a 0.7 m
+  // wide 4K monitor by default (67.02).
+  double pixels_per_degree = 67.02064327658226;
+  unsigned threads = 1;  // FLIP's bands computed at once
   // When set, a heat map is written for every failing pair that could be compared, to
   // heat_map_dir/heat_map_name (folders created as needed): an 8-bit RGB PNG of each pixel's largest
   // channel difference, black where it is at most `fail`, else the viridis colormap from dark (just over
-  // `fail`) to yellow (the pair's max error); white where the difference is not finite. Written atomically
-  // (a complete file or none) and the same bytes for the same inputs.
+  // `fail`) to yellow (the pair's max error); white where the difference is not finite. For FLIP, each
+  // pixel's FLIP value in the magma colormap from black (0) to light yellow (1), with its colour bar and
+  // labels in a panel on the right. Written atomically (a complete file or none) and the same bytes for
+  // the same inputs.
   std::string heat_map_dir;
   // Most memory comparing one pair may take (--max-memory): both images as float, what reading takes and
-  // the heat map. Checked against what each file declares before its pixels are allocated; a file that
+  // the heat map; for FLIP also its error map and the bands being computed. Checked against what each file declares before its pixels are allocated; a file that
   // needs more is unreadable ("comparing it needs about …").
   uint64_t max_memory = kDefaultMaxMemory;
   // Checked before each pair: once set, diff_images throws JobCancelled (dqskin/job.hpp). May be null.
@@ -93,6 +120,8 @@ struct DiffOptions {
 struct DiffReport {
   std::string a, b;  // the command's two arguments
   DiffThresholds thresholds;
+  DiffMetric metric = DiffMetric::kIdiff;
+  double pixels_per_degree = 0;  // FLIP's viewing conditions (reported for FLIP only)
   std::vector<ImageDiff> pairs;  // in name order
 
   // FAIL when any pair failed, else WARN when any warned, else PASS (also when there are no pairs).

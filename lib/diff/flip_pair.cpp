@@ -1,0 +1,76 @@
+#include "flip_pair.hpp"
+#include "flip.hpp"
+#include "../base/saturating.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dqskin::diff_detail {
+namespace {
+
+// The IEC 61966-2-1 (sRGB) encoding of a linear value, clamped to [0, 1] first.
+float srgb_encode(float linear) {
+  const double c = std::clamp(double(linear), 0.0, 1.0);
+  return float(c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
+}
+
+FlipOptions flip_options(const DiffOptions& options) { return {options.pixels_per_degree, options.threads, 0}; }
+
+}  // namespace
+
+std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout) {
+  const size_t count = layout.width * layout.height, channels = layout.channels;
+  std::vector<float> rgb(3 * count);
+  for (size_t i = 0; i < count; ++i)
+    for (size_t c = 0; c < 3; ++c) {
+      // NaN is not a display value: FLIP sees it as black, as a viewer would show it.
+      const float v = pixels[i * channels + (channels >= 3 ? c : 0)];
+      const float shown = std::isnan(v) ? 0.0f : v;
+      rgb[3 * i + c] = layout.linear ? srgb_encode(shown) : shown;
+    }
+  return rgb;
+}
+
+std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout, const DiffOptions& options,
+                              ImageDiff& d) {
+  std::vector<double> errors;
+  {
+    const std::vector<float> ra = flip_rgb(a, layout), rb = flip_rgb(b, layout);
+    errors = flip_error_map(ra.data(), rb.data(), layout.width, layout.height, flip_options(options));
+  }
+  d.metric = DiffMetric::kFlip;
+  d.pixels = uint64_t(errors.size());
+  d.psnr = std::numeric_limits<double>::quiet_NaN();
+  d.max_channel.clear();
+  const FlipPool pool = pool_flip(errors);
+  d.max_error = pool.max;
+  d.mean_error = pool.mean;
+  d.flip_q1 = pool.q1;
+  d.flip_median = pool.weighted_median;
+  d.flip_q3 = pool.q3;
+  const auto worst = std::find(errors.begin(), errors.end(), pool.max);  // the first, in row order
+  const size_t at = worst == errors.end() ? 0 : size_t(worst - errors.begin());
+  d.max_x = pool.max > 0 ? int(at % layout.width) : 0;
+  d.max_y = pool.max > 0 ? int(at / layout.width) : 0;
+  double squares = 0;
+  d.over_warn = d.over_fail = 0;
+  for (double e : errors) {
+    squares += e * e;
+    d.over_warn += e > options.thresholds.warn;
+    d.over_fail += e > options.thresholds.fail;
+  }
+  d.rms_error = errors.empty() ? 0 : std::sqrt(squares / double(errors.size()));
+  return errors;
+}
+
+uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options) {
+  using saturating::add;
+  using saturating::mul;
+  const uint64_t pixels = mul(width, height);
+  // Both images as RGB floats while the bands run; then the error map and the quartiles' sorted copy.
+  const uint64_t computing = add(mul(pixels, 2 * 3 * sizeof(float)), flip_working_bytes(width, height, flip_options(options)));
+  return add(mul(pixels, sizeof(double)), std::max(computing, mul(pixels, sizeof(double))));
+}
+
+}  // namespace dqskin::diff_detail

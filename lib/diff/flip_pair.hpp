@@ -1,0 +1,38 @@
+// One image pair measured by FLIP for `dqskin diff --metric flip` (internal to lib/diff): the images as
+// diff reads them (float, any channel count) brought to what FLIP takes, its error map, and the figures
+// the reports and the verdict use.
+#pragma once
+
+#include "dqskin/image_diff.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace dqskin::diff_detail {
+
+// How an image's floats are laid out and what they mean.
+struct PixelLayout {
+  size_t width = 0, height = 0, channels = 0;
+  // True for float and half files (EXR, HDR): linear light, which FLIP's LDR form sees clamped to [0, 1]
+  // and sRGB-encoded; false for integer files (PNG, JPEG, 8- and 16-bit TIFF), whose values already are
+  // display values.
+  bool linear = false;
+};
+
+// FLIP's input: interleaved RGB display values, from the first three channels (RGB; alpha and others
+// ignored) or, for one or two channels, the first as grey. OpenImageIO has already multiplied colours by
+// their alpha, so a transparent pixel is seen over black.
+std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout);
+
+// Measures the pair: fills d's metric, max_error and its place, mean and RMS error, FLIP's weighted
+// quartiles, pixels and the counts over --warn and --fail (PSNR is NaN: FLIP has none). Returns the
+// error map, row by row.
+std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout, const DiffOptions& options,
+                              ImageDiff& d);
+
+// The most memory flip_pair holds beside the two images: both as FLIP's RGB, the error map, its sorted
+// copy for the quartiles and the bands being computed.
+uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options);
+
+}  // namespace dqskin::diff_detail
