@@ -8,6 +8,7 @@
 #include "guarded_run.hpp"
 
 #include "dqskin/atomic_file.hpp"
+#include "dqskin/ci_annotations.hpp"
 #include "../lib/base/byte_size.hpp"
 #include "dqskin/diff_report.hpp"
 #include "dqskin/error.hpp"
@@ -18,7 +19,11 @@
 #include "../lib/diff/flip.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <filesystem>
 #include <limits>
 #include <thread>
@@ -40,6 +45,8 @@ struct DiffSettings {
   std::string out_dir;        // heat maps of failing pairs; none when empty
   bool json = false;
   std::string junit;          // JUnit XML report; none when empty
+  std::string annotations;       // "github", "gitlab" or none
+  std::string annotations_file;  // GitLab's report, GitHub's step summary; see add_diff_command
   // Geometry (two glTF files) only:
   bool relative = false;
   std::string mode = "dqs";
@@ -51,6 +58,26 @@ struct DiffSettings {
 };
 
 int exit_status(DiffStatus status);
+
+// The CI's annotations of a diff (dqskin/ci_annotations.hpp): GitHub's workflow commands on stdout after
+// the report and its step summary appended to --annotations-file or $GITHUB_STEP_SUMMARY (a file each
+// step appends to, so appending is its protocol); GitLab's Code Quality report written atomically.
+void write_annotations(const DiffSettings& s, DiffStatus status, const std::vector<CiRow>& rows) {
+  if (s.annotations == "github") {
+    std::cout << github_annotations(rows) << std::flush;
+    const char* env = std::getenv("GITHUB_STEP_SUMMARY");
+    const std::string path = !s.annotations_file.empty() ? s.annotations_file : env ? env : "";
+    if (path.empty()) return;
+    std::ofstream summary(path, std::ios::binary | std::ios::app);
+    summary << github_step_summary("dqskin diff " + s.a + " " + s.b, status, rows);
+    summary.flush();
+    if (!summary) throw OutputError(path + ": cannot append the step summary: " + std::strerror(errno));
+  } else if (s.annotations == "gitlab") {
+    AtomicFile report(s.annotations_file.empty() ? "gl-code-quality-report.json" : s.annotations_file);
+    report.write(gitlab_code_quality(rows));
+    report.commit(Overwrite::kReplace);
+  }
+}
 
 void write_junit(const std::string& path, const std::string& text) {
   if (path.empty()) return;
@@ -83,6 +110,7 @@ int run_geometry_diff(const DiffSettings& s) {
     std::fprintf(stderr, "dqskin: diff: correspondence %.3g s, whole diff %.3g s\n", report.correspondence_seconds,
                  report.wall_seconds);
   write_junit(s.junit, geometry_junit(report));
+  write_annotations(s, report.status(), ci_rows(report));
   return exit_status(report.status());
 }
 
@@ -138,6 +166,13 @@ int run_diff(const DiffSettings& settings) {
   return guarded_run("diff", [&] {
     const std::string bad = check_thresholds(settings.thresholds);
     if (!bad.empty()) throw InputError(bad);
+    if (!settings.annotations.empty() && settings.annotations != "github" && settings.annotations != "gitlab")
+      throw InputError("--annotations '" + settings.annotations + "' is not one of github, gitlab");
+    if (settings.annotations == "github" && settings.json)
+      throw InputError("--annotations github prints workflow commands after the report on stdout, which --json keeps "
+                       "for one JSON document; give one of them");
+    if (!settings.annotations_file.empty() && settings.annotations.empty())
+      throw InputError("--annotations-file needs --annotations github or gitlab");
     if (is_gltf_file(settings.a) != is_gltf_file(settings.b))
       throw InputError("compare two glTF files (.gltf, .glb, .vrm) or two images or folders of images, not one of each");
     const bool geometry = is_gltf_file(settings.a) || (is_bake_folder(settings.a) && is_bake_folder(settings.b));
@@ -166,6 +201,7 @@ int run_diff(const DiffSettings& settings) {
       if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);
     std::cout << (settings.json ? diff_json(report) : diff_text(report)) << std::flush;
     write_junit(settings.junit, diff_junit(report));
+    write_annotations(settings, report.status(), ci_rows(report));
     return exit_status(report.status());
   });
 }
@@ -248,6 +284,14 @@ Command add_diff_command(CLI::App& app) {
   add_max_influences(*diff_cmd, diff.load);
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--junit", diff.junit, "Also write a JUnit XML report, one testcase per pair, to FILE")
+      ->type_name("FILE");
+  diff_cmd->add_option("--annotations", diff.annotations,
+                       "Also report to the CI: github (an ::error or ::warning workflow command per failing or warning "
+                       "pair or clip on stdout, and a Markdown step summary) or gitlab (a Code Quality report)")
+      ->type_name("github|gitlab");
+  diff_cmd->add_option("--annotations-file", diff.annotations_file,
+                       "github: append the step summary here (default $GITHUB_STEP_SUMMARY, none when unset); gitlab: "
+                       "write the report here (default gl-code-quality-report.json)")
       ->type_name("FILE");
   diff_cmd->footer(
       "Verdict (idiff's): a pair FAILs when more than --failpercent % of its pixels are over --fail, or any channel\n"

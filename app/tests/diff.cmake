@@ -138,6 +138,40 @@ set_tests_properties(cli.diff_flip_junit_content PROPERTIES
   FIXTURES_REQUIRED diff_flip_junit)
 set_tests_properties(cli.diff_flip_ppd_in_junit PROPERTIES FIXTURES_SETUP diff_flip_junit)
 
+# --annotations: GitHub's workflow commands after the report and its step summary; GitLab's Code Quality report.
+dqskin_diff_test(annotations_github_commands 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --fail 0.01 --warn 0.001
+  --annotations github --annotations-file ${diff_scratch}/summary.md
+  STDOUT "^WARN  [^\n]*\nsummary: WARN [^\n]*\n::warning file=[^\n]*/slight.ppm,title=dqskin diff%3A [^\n]*/a.ppm::1 pixel \\(25%25\\) over --warn 0.001, more than --warnpercent 0 \\(max 0.00392157, mean 0.000326797\\)\n$"
+  STDERR "^$")
+add_test(NAME cli.diff_annotations_github_summary COMMAND ${CMAKE_COMMAND} -E cat ${diff_scratch}/summary.md)
+set_tests_properties(cli.diff_annotations_github_summary PROPERTIES
+  PASS_REGULAR_EXPRESSION "^### dqskin diff [^\n]*/a.ppm [^\n]*/slight.ppm: WARN\n\n0 pass, 1 warn, 0 fail\n\n\\| \\| name \\| figures \\| reason \\|\n\\|---\\|---\\|---\\|---\\|\n\\| WARN \\| "
+  FIXTURES_REQUIRED diff_summary)
+set_tests_properties(cli.diff_annotations_github_commands PROPERTIES FIXTURES_SETUP diff_summary)
+dqskin_diff_test(annotations_github_summary_from_environment 2 ARGS diff ${d}/a.ppm ${d}/very.ppm --annotations github
+  ENVIRONMENT GITHUB_STEP_SUMMARY=${diff_scratch}/step_summary.md STDOUT "\n::error file=[^\n]*/very.ppm,")
+add_test(NAME cli.diff_annotations_github_summary_environment_content COMMAND ${CMAKE_COMMAND} -E cat ${diff_scratch}/step_summary.md)
+set_tests_properties(cli.diff_annotations_github_summary_environment_content PROPERTIES
+  PASS_REGULAR_EXPRESSION "^### dqskin diff [^\n]*: FAIL\n" FIXTURES_REQUIRED diff_step_summary)
+set_tests_properties(cli.diff_annotations_github_summary_from_environment PROPERTIES FIXTURES_SETUP diff_step_summary)
+dqskin_diff_test(annotations_github_nothing_on_pass 0 ARGS diff ${diff_arm} ${diff_arm} --backend cpu --annotations github
+  STDOUT "\nsummary: PASS [^\n]*\n$")
+dqskin_diff_test(annotations_gitlab_report 2 ARGS diff ${d}/a.ppm ${d}/very.ppm --annotations gitlab
+  --annotations-file ${diff_scratch}/codequality.json STDOUT "^FAIL  ")
+add_test(NAME cli.diff_annotations_gitlab_content COMMAND ${CMAKE_COMMAND} -E cat ${diff_scratch}/codequality.json)
+set_tests_properties(cli.diff_annotations_gitlab_content PROPERTIES
+  PASS_REGULAR_EXPRESSION "^\\[\n  {\n    \"type\": \"issue\",\n    \"check_name\": \"dqskin-diff\",\n    \"description\": \"dqskin diff [^\n]*/a.ppm: FAIL, [^\n]*\",\n.*\"severity\": \"major\",\n    \"fingerprint\": \"[0-9a-f]+\",\n    \"location\": {\n      \"path\": \"[^\n]*/very.ppm\",\n      \"lines\": {\n        \"begin\": 1\n"
+  FIXTURES_REQUIRED diff_codequality)
+set_tests_properties(cli.diff_annotations_gitlab_report PROPERTIES FIXTURES_SETUP diff_codequality)
+dqskin_diff_test(annotations_unknown_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --annotations jenkins
+  STDOUT "^$" STDERR "^dqskin: --annotations 'jenkins' is not one of github, gitlab\n$")
+dqskin_diff_test(annotations_github_with_json_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --annotations github --json
+  STDOUT "^$" STDERR "^dqskin: --annotations github prints workflow commands after the report on stdout, [^\n]*\n$")
+dqskin_diff_test(annotations_file_alone_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --annotations-file x.json
+  STDOUT "^$" STDERR "^dqskin: --annotations-file needs --annotations github or gitlab\n$")
+dqskin_diff_test(annotations_gitlab_unwritable_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --annotations gitlab
+  --annotations-file /proc/dqskin-cannot-write-here/cq.json STDERR "^dqskin: /proc/dqskin-cannot-write-here/cq.json: [^\n]*\n$")
+
 # Usage and input errors: one line, exit status 2, no report.
 dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1
   STDOUT "^$" STDERR "^dqskin: --fail must be at least 0, not -1\n$")
