@@ -14,6 +14,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/geometry_diff.hpp"
 #include "dqskin/geometry_report.hpp"
+#include "dqskin/golden_approval.hpp"
 #include "dqskin/image_diff.hpp"
 #include "interrupt.hpp"
 #include "../lib/diff/flip.hpp"
@@ -45,6 +46,7 @@ struct DiffSettings {
   std::string out_dir;        // heat maps of failing pairs; none when empty
   bool json = false;
   std::string junit;          // JUnit XML report; none when empty
+  bool approve = false, dry_run = false;
   std::string annotations;       // "github", "gitlab" or none
   std::string annotations_file;  // GitLab's report, GitHub's step summary; see add_diff_command
   // Geometry (two glTF files) only:
@@ -180,6 +182,9 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("--metric " + settings.metric + " compares images; glTF files and bakes are compared by distance");
     if (geometry && (settings.thresholds.fail_mean != kOff || settings.thresholds.warn_mean != kOff))
       throw InputError("--failmean and --warnmean judge images; glTF files and bakes are judged by distance");
+    if (geometry && settings.approve)
+      throw InputError("--approve replaces golden images; glTF files and bakes are not goldens it replaces");
+    if (settings.dry_run && !settings.approve) throw InputError("--dry-run shows what --approve would do: give both");
     if (geometry) return run_geometry_diff(settings);
     DiffOptions options;
     options.thresholds = settings.thresholds;
@@ -196,13 +201,21 @@ int run_diff(const DiffSettings& settings) {
     options.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
     options.cancel = catch_interrupts("diff");
-    const DiffReport report = diff_images(settings.a, settings.b, options);
+    DiffReport report = diff_images(settings.a, settings.b, options);
     for (const ImageDiff& d : report.pairs)
       if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);
+    if (settings.approve) {
+      // Before any report, so that one that cannot be made (a read-only folder) is the only line printed.
+      report.approval = true;
+      report.approval_dry_run = settings.dry_run;
+      report.approved = approvals(report);
+      if (!settings.dry_run) approve(report.approved);
+    }
     std::cout << (settings.json ? diff_json(report) : diff_text(report)) << std::flush;
     write_junit(settings.junit, diff_junit(report));
     write_annotations(settings, report.status(), ci_rows(report));
-    return exit_status(report.status());
+    // Approved goldens are settled; a dry run changes nothing, so its status is the diff's.
+    return exit_status(settings.approve && !settings.dry_run ? report.status_after_approval() : report.status());
   });
 }
 
@@ -285,6 +298,10 @@ Command add_diff_command(CLI::App& app) {
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--junit", diff.junit, "Also write a JUnit XML report, one testcase per pair, to FILE")
       ->type_name("FILE");
+  diff_cmd->add_flag("--approve", diff.approve,
+                     "Images: make the candidates of failing pairs (B) the goldens (A), all or none, and say so in the "
+                     "report; exit status then that of the pairs left as they were");
+  diff_cmd->add_flag("--dry-run", diff.dry_run, "With --approve: list what it would replace, change nothing");
   diff_cmd->add_option("--annotations", diff.annotations,
                        "Also report to the CI: github (an ::error or ::warning workflow command per failing or warning "
                        "pair or clip on stdout, and a Markdown step summary) or gitlab (a Code Quality report)")

@@ -172,6 +172,32 @@ dqskin_diff_test(annotations_file_alone_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same
 dqskin_diff_test(annotations_gitlab_unwritable_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --annotations gitlab
   --annotations-file /proc/dqskin-cannot-write-here/cq.json STDERR "^dqskin: /proc/dqskin-cannot-write-here/cq.json: [^\n]*\n$")
 
+# --approve: fresh copies of the folders A and B for each run (the approval changes its goldens): a dry run
+# lists sub/slight.ppm (differs) and extra.ppm (new); the approval makes them; gone.ppm has no candidate and
+# keeps failing; the diff after it passes sub/slight.ppm. An approval that cannot be made (a file named sub
+# where the new golden's folder would go) exits 2 with one line.
+set(approve_dir ${diff_scratch}/approve)
+add_test(NAME cli.diff_approve_setup COMMAND ${CMAKE_COMMAND} -E env sh -c
+  "rm -rf '${approve_dir}' && mkdir -p '${approve_dir}/blocked' && cp -R '${d}/A' '${approve_dir}/golden' && cp -R '${d}/B' '${approve_dir}/out' && echo x > '${approve_dir}/blocked/sub'")
+set_tests_properties(cli.diff_approve_setup PROPERTIES FIXTURES_SETUP diff_approve)
+dqskin_diff_test(approve_dry_run 2 ARGS diff ${approve_dir}/golden ${approve_dir}/out --approve --dry-run
+  STDOUT "\nsummary: FAIL [^\n]*\napproved: would add [^\n]*/golden/extra.ppm from [^\n]*/out/extra.ppm\napproved: would replace [^\n]*/golden/sub/slight.ppm with [^\n]*/out/sub/slight.ppm\napproved: 2 goldens would be replaced or added \\(dry run: nothing changed\\). then FAIL\n$")
+dqskin_diff_test(approve_replaces 2 ARGS diff ${approve_dir}/golden ${approve_dir}/out --approve --json
+  STDOUT "\"approval\": {\n    \"dry_run\": false,\n    \"files\": \\[\n      {\n        \"name\": \"extra.ppm\",")
+dqskin_diff_test(approve_then_passes 2 ARGS diff ${approve_dir}/golden ${approve_dir}/out
+  STDOUT "^PASS  extra.ppm  [^\n]*\nFAIL  gone.ppm  missing in B, only in A\nPASS  same.ppm  [^\n]*\nPASS  sub/slight.ppm  ")
+dqskin_diff_test(approve_blocked_exits_2 2 ARGS diff ${approve_dir}/blocked ${d}/B --approve
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/blocked/sub[^\n]*\n$")
+foreach(t approve_dry_run approve_replaces approve_then_passes approve_blocked_exits_2)
+  set_tests_properties(cli.diff_${t} PROPERTIES FIXTURES_REQUIRED diff_approve)
+endforeach()
+set_tests_properties(cli.diff_approve_replaces PROPERTIES DEPENDS cli.diff_approve_dry_run)
+set_tests_properties(cli.diff_approve_then_passes PROPERTIES DEPENDS cli.diff_approve_replaces)
+dqskin_diff_test(dry_run_alone_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --dry-run
+  STDOUT "^$" STDERR "^dqskin: --dry-run shows what --approve would do: give both\n$")
+dqskin_diff_test(approve_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --approve
+  STDOUT "^$" STDERR "^dqskin: --approve replaces golden images. [^\n]*\n$")
+
 # Usage and input errors: one line, exit status 2, no report.
 dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1
   STDOUT "^$" STDERR "^dqskin: --fail must be at least 0, not -1\n$")

@@ -84,6 +84,17 @@ std::string diff_text(const DiffReport& report) {
     text += "\n";
   }
   text += "summary: " + std::string(status_name(report.status())) + " (" + summary_counts(report) + ")\n";
+  if (report.approval) {
+    const bool dry = report.approval_dry_run;
+    for (const Approval& a : report.approved)
+      text += std::string("approved: ") + (dry ? "would " : "") +
+              (a.added ? (dry ? "add " : "added ") : (dry ? "replace " : "replaced ")) + printable(a.golden) +
+              (a.added ? " from " : " with ") + printable(a.candidate) + "\n";
+    const size_t n = report.approved.size();
+    text += std::string("approved: ") + std::to_string(n) + (n == 1 ? " golden" : " goldens") +
+            (dry ? " would be replaced or added (dry run: nothing changed)" : " replaced or added") + "; then " +
+            status_name(report.status_after_approval()) + "\n";
+  }
   return text;
 }
 
@@ -124,6 +135,13 @@ std::string diff_json(const DiffReport& report) {
                        {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)},
                        {"fail_mean", finite_or_null(t.fail_mean)}, {"warn_mean", finite_or_null(t.warn_mean)}};
   doc["pairs"] = std::move(pairs);
+  if (report.approval) {
+    Json files = Json::array();
+    for (const Approval& a : report.approved)
+      files.push_back({{"name", a.name}, {"golden", a.golden}, {"candidate", a.candidate}, {"added", a.added}});
+    doc["approval"] = {{"dry_run", report.approval_dry_run}, {"files", std::move(files)},
+                       {"status_after", status_name(report.status_after_approval())}};
+  }
   doc["summary"] = {{"status", status_name(report.status())},
                     {"pairs", report.pairs.size()},
                     {"pass", report.count(DiffStatus::kPass)},

@@ -119,6 +119,15 @@ DiffStatus DiffReport::status() const {
   return worst;
 }
 
+DiffStatus DiffReport::status_after_approval() const {
+  if (!approval) return status();
+  DiffStatus worst = DiffStatus::kPass;
+  for (const ImageDiff& p : pairs)
+    if (std::none_of(approved.begin(), approved.end(), [&p](const Approval& done) { return done.name == p.name; }))
+      worst = std::max(worst, p.status);
+  return worst;
+}
+
 size_t DiffReport::count(DiffStatus status) const {
   return size_t(std::count_if(pairs.begin(), pairs.end(), [status](const ImageDiff& p) { return p.status == status; }));
 }

@@ -117,6 +117,15 @@ struct DiffOptions {
   const std::atomic<bool>* cancel = nullptr;
 };
 
+// One golden replaced (or added, for a candidate with no golden yet) by its candidate: `diff --approve`
+// (golden_approval.hpp).
+struct Approval {
+  std::string name;       // the pair's name
+  std::string golden;     // the file that holds (or will hold) the candidate's bytes
+  std::string candidate;  // the file they come from
+  bool added = false;     // no golden existed
+};
+
 struct DiffReport {
   std::string a, b;  // the command's two arguments
   DiffThresholds thresholds;
@@ -124,8 +133,16 @@ struct DiffReport {
   double pixels_per_degree = 0;  // FLIP's viewing conditions (reported for FLIP only)
   std::vector<ImageDiff> pairs;  // in name order
 
+  // --approve: whether it was asked for, as a dry run, and the goldens replaced (or, in a dry run, those
+  // that would be).
+  bool approval = false, approval_dry_run = false;
+  std::vector<Approval> approved;
+
   // FAIL when any pair failed, else WARN when any warned, else PASS (also when there are no pairs).
   DiffStatus status() const;
+  // The same over the pairs an approval leaves (or, in a dry run, would leave) as they were: an approved
+  // pair's golden is its candidate.
+  DiffStatus status_after_approval() const;
   size_t count(DiffStatus status) const;
 };
 
