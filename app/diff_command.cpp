@@ -47,6 +47,9 @@ struct DiffSettings {
   bool json = false;
   std::string junit;          // JUnit XML report; none when empty
   bool approve = false, dry_run = false;
+  std::string mask;                 // a mask image for every pair
+  std::vector<std::string> ignore;  // X,Y,W,H rectangles for every pair
+  std::string preset;               // a preset file of rules
   std::string annotations;       // "github", "gitlab" or none
   std::string annotations_file;  // GitLab's report, GitHub's step summary; see add_diff_command
   // Geometry (two glTF files) only:
@@ -162,6 +165,16 @@ double viewing_ppd(const DiffSettings& s) {
   return s.ppd;
 }
 
+// "X,Y,W,H" in pixels (--ignore).
+PixelRect parse_rect(const std::string& text) {
+  PixelRect r;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &r.x, &r.y, &r.width, &r.height, &tail) != 4 || r.x < 0 || r.y < 0 ||
+      r.width < 1 || r.height < 1)
+    throw InputError("--ignore '" + text + "' is not X,Y,WIDTH,HEIGHT in pixels (X, Y at least 0, sizes at least 1)");
+  return r;
+}
+
 // Compares two images or two folders of images. Returns 0 (all pass), 1 (warnings only) or 2 (a failure,
 // or a usage or input error).
 int run_diff(const DiffSettings& settings) {
@@ -182,6 +195,8 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("--metric " + settings.metric + " compares images; glTF files and bakes are compared by distance");
     if (geometry && (settings.thresholds.fail_mean != kOff || settings.thresholds.warn_mean != kOff))
       throw InputError("--failmean and --warnmean judge images; glTF files and bakes are judged by distance");
+    if (geometry && (!settings.mask.empty() || !settings.ignore.empty() || !settings.preset.empty()))
+      throw InputError("--mask, --ignore and --preset apply to images; glTF files and bakes are compared by distance");
     if (geometry && settings.approve)
       throw InputError("--approve replaces golden images; glTF files and bakes are not goldens it replaces");
     if (settings.dry_run && !settings.approve) throw InputError("--dry-run shows what --approve would do: give both");
@@ -199,6 +214,9 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("--ppd and --viewing are FLIP's viewing conditions: give them with --metric flip");
     }
     options.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+    options.mask.image = settings.mask;
+    for (const std::string& r : settings.ignore) options.mask.rects.push_back(parse_rect(r));
+    if (!settings.preset.empty()) options.rules = read_diff_rules(settings.preset);
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
     options.cancel = catch_interrupts("diff");
     DiffReport report = diff_images(settings.a, settings.b, options);
@@ -297,6 +315,16 @@ Command add_diff_command(CLI::App& app) {
   add_max_influences(*diff_cmd, diff.load);
   diff_cmd->add_flag("--json", diff.json, "Print one JSON document instead of text");
   diff_cmd->add_option("--junit", diff.junit, "Also write a JUnit XML report, one testcase per pair, to FILE")
+      ->type_name("FILE");
+  diff_cmd->add_option("--mask", diff.mask,
+                       "Images: leave out of every pair the pixels where this image (same size) is white (first channel "
+                       "at least 0.5)")
+      ->type_name("IMAGE");
+  diff_cmd->add_option("--ignore", diff.ignore, "Images: leave out of every pair this rectangle of pixels (repeatable)")
+      ->type_name("X,Y,W,H");
+  diff_cmd->add_option("--preset", diff.preset,
+                       "Images: rules by name pattern (metric, thresholds, mask) in one JSON file; the first rule matching "
+                       "a pair decides it, the command line's flags the others")
       ->type_name("FILE");
   diff_cmd->add_flag("--approve", diff.approve,
                      "Images: make the candidates of failing pairs (B) the goldens (A), all or none, and say so in the "

@@ -198,6 +198,28 @@ dqskin_diff_test(dry_run_alone_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --dr
 dqskin_diff_test(approve_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --approve
   STDOUT "^$" STDERR "^dqskin: --approve replaces golden images. [^\n]*\n$")
 
+# Masks and presets: the one pixel that differs left out passes; a preset rule judges the pairs it matches.
+dqskin_diff_ppm(${d}/mask_at_1.ppm 2 2 0 1 255)  # white at pixel 1 (green only: the first channel is 0)
+dqskin_diff_ppm(${d}/mask_small.ppm 1 2 0 -1 0)
+file(WRITE ${d}/preset.json "{\"rules\": [{\"match\": \"sub/*\", \"fail\": 0.01, \"warn\": 0.01}]}\n")
+file(WRITE ${d}/bad_preset.json "{\"rules\": [{\"match\": \"*\", \"fial\": 1}]}\n")
+dqskin_diff_test(ignore_rectangle_passes 0 ARGS diff ${d}/a.ppm ${d}/slight.ppm --ignore 1,0,1,1
+  STDOUT "^PASS  [^\n]*  max 0  mean 0  RMS 0  PSNR inf dB  over warn 0 \\(0%\\)  over fail 0 \\(0%\\)  masked 1\n")
+dqskin_diff_test(mask_first_channel_black_keeps_the_pixel 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm --mask ${d}/mask_at_1.ppm
+  STDOUT "^FAIL  ")
+dqskin_diff_test(preset_rule_judges_its_pairs 2 ARGS diff ${d}/A ${d}/B --preset ${d}/preset.json
+  STDOUT "\nPASS  sub/slight.ppm  [^\n]*  rule sub/\\*\n")
+dqskin_diff_test(preset_unknown_key_exits_2 2 ARGS diff ${d}/A ${d}/B --preset ${d}/bad_preset.json
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/bad_preset.json: rules\\[0\\]: unknown key \"fial\"\n$")
+dqskin_diff_test(preset_missing_exits_2 2 ARGS diff ${d}/A ${d}/B --preset ${d}/no_preset.json
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/no_preset.json: cannot read the preset file\n$")
+dqskin_diff_test(mask_of_another_size_exits_2 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm --mask ${d}/mask_small.ppm
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/mask_small.ppm: the mask is 1x2, the images 2x2\n$")
+dqskin_diff_test(ignore_malformed_exits_2 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm --ignore 1,0,0,1
+  STDOUT "^$" STDERR "^dqskin: --ignore '1,0,0,1' is not X,Y,WIDTH,HEIGHT in pixels [^\n]*\n$")
+dqskin_diff_test(mask_on_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --ignore 0,0,1,1
+  STDOUT "^$" STDERR "^dqskin: --mask, --ignore and --preset apply to images. [^\n]*\n$")
+
 # Usage and input errors: one line, exit status 2, no report.
 dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1
   STDOUT "^$" STDERR "^dqskin: --fail must be at least 0, not -1\n$")

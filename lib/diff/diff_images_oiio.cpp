@@ -212,6 +212,46 @@ void write_heat_map(const std::string& path, const FloatImage& a, const FloatIma
   file.commit(Overwrite::kReplace);
 }
 
+// The pixels `mask` leaves out of an image laid out as `spec` (1 where left out), or none when it leaves
+// none. Throws InputError naming the mask image when it cannot be read or has another size.
+std::vector<uint8_t> excluded_pixels(const DiffMask& mask, const OIIO::ImageSpec& spec) {
+  const size_t width = size_t(spec.width), height = size_t(spec.height) * size_t(spec.depth);
+  std::vector<uint8_t> excluded(width * height, 0);
+  if (!mask.image.empty()) {
+    std::unique_ptr<OIIO::ImageInput> in;
+    std::string why = open_image(mask.image, in);
+    if (!why.empty()) throw InputError(mask.image + ": cannot read the mask: " + why);
+    const OIIO::ImageSpec& m = in->spec();
+    if (m.width != spec.width || m.height != spec.height || m.depth != spec.depth)
+      throw InputError(mask.image + ": the mask is " + window_text(m) + ", the images " + window_text(spec));
+    FloatImage pixels;
+    why = read_pixels(*in, pixels);
+    if (!why.empty()) throw InputError(mask.image + ": cannot read the mask: " + why);
+    const size_t channels = size_t(m.nchannels);
+    for (size_t i = 0; i < excluded.size(); ++i) excluded[i] = pixels.pixels[i * channels] >= 0.5f;
+  }
+  for (const PixelRect& r : mask.rects) {
+    const long x0 = std::max(0L, long(r.x)), y0 = std::max(0L, long(r.y));
+    const long x1 = std::min(long(width), long(r.x) + r.width), y1 = std::min(long(height), long(r.y) + r.height);
+    for (long y = y0; y < y1; ++y)
+      for (long x = x0; x < x1; ++x) excluded[size_t(y) * width + size_t(x)] = 1;
+  }
+  if (std::find(excluded.begin(), excluded.end(), 1) == excluded.end()) return {};
+  return excluded;
+}
+
+// Left-out pixels take A's values in B: they differ nowhere, so compare and FLIP count nothing there and
+// no difference under the mask spreads through FLIP's filters. Returns how many pixels were left out.
+uint64_t apply_mask(const std::vector<uint8_t>& excluded, const FloatImage& a, FloatImage& b, size_t channels) {
+  uint64_t count = 0;
+  for (size_t i = 0; i < excluded.size(); ++i) {
+    if (!excluded[i]) continue;
+    std::copy_n(a.pixels.get() + i * channels, channels, b.pixels.get() + i * channels);
+    ++count;
+  }
+  return count;
+}
+
 class OiioDiffImageFiles final : public diff_detail::DiffImageFiles {
 public:
   ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) const override {
@@ -261,8 +301,10 @@ public:
         return d;
       }
 
+      const std::vector<uint8_t> excluded = options.mask.empty() ? std::vector<uint8_t>() : excluded_pixels(options.mask, a.spec());
+      d.masked = apply_mask(excluded, images[0], images[1], size_t(a.spec().nchannels));
       const DiffThresholds& t = options.thresholds;
-      if (options.metric == DiffMetric::kFlip) return flip(pair, declared[0], images, options, d);
+      if (options.metric == DiffMetric::kFlip) return flip(pair, declared[0], images, excluded, options, d);
       const OIIO::ImageBufAlgo::CompareResults cr =
           OIIO::ImageBufAlgo::compare(a, b, float(t.fail), float(t.warn), 0.0f, 0.0f, {}, 1);
       // `error` is also set whenever a pixel is over `fail` (OpenImageIO 2.4); a real error leaves a message.
@@ -285,6 +327,15 @@ public:
       d.pixels = uint64_t(a.spec().width) * uint64_t(a.spec().height) * uint64_t(a.spec().depth);
       d.over_warn = cr.nwarn;
       d.over_fail = cr.nfail;
+      if (d.masked > 0) {
+        // The figures over the pixels compared: left-out ones differ by 0, so the sums stand and the
+        // count shrinks (PSNR as compare makes it, 20 log10(1 / RMS)).
+        const double all = double(d.pixels), kept = double(d.pixels - d.masked);
+        d.pixels -= d.masked;
+        d.mean_error = kept > 0 ? d.mean_error * all / kept : 0;
+        d.rms_error = kept > 0 ? std::sqrt(d.rms_error * d.rms_error * all / kept) : 0;
+        d.psnr = d.rms_error > 0 ? 20 * std::log10(1 / d.rms_error) : std::numeric_limits<double>::infinity();
+      }
       std::tie(d.status, d.reason) = judge(t, d.max_error, d.over_warn, d.over_fail, d.pixels, d.mean_error);
       if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {
         d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
@@ -295,7 +346,7 @@ public:
 
   // The pair of same-sized images measured by FLIP (flip_pair.hpp), judged, and its heat map written.
   static ImageDiff flip(const DiffPair& pair, const OIIO::ImageSpec& declared, const FloatImage (&images)[2],
-                        const DiffOptions& options, ImageDiff& d) {
+                        const std::vector<uint8_t>& excluded, const DiffOptions& options, ImageDiff& d) {
     const OIIO::ImageSpec& spec = images[0].buffer.spec();
     if (spec.depth != 1) {
       d.problem = "FLIP compares flat images, not volumes (depth " + std::to_string(spec.depth) + ")";
@@ -303,7 +354,8 @@ public:
       return d;
     }
     const diff_detail::PixelLayout layout{size_t(spec.width), size_t(spec.height), size_t(spec.nchannels), is_linear(declared)};
-    const std::vector<double> errors = diff_detail::flip_pair(images[0].pixels.get(), images[1].pixels.get(), layout, options, d);
+    const std::vector<double> errors =
+        diff_detail::flip_pair(images[0].pixels.get(), images[1].pixels.get(), layout, excluded, options, d);
     d.compared = true;
     std::tie(d.status, d.reason) = judge(options.thresholds, d.max_error, d.over_warn, d.over_fail, d.pixels, d.mean_error);
     if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {

@@ -80,6 +80,8 @@ std::string diff_text(const DiffReport& report) {
               number(d.psnr) + " dB";
     text += "  over warn " + std::to_string(d.over_warn) + " (" + percent(d.over_warn, d.pixels) + ")  over fail " +
             std::to_string(d.over_fail) + " (" + percent(d.over_fail, d.pixels) + ")";
+    if (d.masked > 0) text += "  masked " + std::to_string(d.masked);
+    if (!d.rule.empty()) text += "  rule " + printable(d.rule);
     if (!d.heat_map.empty()) text += "  heat map " + printable(d.heat_map);
     text += "\n";
   }
@@ -107,6 +109,15 @@ std::string diff_json(const DiffReport& report) {
     p["a"] = d.a.empty() ? Json(nullptr) : Json(d.a);
     p["b"] = d.b.empty() ? Json(nullptr) : Json(d.b);
     p["status"] = status_name(d.status);
+    if (!d.rule.empty()) {
+      // The rule's metric and thresholds, which are not the document's.
+      const DiffThresholds& rt = d.thresholds;
+      p["rule"] = {{"match", d.rule}, {"metric", metric_name(d.metric)},
+                   {"thresholds", {{"fail", finite_or_null(rt.fail)},           {"fail_percent", rt.fail_percent},
+                                   {"hard_fail", finite_or_null(rt.hard_fail)}, {"warn", finite_or_null(rt.warn)},
+                                   {"warn_percent", rt.warn_percent},           {"hard_warn", finite_or_null(rt.hard_warn)},
+                                   {"fail_mean", finite_or_null(rt.fail_mean)}, {"warn_mean", finite_or_null(rt.warn_mean)}}}};
+    }
     if (!d.compared) {
       p["problem"] = d.problem;
     } else {
@@ -122,6 +133,7 @@ std::string diff_json(const DiffReport& report) {
       p["pixels_over_warn"] = d.over_warn;
       p["pixels_over_fail"] = d.over_fail;
       p["heat_map"] = d.heat_map.empty() ? Json(nullptr) : Json(d.heat_map);
+      if (d.masked > 0) p["pixels_masked"] = d.masked;
     }
     pairs.push_back(std::move(p));
   }

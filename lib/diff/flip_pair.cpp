@@ -32,18 +32,28 @@ std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout) {
   return rgb;
 }
 
-std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout, const DiffOptions& options,
-                              ImageDiff& d) {
+std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout,
+                              const std::vector<uint8_t>& excluded, const DiffOptions& options, ImageDiff& d) {
   std::vector<double> errors;
   {
     const std::vector<float> ra = flip_rgb(a, layout), rb = flip_rgb(b, layout);
     errors = flip_error_map(ra.data(), rb.data(), layout.width, layout.height, flip_options(options));
   }
   d.metric = DiffMetric::kFlip;
-  d.pixels = uint64_t(errors.size());
   d.psnr = std::numeric_limits<double>::quiet_NaN();
   d.max_channel.clear();
-  const FlipPool pool = pool_flip(errors);
+  // Left-out pixels are 0 in the map and outside the figures.
+  std::vector<double> kept;
+  if (!excluded.empty()) {
+    kept.reserve(errors.size());
+    for (size_t i = 0; i < errors.size(); ++i) {
+      if (excluded[i]) errors[i] = 0;
+      else kept.push_back(errors[i]);
+    }
+  }
+  const std::vector<double>& measured = excluded.empty() ? errors : kept;
+  d.pixels = uint64_t(measured.size());
+  const FlipPool pool = pool_flip(measured);
   d.max_error = pool.max;
   d.mean_error = pool.mean;
   d.flip_q1 = pool.q1;
@@ -55,12 +65,12 @@ std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout&
   d.max_y = pool.max > 0 ? int(at / layout.width) : 0;
   double squares = 0;
   d.over_warn = d.over_fail = 0;
-  for (double e : errors) {
+  for (double e : measured) {
     squares += e * e;
     d.over_warn += e > options.thresholds.warn;
     d.over_fail += e > options.thresholds.fail;
   }
-  d.rms_error = errors.empty() ? 0 : std::sqrt(squares / double(errors.size()));
+  d.rms_error = measured.empty() ? 0 : std::sqrt(squares / double(measured.size()));
   return errors;
 }
 
@@ -70,7 +80,9 @@ uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options
   const uint64_t pixels = mul(width, height);
   // Both images as RGB floats while the bands run; then the error map and the quartiles' sorted copy.
   const uint64_t computing = add(mul(pixels, 2 * 3 * sizeof(float)), flip_working_bytes(width, height, flip_options(options)));
-  return add(mul(pixels, sizeof(double)), std::max(computing, mul(pixels, sizeof(double))));
+  // With a mask: its mark per pixel, and the kept values copied out for the figures.
+  const uint64_t masked = options.mask.empty() ? 0 : mul(pixels, 1 + sizeof(double));
+  return add(add(mul(pixels, sizeof(double)), std::max(computing, mul(pixels, sizeof(double)))), masked);
 }
 
 }  // namespace dqskin::diff_detail

@@ -26,10 +26,11 @@ struct PixelLayout {
 std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout);
 
 // Measures the pair: fills d's metric, max_error and its place, mean and RMS error, FLIP's weighted
-// quartiles, pixels and the counts over --warn and --fail (PSNR is NaN: FLIP has none). Returns the
+// quartiles, pixels and the counts over --warn and --fail (PSNR is NaN: FLIP has none), over the pixels
+// `excluded` does not mark (none marked when it is empty; their values in the map are 0). Returns the
 // error map, row by row.
-std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout, const DiffOptions& options,
-                              ImageDiff& d);
+std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout,
+                              const std::vector<uint8_t>& excluded, const DiffOptions& options, ImageDiff& d);
 
 // The most memory flip_pair holds beside the two images: both as FLIP's RGB, the error map, its sorted
 // copy for the quartiles and the bands being computed.

@@ -204,7 +204,16 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   report.pixels_per_degree = options.pixels_per_degree;
   for (const DiffPair& pair : pair_inputs(a, b)) {
     check_cancelled(options.cancel);
-    report.pairs.push_back(diff_pair(pair, options));
+    const DiffOptions pair_options = options_for(options, pair.name);
+    ImageDiff d = diff_pair(pair, pair_options);
+    d.thresholds = pair_options.thresholds;
+    d.metric = pair_options.metric;  // also for a pair that could not be measured
+    for (const DiffRule& rule : options.rules)
+      if (glob_match(rule.pattern, pair.name)) {
+        d.rule = rule.pattern;
+        break;
+      }
+    report.pairs.push_back(std::move(d));
   }
   return report;
 }

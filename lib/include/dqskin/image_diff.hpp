@@ -88,14 +88,54 @@ struct ImageDiff {
   std::string max_channel;           // the channel's name there ("R"), or its index when unnamed; empty for FLIP
   // FLIP only: its weighted quartiles, each pixel weighted by its own error (FLIP's pooling).
   double flip_q1 = 0, flip_median = 0, flip_q3 = 0;
+  uint64_t masked = 0;  // pixels left out (DiffMask); `pixels` counts the others
+  std::string rule;     // the pattern of the preset rule that judged the pair, or empty
+  DiffThresholds thresholds;  // what judged it
   uint64_t pixels = 0;               // width × height × depth
   uint64_t over_warn = 0, over_fail = 0;
 
   std::string heat_map;  // the heat map written for this pair, or empty
 };
 
+// Pixels left out of a comparison: those of a mask image (same size as the images; where its first
+// channel is at least 0.5, white, the pixel is left out) and of rectangles. Left-out pixels take the
+// reference's values in the candidate, so that they neither count nor spread into FLIP's filters, and the
+// figures are over the other pixels.
+struct PixelRect {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+struct DiffMask {
+  std::string image;             // a mask image, or none
+  std::vector<PixelRect> rects;  // parts beyond the image are ignored
+  bool empty() const { return image.empty() && rects.empty(); }
+};
+
+// A preset's rule for the pairs whose name matches `pattern` (a glob on the '/'-separated relative path:
+// `*` any characters but '/', `**` any, `?` one): the metric and thresholds of those pairs, in place of the
+// command line's. Thresholds it does not give take the metric's defaults (idiff's; for FLIP, the given
+// rules only, as flip_thresholds).
+struct DiffRule {
+  std::string pattern;
+  DiffMetric metric = DiffMetric::kIdiff;
+  DiffThresholds thresholds;  // as judged (flip_thresholds already applied)
+  double pixels_per_degree = 0;  // FLIP; 0: the command line's
+  DiffMask mask;                  // added to the command line's
+};
+
+// The rules of a preset file (JSON: {"rules": [{"match": PATTERN, "metric": "idiff"|"flip", "fail": V,
+// "failpercent": P, "hardfail": V, "failmean": V, "warn": V, "warnpercent": P, "hardwarn": V,
+// "warnmean": V, "ppd": PPD, "mask": IMAGE, "ignore": [[X, Y, W, H], ...]}, ...]}; a mask's path is
+// relative to the preset file's folder). Throws InputError naming the file and what is wrong: JSON that
+// does not parse, an unknown key, a value of the wrong type or out of range.
+std::vector<DiffRule> read_diff_rules(const std::string& path);
+
+// True when the relative path `name` matches the glob `pattern` (DiffRule).
+bool glob_match(const std::string& pattern, const std::string& name);
+
 struct DiffOptions {
   DiffThresholds thresholds;
+  DiffMask mask;                // left out of every pair
+  std::vector<DiffRule> rules;  // the first whose pattern matches a pair's name decides its metric and thresholds
   DiffMetric metric = DiffMetric::kIdiff;
   // FLIP's viewing conditions: pixels per degree of visual angle; the FLIP paper's 0.7 m from a 0.7 m
   // wide 4K monitor by default (67.02).
@@ -166,7 +206,11 @@ std::vector<DiffPair> pair_inputs(const std::string& a, const std::string& b);
 // naming the file when it cannot be written.
 ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options);
 
-// pair_inputs, then diff_pair for every pair, in order. Throws as they do, and JobCancelled once
+// The options a pair is compared with: `options`, or for the first rule whose pattern matches `name`, its
+// metric, thresholds and viewing conditions, and its mask added.
+DiffOptions options_for(const DiffOptions& options, const std::string& name);
+
+// pair_inputs, then diff_pair for every pair (with options_for its name), in order. Throws as they do, and JobCancelled once
 // options.cancel is set.
 DiffReport diff_images(const std::string& a, const std::string& b, const DiffOptions& options);
 
