@@ -9,6 +9,7 @@
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/ci_annotations.hpp"
+#include "dqskin/diff_page.hpp"
 #include "../lib/base/byte_size.hpp"
 #include "dqskin/diff_report.hpp"
 #include "dqskin/error.hpp"
@@ -29,6 +30,8 @@
 #include <limits>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 #include <iostream>
 #include <memory>
 
@@ -50,6 +53,7 @@ struct DiffSettings {
   std::string mask;                 // a mask image for every pair
   std::vector<std::string> ignore;  // X,Y,W,H rectangles for every pair
   std::string preset;               // a preset file of rules
+  std::string html;                 // the page's folder; none when empty
   std::string annotations;       // "github", "gitlab" or none
   std::string annotations_file;  // GitLab's report, GitHub's step summary; see add_diff_command
   // Geometry (two glTF files) only:
@@ -165,6 +169,76 @@ double viewing_ppd(const DiffSettings& s) {
   return s.ppd;
 }
 
+// The folder of --html: its pictures are written into a hidden staging folder beside it, and the page
+// with them replaces the folder at the end in one rename, so that a diff that stops half-way leaves the old
+// page (or none), never a page whose pictures are missing. Removed unless committed.
+class PageFolder {
+public:
+  explicit PageFolder(std::string dir) : dir_(std::move(dir)) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    if (fs::exists(dir_, error) && !fs::is_directory(dir_, error))
+      throw OutputError(dir_ + ": --html needs a folder, and this is a file");
+    // The folder is replaced whole: only an empty one or a page of ours (index.html and images/, nothing
+    // else), never a folder of someone's files given by mistake.
+    if (fs::is_directory(dir_, error) && !fs::is_empty(dir_, error) && !is_our_page(dir_))
+      throw OutputError(dir_ + ": --html replaces its folder, and this one holds other files than a dqskin diff "
+                        "page; give a new or empty folder");
+    const fs::path parent = fs::absolute(dir_).parent_path();
+    fs::create_directories(parent, error);
+    if (error) throw OutputError(parent.string() + ": cannot create folder: " + error.message());
+    staging_ = (parent / ("." + fs::path(dir_).filename().string() + ".page-" + std::to_string(::getpid()))).string();
+    fs::remove_all(staging_, error);
+    if (!fs::create_directory(staging_, error)) throw OutputError(staging_ + ": cannot create folder: " + error.message());
+  }
+  ~PageFolder() {
+    std::error_code ignored;
+    if (!staging_.empty()) std::filesystem::remove_all(staging_, ignored);
+  }
+  PageFolder(const PageFolder&) = delete;
+  PageFolder& operator=(const PageFolder&) = delete;
+  const std::string& staging() const { return staging_; }
+
+  void commit(const std::string& html) {
+    namespace fs = std::filesystem;
+    {
+      AtomicFile index((fs::path(staging_) / "index.html").string());
+      index.write(html);
+      index.commit(Overwrite::kReplace);
+    }
+    std::error_code error;
+    const std::string old = staging_ + ".old";
+    fs::remove_all(old, error);
+    const bool had = fs::exists(dir_, error);
+    if (had) fs::rename(dir_, old, error);
+    if (error) throw OutputError(dir_ + ": cannot replace the page folder: " + error.message());
+    fs::rename(staging_, dir_, error);
+    if (error) {
+      std::error_code ignored;
+      if (had) fs::rename(old, dir_, ignored);
+      throw OutputError(dir_ + ": cannot write the page folder: " + error.message());
+    }
+    staging_.clear();
+    fs::remove_all(old, error);
+  }
+
+private:
+  static bool is_our_page(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, error)) {
+      const std::string name = e.path().filename().string();
+      if (name != "index.html" && name != "images") return false;
+    }
+    std::ifstream index(fs::path(dir) / "index.html", std::ios::binary);
+    std::string head(128, '\0');
+    index.read(head.data(), std::streamsize(head.size()));
+    return !error && head.find("<title>dqskin diff ") != std::string::npos;
+  }
+
+  std::string dir_, staging_;
+};
+
 // "X,Y,W,H" in pixels (--ignore).
 PixelRect parse_rect(const std::string& text) {
   PixelRect r;
@@ -195,6 +269,8 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("--metric " + settings.metric + " compares images; glTF files and bakes are compared by distance");
     if (geometry && (settings.thresholds.fail_mean != kOff || settings.thresholds.warn_mean != kOff))
       throw InputError("--failmean and --warnmean judge images; glTF files and bakes are judged by distance");
+    if (geometry && !settings.html.empty())
+      throw InputError("--html makes the page of an image diff; for glTF files and bakes, --out writes the heat maps");
     if (geometry && (!settings.mask.empty() || !settings.ignore.empty() || !settings.preset.empty()))
       throw InputError("--mask, --ignore and --preset apply to images; glTF files and bakes are compared by distance");
     if (geometry && settings.approve)
@@ -215,6 +291,12 @@ int run_diff(const DiffSettings& settings) {
     }
     options.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
     options.mask.image = settings.mask;
+    // The page's pictures go to a staging folder beside it; the page and they appear together at the end.
+    std::unique_ptr<PageFolder> page;
+    if (!settings.html.empty()) {
+      page = std::make_unique<PageFolder>(settings.html);
+      options.page_dir = page->staging();
+    }
     for (const std::string& r : settings.ignore) options.mask.rects.push_back(parse_rect(r));
     if (!settings.preset.empty()) options.rules = read_diff_rules(settings.preset);
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
@@ -229,6 +311,7 @@ int run_diff(const DiffSettings& settings) {
       report.approved = approvals(report);
       if (!settings.dry_run) approve(report.approved);
     }
+    if (page) page->commit(diff_page_html(report));
     std::cout << (settings.json ? diff_json(report) : diff_text(report)) << std::flush;
     write_junit(settings.junit, diff_junit(report));
     write_annotations(settings, report.status(), ci_rows(report));
@@ -326,6 +409,10 @@ Command add_diff_command(CLI::App& app) {
                        "Images: rules by name pattern (metric, thresholds, mask) in one JSON file; the first rule matching "
                        "a pair decides it, the command line's flags the others")
       ->type_name("FILE");
+  diff_cmd->add_option("--html", diff.html,
+                       "Images: also write one page to look at, DIR/index.html with its pictures in DIR/images: every pair, "
+                       "failing first, reference, candidate and difference side by side, a toggle and a swipe (replaces DIR)")
+      ->type_name("DIR");
   diff_cmd->add_flag("--approve", diff.approve,
                      "Images: make the candidates of failing pairs (B) the goldens (A), all or none, and say so in the "
                      "report; exit status then that of the pairs left as they were");

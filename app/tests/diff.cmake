@@ -220,6 +220,27 @@ dqskin_diff_test(ignore_malformed_exits_2 2 ARGS diff ${d}/a.ppm ${d}/slight.ppm
 dqskin_diff_test(mask_on_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --ignore 0,0,1,1
   STDOUT "^$" STDERR "^dqskin: --mask, --ignore and --preset apply to images. [^\n]*\n$")
 
+# --html: the page of a folder diff (missing, passing and warning pairs) and of a FLIP diff in headless
+# Chromium (lib/diff/diff_page_check.mjs): every pair a section in order, every picture decoded, nothing
+# from the network, the toggle and the swipe working. Skipped with a printed reason without Node.js or
+# Chromium.
+foreach(page_case idiff flip)
+  set(page_args --fail\;0.01\;--warn\;0.001)
+  if(page_case STREQUAL flip)
+    set(page_args --metric\;flip\;--failmean\;0.5)
+  endif()
+  add_test(NAME cli.diff_html_page_${page_case}
+           COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli> -DNODE=${DQSKIN_NODE} -DCHROMIUM=${DQSKIN_CHROMIUM}
+                   -DSCRIPT=${PROJECT_SOURCE_DIR}/lib/diff/diff_page_check.mjs -DA=${d}/A -DB=${d}/B
+                   "-DARGS=${page_args}" -DWORK=${diff_scratch}/html_${page_case}
+                   -P ${PROJECT_SOURCE_DIR}/lib/diff/diff_page_check.cmake)
+  set_tests_properties(cli.diff_html_page_${page_case} PROPERTIES SKIP_REGULAR_EXPRESSION "diff_page_check: SKIPPED" TIMEOUT 120)
+endforeach()
+dqskin_diff_test(html_into_a_folder_of_other_files_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --html ${d}/A
+  STDOUT "^$" STDERR "^dqskin: [^\n]*/A: --html replaces its folder, and this one holds other files than a dqskin diff page. [^\n]*\n$")
+dqskin_diff_test(html_for_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --html ${diff_scratch}/gltf_page
+  STDOUT "^$" STDERR "^dqskin: --html makes the page of an image diff[^\n]*\n$")
+
 # Usage and input errors: one line, exit status 2, no report.
 dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1
   STDOUT "^$" STDERR "^dqskin: --fail must be at least 0, not -1\n$")

@@ -96,7 +96,7 @@ constexpr uint64_t kHeatMapBytesPerPixel = 4 + 4 + 12 + 3;
 std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const DiffOptions& options) {
   using saturating::add;
   using saturating::mul;
-  const bool heat_map = !options.heat_map_dir.empty();
+  const bool heat_map = !options.heat_map_dir.empty() || !options.page_dir.empty();
   const OIIO::ImageSpec& s = i == 0 ? a : b;
   const uint64_t other = i == 0 ? 0 : diff_detail::float_bytes(a);
   uint64_t beside = diff_detail::band_bytes(s);  // the most held beside the images: reading, measuring or the heat map
@@ -252,6 +252,28 @@ uint64_t apply_mask(const std::vector<uint8_t>& excluded, const FloatImage& a, F
   return count;
 }
 
+// An image as the page shows it: an 8-bit sRGB PNG of its first three channels (one or two: the first as
+// grey), linear files encoded, display values as they are.
+void write_preview(const std::string& path, const FloatImage& image, bool linear) {
+  const OIIO::ImageSpec& spec = image.buffer.spec();
+  const size_t count = size_t(spec.width) * size_t(spec.height) * size_t(spec.depth), channels = size_t(spec.nchannels);
+  std::vector<uint8_t> rgb(count * 3);
+  for (size_t i = 0; i < count; ++i)
+    for (size_t c = 0; c < 3; ++c) {
+      const float v = image.pixels[i * channels + (channels >= 3 ? c : 0)];
+      const float shown = std::isnan(v) ? 0.0f : v;
+      rgb[3 * i + c] = linear ? io::srgb8(shown) : io::unorm8(shown);
+    }
+  std::error_code error;
+  fs::create_directories(fs::path(path).parent_path(), error);
+  if (error) throw OutputError(fs::path(path).parent_path().string() + ": cannot create folder: " + error.message());
+  AtomicFile file(path);
+  OIIO::ImageSpec out(spec.width, spec.height * spec.depth, 3, OIIO::TypeDesc::UINT8);
+  out.attribute("oiio:ColorSpace", "sRGB");
+  io::write_image_file(file, "png", out, OIIO::TypeDesc::UINT8, rgb.data());
+  file.commit(Overwrite::kReplace);
+}
+
 class OiioDiffImageFiles final : public diff_detail::DiffImageFiles {
 public:
   ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) const override {
@@ -295,6 +317,13 @@ public:
       }
       const OIIO::ImageBuf& a = images[0].buffer;
       const OIIO::ImageBuf& b = images[1].buffer;
+      if (!options.page_dir.empty()) {
+        // Before the mask, which changes B: the page shows the images as they are.
+        d.page_a = pair.page_stem + ".a.png";
+        d.page_b = pair.page_stem + ".b.png";
+        write_preview((fs::path(options.page_dir) / d.page_a).string(), images[0], is_linear(declared[0]));
+        write_preview((fs::path(options.page_dir) / d.page_b).string(), images[1], is_linear(declared[1]));
+      }
       d.problem = mismatch(a.spec(), b.spec());
       if (!d.problem.empty()) {
         d.reason = d.problem;
@@ -341,6 +370,10 @@ public:
         d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
         write_heat_map(d.heat_map, images[0], images[1], t.fail);
       }
+      if (!options.page_dir.empty() && d.max_error != 0) {
+        d.page_difference = pair.page_stem + ".diff.png";
+        write_heat_map((fs::path(options.page_dir) / d.page_difference).string(), images[0], images[1], t.fail);
+      }
       return d;
   }
 
@@ -361,6 +394,11 @@ public:
     if (d.status == DiffStatus::kFail && !options.heat_map_dir.empty()) {
       d.heat_map = (fs::path(options.heat_map_dir) / pair.heat_map_name).string();
       diff_detail::write_flip_heat_map(d.heat_map, errors, layout.width, layout.height);
+    }
+    if (!options.page_dir.empty() && d.max_error != 0) {
+      d.page_difference = pair.page_stem + ".diff.png";
+      diff_detail::write_flip_heat_map((fs::path(options.page_dir) / d.page_difference).string(), errors, layout.width,
+                                       layout.height);
     }
     return d;
   }

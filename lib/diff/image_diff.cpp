@@ -14,6 +14,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -154,7 +155,7 @@ std::vector<DiffPair> pair_inputs(const std::string& a, const std::string& b) {
   }
   if (!a_folder) {
     const std::string name = fs::path(a).filename().string();
-    DiffPair pair{a, a, b, name + ".diff.png"};
+    DiffPair pair{a, a, b, name + ".diff.png", ""};
     if (b_folder) pair.b = (fs::path(b) / name).string();  // idiff: IMAGE FOLDER compares IMAGE with FOLDER/IMAGE
     return {pair};
   }
@@ -181,7 +182,7 @@ std::vector<DiffPair> pair_inputs(const std::string& a, const std::string& b) {
     const bool take_a = ib == in_b.end() || (ia != in_a.end() && ia->first <= ib->first);
     const bool take_b = ia == in_a.end() || (ib != in_b.end() && ib->first <= ia->first);
     const std::string& name = take_a ? ia->first : ib->first;
-    DiffPair pair{name, take_a ? ia->second : "", take_b ? ib->second : "", name + ".diff.png"};
+    DiffPair pair{name, take_a ? ia->second : "", take_b ? ib->second : "", name + ".diff.png", ""};
     pairs.push_back(std::move(pair));
     if (take_a) ++ia;
     if (take_b) ++ib;
@@ -202,7 +203,13 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   report.thresholds = options.thresholds;
   report.metric = options.metric;
   report.pixels_per_degree = options.pixels_per_degree;
-  for (const DiffPair& pair : pair_inputs(a, b)) {
+  std::vector<DiffPair> pairs = pair_inputs(a, b);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "images/%04zu", i);
+    pairs[i].page_stem = stem;  // by place in name order: the same names give the same files
+  }
+  for (const DiffPair& pair : pairs) {
     check_cancelled(options.cancel);
     const DiffOptions pair_options = options_for(options, pair.name);
     ImageDiff d = diff_pair(pair, pair_options);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dqskin {
@@ -63,9 +64,14 @@ DiffStatus diff_verdict(const DiffThresholds& thresholds, double max_error, uint
 
 // Two files to compare; in folder mode `name` is their relative path, and a side that is missing is empty.
 struct DiffPair {
+  DiffPair() = default;
+  DiffPair(std::string name_, std::string a_, std::string b_, std::string heat_map_name_, std::string page_stem_ = "")
+      : name(std::move(name_)), a(std::move(a_)), b(std::move(b_)), heat_map_name(std::move(heat_map_name_)),
+        page_stem(std::move(page_stem_)) {}
   std::string name;  // what the reports call the pair
   std::string a, b;  // the files; one may be empty (missing from its folder), not both
   std::string heat_map_name;  // relative path of the heat map under DiffOptions::heat_map_dir
+  std::string page_stem;      // the page's pictures of this pair: page_dir/page_stem.{a,b,diff}.png
 };
 
 // The outcome for one pair. Metrics are valid only when `compared`; otherwise `problem` says why the pair
@@ -95,6 +101,9 @@ struct ImageDiff {
   uint64_t over_warn = 0, over_fail = 0;
 
   std::string heat_map;  // the heat map written for this pair, or empty
+  // The page's pictures (DiffOptions::page_dir), relative to it: A and B as 8-bit sRGB PNGs and the
+  // difference (the heat map of the metric, for any pair that differs); empty where there is none.
+  std::string page_a, page_b, page_difference;
 };
 
 // Pixels left out of a comparison: those of a mask image (same size as the images; where its first
@@ -153,6 +162,9 @@ struct DiffOptions {
   // the heat map; for FLIP also its error map and the bands being computed. Checked against what each file declares before its pixels are allocated; a file that
   // needs more is unreadable ("comparing it needs about …").
   uint64_t max_memory = kDefaultMaxMemory;
+  // When set, the pictures of the HTML page (diff_page.hpp) are written under it for every pair that
+  // could be read: page_dir/DiffPair::page_stem.{a,b,diff}.png.
+  std::string page_dir;
   // Checked before each pair: once set, diff_images throws JobCancelled (dqskin/job.hpp). May be null.
   const std::atomic<bool>* cancel = nullptr;
 };

@@ -1,0 +1,19 @@
+// The HTML page of `dqskin diff --html DIR`: one page to look at instead of a log. Every pair, failing
+// first and then by error; per pair the reference, the candidate and the difference side by side, a toggle
+// and a swipe between reference and candidate, the figures and the thresholds that judged it, and links
+// between pairs. Static and self-contained: DIR/index.html and the pictures diff_images wrote under
+// DIR/images (DiffOptions::page_dir), an inline style sheet and a few lines of inline script, nothing from
+// the network; it works from file://.
+#pragma once
+
+#include "dqskin/image_diff.hpp"
+
+#include <string>
+
+namespace dqskin {
+
+// The page of `report`, whose pairs were compared with DiffOptions::page_dir set to the page's folder.
+// The same report gives the same bytes (no time stamps).
+std::string diff_page_html(const DiffReport& report);
+
+}  // namespace dqskin
