@@ -34,6 +34,12 @@ std::string max_text(const ImageDiff& d) {
 
 bool is_flip(const ImageDiff& d) { return d.metric == DiffMetric::kFlip; }
 
+// HDR-FLIP's exposures, after its figures.
+std::string hdr_text(const ImageDiff& d) {
+  if (!d.hdr_exposures) return "";
+  return "  exposures " + std::to_string(d.hdr_exposures) + " from " + number(d.hdr_start) + " to " + number(d.hdr_stop);
+}
+
 // FLIP's pooled figures after its mean: the weighted quartiles.
 std::string quartiles_text(const ImageDiff& d, const char* separator) {
   return "weighted quartiles " + number(d.flip_q1) + separator + number(d.flip_median) + separator + number(d.flip_q3);
@@ -44,7 +50,8 @@ std::string metrics_lines(const ImageDiff& d) {
   std::string text = "A: " + (d.a.empty() ? "(missing)" : d.a) + "\nB: " + (d.b.empty() ? "(missing)" : d.b) + "\n";
   if (!d.compared) return text + d.problem + "\n";
   if (is_flip(d))
-    text += "FLIP mean: " + number(d.mean_error) + "\nFLIP " + quartiles_text(d, ", ") + "\nFLIP max: " + max_text(d) +
+    text += std::string(d.hdr_exposures ? "HDR-" : "") + "FLIP mean: " + number(d.mean_error) + "\nFLIP " +
+            quartiles_text(d, ", ") + "\nFLIP max: " + max_text(d) + hdr_text(d) +
             "\npixels over --warn: " + std::to_string(d.over_warn) +
             " (" + percent(d.over_warn, d.pixels) + ")\npixels over --fail: " + std::to_string(d.over_fail) + " (" +
             percent(d.over_fail, d.pixels) + ")\npixels: " + std::to_string(d.pixels) + "\n";
@@ -74,7 +81,8 @@ std::string diff_text(const DiffReport& report) {
       continue;
     }
     if (is_flip(d))
-      text += "FLIP mean " + number(d.mean_error) + "  " + quartiles_text(d, " ") + "  max " + max_text(d);
+      text += std::string(d.hdr_exposures ? "HDR-" : "") + "FLIP mean " + number(d.mean_error) + "  " +
+              quartiles_text(d, " ") + "  max " + max_text(d) + hdr_text(d);
     else
       text += "max " + max_text(d) + "  mean " + number(d.mean_error) + "  RMS " + number(d.rms_error) + "  PSNR " +
               number(d.psnr) + " dB";
@@ -127,6 +135,7 @@ std::string diff_json(const DiffReport& report) {
       if (!is_flip(d)) p["max_at"]["channel"] = d.max_channel;
       p["mean_error"] = finite_or_null(d.mean_error);
       if (is_flip(d)) p["weighted_quartiles"] = {d.flip_q1, d.flip_median, d.flip_q3};
+      if (d.hdr_exposures) p["hdr_exposures"] = {{"count", d.hdr_exposures}, {"start", d.hdr_start}, {"stop", d.hdr_stop}};
       p["rms_error"] = finite_or_null(d.rms_error);
       p["psnr"] = finite_or_null(d.psnr);
       p["pixels"] = d.pixels;

@@ -255,10 +255,12 @@ struct Opponent {
   Plane luminance;
 };
 
-Opponent opponent(const float* srgb, size_t width, size_t height, const Colour& colour) {
+// `linear`: the values are linear already (HDR-FLIP's tone-mapped exposures), not sRGB-encoded.
+Opponent opponent(const float* srgb, size_t width, size_t height, const Colour& colour, bool linear) {
   Opponent o{{Plane(width, height), Plane(width, height), Plane(width, height)}, Plane(width, height)};
   for (size_t i = 0; i < width * height; ++i) {
-    const glm::dvec3 rgb(srgb_to_linear(srgb[3 * i]), srgb_to_linear(srgb[3 * i + 1]), srgb_to_linear(srgb[3 * i + 2]));
+    const auto decode = [linear](float v) { return linear ? std::clamp(double(v), 0.0, 1.0) : srgb_to_linear(v); };
+    const glm::dvec3 rgb(decode(srgb[3 * i]), decode(srgb[3 * i + 1]), decode(srgb[3 * i + 2]));
     const glm::dvec3 c = colour.ycxcz(rgb);
     for (int k = 0; k < 3; ++k) o.channels[size_t(k)].v[i] = c[k];
     o.luminance.v[i] = (c.x + 16) / 116;
@@ -348,10 +350,10 @@ std::vector<float> band_with_halo(const float* srgb, size_t width, size_t height
 // [keep, keep + kept) of its `width`, into rows of `error` `stride` apart. Only those pixels are filtered
 // along y and measured; the halo is filtered along x for them.
 void flip_band(const float* ref_band, const float* test_band, size_t width, size_t rows, size_t halo, double ppd,
-               const Colour& colour, size_t keep, size_t kept, double* error, size_t stride) {
+               bool linear, const Colour& colour, size_t keep, size_t kept, double* error, size_t stride) {
   const size_t band_height = rows + 2 * halo;
-  const Opponent ref = opponent(ref_band, width, band_height, colour);
-  const Opponent test = opponent(test_band, width, band_height, colour);
+  const Opponent ref = opponent(ref_band, width, band_height, colour, linear);
+  const Opponent test = opponent(test_band, width, band_height, colour, linear);
 
   // The colour difference: HyAB^q_c, remapped against the largest one, green against blue.
   const double c_max = std::pow(hyab(colour.hunt_lab({0, 1, 0}), colour.hunt_lab({0, 0, 1})), kQc);
@@ -415,10 +417,74 @@ std::vector<double> flip_error_map(const float* reference_srgb, const float* tes
     const size_t first = region.y0 + band * rows, count = std::min(rows, region.y1 - first);
     const std::vector<float> ref = band_with_halo(reference_srgb, width, height, first, count, halo, region);
     const std::vector<float> test = band_with_halo(test_srgb, width, height, first, count, halo, region);
-    flip_band(ref.data(), test.data(), columns, count, halo, options.ppd, colour, region.x0 - region.cx0,
+    flip_band(ref.data(), test.data(), columns, count, halo, options.ppd, options.linear_input, colour, region.x0 - region.cx0,
               region.x1 - region.x0, error.data() + first * width + region.x0, width);
     release_spare_planes();
   });
+  return error;
+}
+
+namespace {
+
+// HDR-FLIP's tone mapper: ACES as Narkowicz fits it, its 0.6 pre-exposure folded into the coefficients,
+// t(x) = (k0 x² + k1 x + k2) / (k3 x² + k4 x + k5), clamped to [0, 1].
+constexpr double kAces[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
+constexpr double kExposureTarget = 0.85;  // the brightest pixel at the first exposure, the median at the last
+
+double aces(double x) {
+  const double t = (kAces[0] * x * x + kAces[1] * x + kAces[2]) / (kAces[3] * x * x + kAces[4] * x + kAces[5]);
+  return std::clamp(t, 0.0, 1.0);
+}
+
+// The exposure at which t(x) = 0.85: the positive root of (k0 − 0.85 k3) x² + (k1 − 0.85 k4) x + (k2 − 0.85 k5).
+double aces_target_input() {
+  const double a = kAces[0] - kExposureTarget * kAces[3], b = kAces[1] - kExposureTarget * kAces[4],
+               c = kAces[2] - kExposureTarget * kAces[5];
+  return (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+}
+
+double luminance709(const float* rgb) { return 0.2126 * double(rgb[0]) + 0.7152 * double(rgb[1]) + 0.0722 * double(rgb[2]); }
+
+}  // namespace
+
+HdrExposures hdr_exposures(const float* reference_rgb, size_t pixels) {
+  std::vector<double> y(pixels);
+  for (size_t i = 0; i < pixels; ++i) y[i] = std::max(0.0, luminance709(reference_rgb + 3 * i));
+  HdrExposures e;
+  if (y.empty()) return e;
+  const double brightest = *std::max_element(y.begin(), y.end());
+  std::nth_element(y.begin(), y.begin() + long(pixels / 2), y.end());
+  double median = y[pixels / 2];  // the upper median, as the authors' tool takes it
+  if (!(brightest > 0)) return e;  // a black reference: no exposure shows anything; one pair at 0
+  if (!(median > 0)) median = brightest;  // mostly black: the range collapses onto the brightest pixel
+  const double target = aces_target_input();
+  e.start = std::log2(target / brightest);
+  e.stop = std::log2(target / median);
+  e.count = std::max(2, int(std::ceil(e.stop - e.start)));
+  return e;
+}
+
+std::vector<double> hdr_flip_error_map(const float* reference_rgb, const float* test_rgb, size_t width, size_t height,
+                                       const FlipOptions& options, HdrExposures* used) {
+  const size_t pixels = width * height;
+  const HdrExposures e = hdr_exposures(reference_rgb, pixels);
+  if (used) *used = e;
+  std::vector<double> error(pixels, 0.0);
+  FlipOptions ldr = options;
+  ldr.linear_input = true;
+  std::vector<float> ref(3 * pixels), test(3 * pixels);
+  for (int i = 0; i < e.count; ++i) {
+    const double c = e.count > 1 ? e.start + i * (e.stop - e.start) / (e.count - 1) : e.start;
+    const double scale = std::exp2(c);
+    for (size_t k = 0; k < 3 * pixels; ++k) {
+      // Negative and NaN light is no light; infinity saturates.
+      const auto shown = [scale](float v) { return float(aces(std::isnan(v) ? 0.0 : scale * std::max(0.0, double(v)))); };
+      ref[k] = shown(reference_rgb[k]);
+      test[k] = shown(test_rgb[k]);
+    }
+    const std::vector<double> at = flip_error_map(ref.data(), test.data(), width, height, ldr);
+    for (size_t k = 0; k < pixels; ++k) error[k] = std::max(error[k], at[k]);
+  }
   return error;
 }
 

@@ -26,6 +26,8 @@ struct FlipOptions {
   // Compute only within reach of the pixels that differ (elsewhere ΔE is exactly 0); false computes every
   // pixel, which gives the same values (the tests compare both).
   bool skip_equal = true;
+  // The inputs are linear RGB in [0, 1], not sRGB-encoded (HDR-FLIP's tone-mapped exposures).
+  bool linear_input = false;
 };
 
 // Two images of width × height pixels, interleaved RGB of sRGB-encoded display values from 0 to 1 (as an
@@ -34,6 +36,20 @@ struct FlipOptions {
 // result is the same, bit for bit, whatever the band size, thread count and skip_equal.
 std::vector<double> flip_error_map(const float* reference_srgb, const float* test_srgb, size_t width, size_t height,
                                    const FlipOptions& options = {});
+
+// HDR-FLIP (Andersson, Nilsson, Shirley and Akenine-Möller, "Visualizing Errors in Rendered High Dynamic
+// Range Images", Eurographics 2021 short papers): both images tone-mapped (ACES, Narkowicz's fit) at
+// exposures 2^c for c evenly spaced from `start`, where the reference's brightest pixel (Rec. 709
+// luminance) maps to 0.85, to `stop`, where its median pixel does, `count` = max(2, ⌈stop − start⌉) of
+// them; LDR-FLIP of each pair (the tone-mapped values linear); per pixel the largest. Inputs are interleaved
+// linear RGB of any range (negative and NaN as 0).
+struct HdrExposures {
+  double start = 0, stop = 0;
+  int count = 2;
+};
+HdrExposures hdr_exposures(const float* reference_rgb, size_t pixels);
+std::vector<double> hdr_flip_error_map(const float* reference_rgb, const float* test_rgb, size_t width, size_t height,
+                                       const FlipOptions& options = {}, HdrExposures* used = nullptr);
 
 // The most memory flip_error_map holds beside its inputs and its result (the bands being computed).
 uint64_t flip_working_bytes(size_t width, size_t height, const FlipOptions& options);

@@ -120,14 +120,17 @@ TEST_F(ImageDiffTest, FlipReadsGreyAsRgbAndSeesAlphaOverBlack) {
             diff_pair({"g", black_at_7, grey, ""}, o).mean_error);
 }
 
-TEST_F(ImageDiffTest, FlipSeesFloatFilesAsLinearLight) {
-  // Linear 0.2140 and 0.2623 are sRGB 0.5 and 0.55: the uniform grey shift of flip_test.cpp, 0.176461.
-  const auto linear = [](double srgb) { return float(std::pow((srgb + 0.055) / 1.055, 2.4)); };
-  const std::string a = image("a.exr", 24, 24, 3, linear(0.5)), b = image("b.exr", 24, 24, 3, linear(0.55));
+TEST_F(ImageDiffTest, FlipMeasuresFloatFilesWithHdrFlip) {
+  // Linear light: HDR-FLIP, as flip_test.cpp's HdrFlip cases; a uniform 3.0 against 3.75 is one of them.
+  const std::string a = image("a.exr", 24, 24, 3, 3.0f), b = image("b.exr", 24, 24, 3, 3.75f);
   const ImageDiff d = diff_pair({"exr", a, b, ""}, flip_options());
   ASSERT_TRUE(d.compared) << d.problem;
-  EXPECT_NEAR(d.mean_error, 0.176461, 1e-5);  // float linear values round-tripped through the encoding
-  EXPECT_NEAR(d.max_error, 0.176461, 1e-5);
+  EXPECT_EQ(d.hdr_exposures, 2);
+  const std::vector<float> ra(24 * 24 * 3, 3.0f), rb(24 * 24 * 3, 3.75f);
+  const std::vector<double> map = hdr_flip_error_map(ra.data(), rb.data(), 24, 24);
+  EXPECT_NEAR(d.mean_error, map[0], 1e-12);  // summed over the pixels
+  EXPECT_DOUBLE_EQ(d.max_error, map[0]);
+  EXPECT_NE(diff_text(diff_images(a, b, flip_options())).find("HDR-FLIP mean "), std::string::npos);
 }
 
 TEST_F(FlipDiffTest, HeatMapIsMagmaWithALegendAndTheSameBytesTwice) {

@@ -35,7 +35,18 @@ std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout) {
 std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout& layout,
                               const std::vector<uint8_t>& excluded, const DiffOptions& options, ImageDiff& d) {
   std::vector<double> errors;
-  {
+  d.hdr_exposures = 0;
+  if (layout.linear) {
+    // Linear light: HDR-FLIP, over the exposures the reference's range needs.
+    PixelLayout display = layout;
+    display.linear = false;  // flip_rgb then keeps the values as they are
+    const std::vector<float> ra = flip_rgb(a, display), rb = flip_rgb(b, display);
+    HdrExposures e;
+    errors = hdr_flip_error_map(ra.data(), rb.data(), layout.width, layout.height, flip_options(options), &e);
+    d.hdr_exposures = e.count;
+    d.hdr_start = e.start;
+    d.hdr_stop = e.stop;
+  } else {
     const std::vector<float> ra = flip_rgb(a, layout), rb = flip_rgb(b, layout);
     errors = flip_error_map(ra.data(), rb.data(), layout.width, layout.height, flip_options(options));
   }

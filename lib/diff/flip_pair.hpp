@@ -14,15 +14,15 @@ namespace dqskin::diff_detail {
 // How an image's floats are laid out and what they mean.
 struct PixelLayout {
   size_t width = 0, height = 0, channels = 0;
-  // True for float and half files (EXR, HDR): linear light, which FLIP's LDR form sees clamped to [0, 1]
-  // and sRGB-encoded; false for integer files (PNG, JPEG, 8- and 16-bit TIFF), whose values already are
-  // display values.
+  // True for float and half files (EXR, HDR): linear light, measured by HDR-FLIP; false for integer files
+  // (PNG, JPEG, 8- and 16-bit TIFF), whose values are display values, measured by LDR-FLIP.
   bool linear = false;
 };
 
 // FLIP's input: interleaved RGB display values, from the first three channels (RGB; alpha and others
 // ignored) or, for one or two channels, the first as grey. OpenImageIO has already multiplied colours by
-// their alpha, so a transparent pixel is seen over black.
+// their alpha, so a transparent pixel is seen over black. Linear values are sRGB-encoded (clamped to
+// [0, 1]); display values are kept (NaN as 0).
 std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout);
 
 // Measures the pair: fills d's metric, max_error and its place, mean and RMS error, FLIP's weighted

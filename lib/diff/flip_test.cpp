@@ -138,6 +138,44 @@ TEST(Flip, WorkingMemoryGrowsWithThreadsNotHeight) {
   EXPECT_LT(flip_working_bytes(2048, 2048, one), uint64_t(2048) * 2048 * 24 * 8 / 8);
 }
 
+// ACES as HDR-FLIP uses it (Narkowicz's fit with its 0.6 pre-exposure folded in), written out again here.
+double aces(double x) {
+  const double t = (0.9036 * x * x + 0.018 * x) / (0.8748 * x * x + 0.354 * x + 0.14);
+  return std::clamp(t, 0.0, 1.0);
+}
+
+TEST(HdrFlip, ExposuresSpanTheReferencesBrightestToItsMedianPixel) {
+  // Greys 1, 4 and 16 (R = G = B, so Rec. 709 luminance is the value): the brightest pixel maps to 0.85 at
+  // the first exposure and the (upper) median at the last; ACES reaches 0.85 at x = 2.1188723.
+  const std::vector<float> rgb = {4, 4, 4, 16, 16, 16, 1, 1, 1};
+  const HdrExposures e = hdr_exposures(rgb.data(), 3);
+  const double x_t = std::exp2(e.start) * 16;
+  EXPECT_NEAR(x_t, 2.1188723, 1e-7);
+  EXPECT_NEAR(aces(x_t), 0.85, 1e-12);
+  EXPECT_NEAR(e.stop - e.start, 2.0, 1e-12);  // log2(16 / 4)
+  EXPECT_EQ(e.count, 2);
+  const std::vector<float> wide = {1e-3f, 1e-3f, 1e-3f, 1e-3f, 1e-3f, 1e-3f, 100, 100, 100};
+  EXPECT_EQ(hdr_exposures(wide.data(), 3).count, 17);  // ⌈log2(1e5)⌉
+}
+
+TEST(HdrFlip, AUniformShiftIsTheColourPipelineAtTheExposureThatShowsIt) {
+  // A uniform grey L against 1.25 L: one exposure (start = stop) puts the reference at 0.85, the test at
+  // ACES(1.25 x_t); both are linear greys, so ΔE = ΔE_c of their L* = 116 Y^(1/3) − 16.
+  const double x_t = 2.1188723;
+  const auto lightness = [](double y) { return 116 * std::cbrt(y) - 16; };
+  const double c_max = std::pow(203.301655, 0.7);
+  const double e = std::pow(std::abs(lightness(aces(1.25 * x_t)) - lightness(0.85)), 0.7);
+  const double expected = e < 0.4 * c_max ? 0.95 / (0.4 * c_max) * e : 0.95 + (e - 0.4 * c_max) / (0.6 * c_max) * 0.05;
+  Image a(24, 24, 3.0f), b(24, 24, 3.75f);
+  HdrExposures used;
+  const std::vector<double> map = hdr_flip_error_map(a.rgb.data(), b.rgb.data(), 24, 24, {}, &used);
+  EXPECT_EQ(used.count, 2);
+  EXPECT_EQ(used.start, used.stop);
+  for (double v : map) ASSERT_NEAR(v, expected, 2e-6);  // the tone-mapped values are floats
+  EXPECT_GT(expected, 0.01);
+  for (double v : hdr_flip_error_map(a.rgb.data(), a.rgb.data(), 24, 24)) ASSERT_EQ(v, 0.0);
+}
+
 TEST(Flip, PoolingWeighsEachPixelByItsError) {
   // Running sums of the sorted values 0.1, 0.3, 0.6, 1.0: the first above 0.25, 0.5 and 0.75 of the total.
   const FlipPool pool = pool_flip({0.4, 0.1, 0.3, 0.2});

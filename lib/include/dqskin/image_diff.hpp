@@ -94,6 +94,9 @@ struct ImageDiff {
   std::string max_channel;           // the channel's name there ("R"), or its index when unnamed; empty for FLIP
   // FLIP only: its weighted quartiles, each pixel weighted by its own error (FLIP's pooling).
   double flip_q1 = 0, flip_median = 0, flip_q3 = 0;
+  // HDR-FLIP (float files): how many exposures, from 2^start to 2^stop; 0 for LDR-FLIP.
+  int hdr_exposures = 0;
+  double hdr_start = 0, hdr_stop = 0;
   uint64_t masked = 0;  // pixels left out (DiffMask); `pixels` counts the others
   std::string rule;     // the pattern of the preset rule that judged the pair, or empty
   DiffThresholds thresholds;  // what judged it
