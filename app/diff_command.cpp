@@ -177,6 +177,11 @@ public:
   explicit PageFolder(std::string dir) : dir_(std::move(dir)) {
     namespace fs = std::filesystem;
     std::error_code error;
+    // "out/" names the folder out; ".", ".." and "/" name no folder of its own to replace.
+    while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
+    const std::string name = fs::path(dir_).filename().string();
+    if (name.empty() || name == "." || name == ".." || dir_ == "/")
+      throw InputError("--html '" + dir_ + "': give the page a folder of its own (not '.', '..' or '/')");
     if (fs::exists(dir_, error) && !fs::is_directory(dir_, error))
       throw OutputError(dir_ + ": --html needs a folder, and this is a file");
     // The folder is replaced whole: only an empty one or a page of ours (index.html and images/, nothing
@@ -212,6 +217,12 @@ public:
     const bool had = fs::exists(dir_, error);
     if (had) fs::rename(dir_, old, error);
     if (error) throw OutputError(dir_ + ": cannot replace the page folder: " + error.message());
+    // Checked again now that it is aside: something may have written into it while the diff ran.
+    if (had && !fs::is_empty(old, error) && !is_our_page(old)) {
+      std::error_code ignored;
+      fs::rename(old, dir_, ignored);
+      throw OutputError(dir_ + ": other files appeared in the page folder during the diff; it was left as it is");
+    }
     fs::rename(staging_, dir_, error);
     if (error) {
       std::error_code ignored;
@@ -219,7 +230,12 @@ public:
       throw OutputError(dir_ + ": cannot write the page folder: " + error.message());
     }
     staging_.clear();
-    fs::remove_all(old, error);
+    // The old page: its two entries, then the folder, which is empty unless something came meanwhile.
+    if (had) {
+      fs::remove(fs::path(old) / "index.html", error);
+      fs::remove_all(fs::path(old) / "images", error);
+      fs::remove(old, error);
+    }
   }
 
 private:
@@ -290,9 +306,19 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("--ppd and --viewing are FLIP's viewing conditions: give them with --metric flip");
     }
     options.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
-    options.mask.image = settings.mask;
+    if (!settings.mask.empty()) options.mask.images.push_back(settings.mask);
     // The page's pictures go to a staging folder beside it; the page and they appear together at the end.
     std::unique_ptr<PageFolder> page;
+    if (!settings.html.empty() && !settings.out_dir.empty()) {
+      namespace fs = std::filesystem;
+      std::error_code e1, e2;
+      const fs::path html = fs::weakly_canonical(fs::absolute(settings.html), e1);
+      const fs::path out = fs::weakly_canonical(fs::absolute(settings.out_dir), e2);
+      const auto [end, ignored] = std::mismatch(html.begin(), html.end(), out.begin(), out.end());
+      if (end == html.end())
+        throw InputError("--out " + settings.out_dir + " is inside --html " + settings.html +
+                         ", which the page replaces: give the heat maps another folder");
+    }
     if (!settings.html.empty()) {
       page = std::make_unique<PageFolder>(settings.html);
       options.page_dir = page->staging();
@@ -305,13 +331,15 @@ int run_diff(const DiffSettings& settings) {
     for (const ImageDiff& d : report.pairs)
       if (!d.unreadable.empty()) print_error(d.unreadable, d.read_error);
     if (settings.approve) {
-      // Before any report, so that one that cannot be made (a read-only folder) is the only line printed.
       report.approval = true;
       report.approval_dry_run = settings.dry_run;
       report.approved = approvals(report);
-      if (!settings.dry_run) approve(report.approved);
     }
+    // The page before the goldens change, so that a page that cannot be written changes nothing; the
+    // approval before any report, so that one that cannot be made (a read-only folder) is the only line
+    // printed.
     if (page) page->commit(diff_page_html(report));
+    if (settings.approve && !settings.dry_run) approve(report.approved);
     std::cout << (settings.json ? diff_json(report) : diff_text(report)) << std::flush;
     write_junit(settings.junit, diff_junit(report));
     write_annotations(settings, report.status(), ci_rows(report));

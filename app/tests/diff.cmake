@@ -238,6 +238,12 @@ foreach(page_case idiff flip)
 endforeach()
 dqskin_diff_test(html_into_a_folder_of_other_files_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --html ${d}/A
   STDOUT "^$" STDERR "^dqskin: [^\n]*/A: --html replaces its folder, and this one holds other files than a dqskin diff page. [^\n]*\n$")
+dqskin_diff_test(html_with_a_trailing_slash 1 ARGS diff ${d}/a.ppm ${d}/slight.ppm --fail 0.01 --warn 0.001
+  --html ${diff_scratch}/slash_page/ STDOUT "^WARN  ")
+dqskin_diff_test(html_dot_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --html .
+  STDOUT "^$" STDERR "^dqskin: --html '.': give the page a folder of its own \\(not '.', '..' or '/'\\)\n$")
+dqskin_diff_test(out_inside_html_exits_2 2 ARGS diff ${d}/a.ppm ${d}/very.ppm --html ${diff_scratch}/outpage
+  --out ${diff_scratch}/outpage/heat STDOUT "^$" STDERR "^dqskin: --out [^\n]* is inside --html [^\n]*, which the page replaces: [^\n]*\n$")
 dqskin_diff_test(html_for_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --html ${diff_scratch}/gltf_page
   STDOUT "^$" STDERR "^dqskin: --html makes the page of an image diff[^\n]*\n$")
 

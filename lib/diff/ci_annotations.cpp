@@ -34,12 +34,14 @@ std::string escape_property(const std::string& text) {
   return out;
 }
 
-// Markdown table cells: a '|' would end the cell, a line break the row; '\' and '`' are escaped so that a
-// file name shows as it is.
+// Markdown table cells: a '|' would end the cell, a line break the row; '\\', '`', emphasis, link and
+// math characters are escaped so that a file name shows as it is and never becomes a link.
 std::string cell(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '|' || c == '\\' || c == '`' || c == '*' || c == '_' || c == '<') out += '\\';
+    if (c == '|' || c == '\\' || c == '`' || c == '*' || c == '_' || c == '<' || c == '[' || c == ']' || c == '!' ||
+        c == '~' || c == '$')
+      out += '\\';
     out += c == '\n' || c == '\r' ? ' ' : c;
   }
   return out;

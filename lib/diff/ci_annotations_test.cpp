@@ -45,6 +45,9 @@ TEST(CiAnnotations, StepSummaryListsFailuresFirstInATable) {
   EXPECT_NE(md.find("0.01 second line |"), std::string::npos) << md;
   const std::string piped = github_step_summary("t", DiffStatus::kFail, {{DiffStatus::kFail, "a|b", "f", "", "r"}});
   EXPECT_NE(piped.find("| a\\|b |"), std::string::npos) << piped;
+  // A file name that reads as a link or an image stays text.
+  const std::string linked = github_step_summary("t", DiffStatus::kFail, {{DiffStatus::kFail, "![x](http://e/y).png", "f", "", "r"}});
+  EXPECT_NE(linked.find("| \\!\\[x\\](http://e/y).png |"), std::string::npos) << linked;
 }
 
 TEST(CiAnnotations, GitlabCodeQualityHasTheRequiredFields) {

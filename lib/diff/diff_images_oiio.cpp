@@ -90,6 +90,12 @@ std::string read_pixels(OIIO::ImageInput& in, FloatImage& image) {
 // colormap (floats), its color (3 floats) and the 8-bit RGB written.
 constexpr uint64_t kHeatMapBytesPerPixel = 4 + 4 + 12 + 3;
 
+// Floats of a file's type that hold linear light (half, float, double), not display values.
+bool is_linear(const OIIO::ImageSpec& declared) {
+  const OIIO::TypeDesc::BASETYPE t = OIIO::TypeDesc::BASETYPE(declared.format.basetype);
+  return t == OIIO::TypeDesc::HALF || t == OIIO::TypeDesc::FLOAT || t == OIIO::TypeDesc::DOUBLE;
+}
+
 // Why reading image `i` (0: A, 1: B) of a pair needs more memory than the budget, or "": A is read first,
 // then B beside it, then the measuring (FLIP's) and the heat map (when one may be written) beside both.
 // `a` and `b` are what the files declare; b is unused for A.
@@ -102,7 +108,8 @@ std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpe
   uint64_t beside = diff_detail::band_bytes(s);  // the most held beside the images: reading, measuring or the heat map
   if (i == 1 && options.metric == DiffMetric::kFlip) {
     const size_t w = size_t(std::max(a.width, 0)), h = size_t(std::max(a.height, 0)) * size_t(std::max(a.depth, 1));
-    beside = std::max(beside, add(diff_detail::flip_pair_bytes(w, h, options), heat_map ? diff_detail::flip_heat_map_bytes(w, h) : 0));
+    beside = std::max(beside, add(diff_detail::flip_pair_bytes(w, h, options, is_linear(a)),
+                                  heat_map ? diff_detail::flip_heat_map_bytes(w, h) : 0));
   } else if (i == 1 && heat_map) {
     beside = std::max(beside, mul(diff_detail::pixel_count(a), kHeatMapBytesPerPixel));
   }
@@ -116,12 +123,6 @@ std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpe
   return "comparing it needs about " + byte_size(need) + " (its " + size + " as float" +
          (i == 0 ? std::string() : ", beside " + byte_size(other) + " for the other image" + measuring) +
          "), more than --max-memory " + byte_size(options.max_memory);
-}
-
-// Floats of a file's type that hold linear light (half, float, double), not display values.
-bool is_linear(const OIIO::ImageSpec& declared) {
-  const OIIO::TypeDesc::BASETYPE t = OIIO::TypeDesc::BASETYPE(declared.format.basetype);
-  return t == OIIO::TypeDesc::HALF || t == OIIO::TypeDesc::FLOAT || t == OIIO::TypeDesc::DOUBLE;
 }
 
 std::string window_text(const OIIO::ImageSpec& s) {
@@ -217,18 +218,18 @@ void write_heat_map(const std::string& path, const FloatImage& a, const FloatIma
 std::vector<uint8_t> excluded_pixels(const DiffMask& mask, const OIIO::ImageSpec& spec) {
   const size_t width = size_t(spec.width), height = size_t(spec.height) * size_t(spec.depth);
   std::vector<uint8_t> excluded(width * height, 0);
-  if (!mask.image.empty()) {
+  for (const std::string& image : mask.images) {
     std::unique_ptr<OIIO::ImageInput> in;
-    std::string why = open_image(mask.image, in);
-    if (!why.empty()) throw InputError(mask.image + ": cannot read the mask: " + why);
+    std::string why = open_image(image, in);
+    if (!why.empty()) throw InputError(image + ": cannot read the mask: " + why);
     const OIIO::ImageSpec& m = in->spec();
     if (m.width != spec.width || m.height != spec.height || m.depth != spec.depth)
-      throw InputError(mask.image + ": the mask is " + window_text(m) + ", the images " + window_text(spec));
+      throw InputError(image + ": the mask is " + window_text(m) + ", the images " + window_text(spec));
     FloatImage pixels;
     why = read_pixels(*in, pixels);
-    if (!why.empty()) throw InputError(mask.image + ": cannot read the mask: " + why);
+    if (!why.empty()) throw InputError(image + ": cannot read the mask: " + why);
     const size_t channels = size_t(m.nchannels);
-    for (size_t i = 0; i < excluded.size(); ++i) excluded[i] = pixels.pixels[i * channels] >= 0.5f;
+    for (size_t i = 0; i < excluded.size(); ++i) excluded[i] |= pixels.pixels[i * channels] >= 0.5f;
   }
   for (const PixelRect& r : mask.rects) {
     const long x0 = std::max(0L, long(r.x)), y0 = std::max(0L, long(r.y));
@@ -333,7 +334,7 @@ public:
       const std::vector<uint8_t> excluded = options.mask.empty() ? std::vector<uint8_t>() : excluded_pixels(options.mask, a.spec());
       d.masked = apply_mask(excluded, images[0], images[1], size_t(a.spec().nchannels));
       const DiffThresholds& t = options.thresholds;
-      if (options.metric == DiffMetric::kFlip) return flip(pair, declared[0], images, excluded, options, d);
+      if (options.metric == DiffMetric::kFlip) return flip(pair, declared[0], declared[1], images, excluded, options, d);
       const OIIO::ImageBufAlgo::CompareResults cr =
           OIIO::ImageBufAlgo::compare(a, b, float(t.fail), float(t.warn), 0.0f, 0.0f, {}, 1);
       // `error` is also set whenever a pixel is over `fail` (OpenImageIO 2.4); a real error leaves a message.
@@ -378,11 +379,18 @@ public:
   }
 
   // The pair of same-sized images measured by FLIP (flip_pair.hpp), judged, and its heat map written.
-  static ImageDiff flip(const DiffPair& pair, const OIIO::ImageSpec& declared, const FloatImage (&images)[2],
+  static ImageDiff flip(const DiffPair& pair, const OIIO::ImageSpec& declared, const OIIO::ImageSpec& declared_b,
+                        const FloatImage (&images)[2],
                         const std::vector<uint8_t>& excluded, const DiffOptions& options, ImageDiff& d) {
     const OIIO::ImageSpec& spec = images[0].buffer.spec();
     if (spec.depth != 1) {
       d.problem = "FLIP compares flat images, not volumes (depth " + std::to_string(spec.depth) + ")";
+      d.reason = d.problem;
+      return d;
+    }
+    if (is_linear(declared) != is_linear(declared_b)) {
+      d.problem = std::string("FLIP compares like with like: A holds ") + (is_linear(declared) ? "linear light (float)" : "display values (integer)") +
+                  ", B " + (is_linear(declared_b) ? "linear light (float)" : "display values (integer)");
       d.reason = d.problem;
       return d;
     }

@@ -3,6 +3,8 @@
 #include "../base/xml_escape.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace dqskin {
@@ -19,7 +21,10 @@ std::string attribute(const std::string& s) { return io::xml(s, true); }
 std::vector<size_t> page_order(const DiffReport& r) {
   std::vector<size_t> order(r.pairs.size());
   std::iota(order.begin(), order.end(), size_t(0));
-  const auto headline = [](const ImageDiff& d) { return d.metric == DiffMetric::kFlip ? d.mean_error : d.max_error; };
+  const auto headline = [](const ImageDiff& d) {
+    const double e = d.metric == DiffMetric::kFlip ? d.mean_error : d.max_error;
+    return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;  // a NaN sorts as the worst, not at random
+  };
   std::stable_sort(order.begin(), order.end(), [&](size_t i, size_t j) {
     const ImageDiff &a = r.pairs[i], &b = r.pairs[j];
     if (a.status != b.status) return a.status > b.status;

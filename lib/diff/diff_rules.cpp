@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,32 +29,27 @@ double number_of(const json& value, const std::string& where, const char* key, d
 
 }  // namespace
 
-namespace {
-
-// Recursive over the stars: patterns and names are short, so the worst case (many stars against a long
-// name that does not match) stays small in practice.
-bool match(const char* p, const char* pe, const char* n, const char* ne) {
-  while (p < pe) {
-    if (*p == '*') {
-      const bool crosses = p + 1 < pe && p[1] == '*';
-      const char* rest = p + (crosses ? 2 : 1);
-      // "**/" also stands for no folder at all: "**/a.png" matches "a.png".
-      if (crosses && rest < pe && *rest == '/' && match(rest + 1, pe, n, ne)) return true;
-      for (const char* k = n;; ++k) {
-        if (match(rest, pe, k, ne)) return true;
-        if (k == ne || (!crosses && *k == '/')) return false;
+bool glob_match(const std::string& pattern, const std::string& name) {
+  // match[i][j]: pattern from i matches name from j. Filled from the ends, so that any number of stars
+  // costs |pattern| × |name| steps, never a backtracking search.
+  const size_t p = pattern.size(), n = name.size();
+  std::vector<uint8_t> match((p + 1) * (n + 1), 0);
+  const auto at = [&](size_t i, size_t j) -> uint8_t& { return match[i * (n + 1) + j]; };
+  at(p, n) = 1;
+  for (size_t i = p; i-- > 0;)
+    for (size_t j = n + 1; j-- > 0;) {
+      if (pattern[i] == '*') {
+        const bool crosses = i + 1 < p && pattern[i + 1] == '*';
+        const size_t rest = i + (crosses ? 2 : 1);
+        bool m = at(rest, j) || (j < n && (crosses || name[j] != '/') && at(i, j + 1));
+        // "**/" also stands for no folder at all: "**/a.png" matches "a.png".
+        if (crosses && rest < p && pattern[rest] == '/') m = m || at(rest + 1, j);
+        at(i, j) = m;
+      } else {
+        at(i, j) = j < n && (pattern[i] == '?' ? name[j] != '/' : pattern[i] == name[j]) && at(i + 1, j + 1);
       }
     }
-    if (n == ne || (*p == '?' ? *n == '/' : *p != *n)) return false;
-    ++p, ++n;
-  }
-  return n == ne;
-}
-
-}  // namespace
-
-bool glob_match(const std::string& pattern, const std::string& name) {
-  return match(pattern.data(), pattern.data() + pattern.size(), name.data(), name.data() + name.size());
+  return at(0, 0);
 }
 
 std::vector<DiffRule> read_diff_rules(const std::string& path) {
@@ -106,7 +102,7 @@ std::vector<DiffRule> read_diff_rules(const std::string& path) {
         known = true;
       } else if (key == "mask") {
         if (!value.is_string() || value.get<std::string>().empty()) throw InputError(where + ": \"mask\" must be an image file name");
-        rule.mask.image = (folder / value.get<std::string>()).string();
+        rule.mask.images.push_back((folder / value.get<std::string>()).string());
         known = true;
       } else if (key == "ignore") {
         if (!value.is_array()) throw InputError(where + ": \"ignore\" must be an array of [x, y, width, height]");
@@ -143,7 +139,7 @@ DiffOptions options_for(const DiffOptions& options, const std::string& name) {
     o.metric = rule.metric;
     o.thresholds = rule.thresholds;
     if (rule.pixels_per_degree != 0) o.pixels_per_degree = rule.pixels_per_degree;
-    if (!rule.mask.image.empty()) o.mask.image = rule.mask.image;
+    o.mask.images.insert(o.mask.images.end(), rule.mask.images.begin(), rule.mask.images.end());
     o.mask.rects.insert(o.mask.rects.end(), rule.mask.rects.begin(), rule.mask.rects.end());
     o.rules.clear();
     return o;

@@ -2,7 +2,7 @@
 // which rule a pair follows; and the preset file's one-line errors.
 #include "dqskin/error.hpp"
 #include "dqskin/image_diff.hpp"
-#include "image_diff_fixture.hpp"
+#include "../test_support/image_diff_fixture_oiio.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,6 +23,9 @@ TEST(DiffGlob, StarsQuestionMarksAndFolders) {
   EXPECT_FALSE(glob_match("characters/**/hero_*.png", "characters/a/b/villain.png"));
   EXPECT_TRUE(glob_match("a*b*c", "aXbYbZc"));
   EXPECT_TRUE(glob_match("**/a.png", "a.png"));  // "**/" may stand for no folder
+  // Many stars against a long name that does not match: |pattern| × |name| steps, not a search.
+  EXPECT_FALSE(glob_match("*a*a*a*a*a*a*a*a*a*a*a*a*a*a*a*a*a*a*a*a*b", std::string(200, 'a')));
+  EXPECT_TRUE(glob_match(std::string(50, '*') + "b", std::string(300, 'a') + "b"));
   EXPECT_FALSE(glob_match("a", "ab"));
 }
 
@@ -52,12 +55,15 @@ TEST_F(DiffRulesTest, PresetRulesAreReadInOrder) {
   EXPECT_EQ(rules[1].thresholds.fail_mean, 0.05);
   EXPECT_TRUE(std::isinf(rules[1].thresholds.fail));  // FLIP: only the rules given
   EXPECT_EQ(rules[1].pixels_per_degree, 40.0);
-  EXPECT_EQ(rules[1].mask.image, path("masks/hud.png"));  // beside the preset file
+  EXPECT_EQ(rules[1].mask.images, std::vector<std::string>{path("masks/hud.png")});  // beside the preset file
   ASSERT_EQ(rules[1].mask.rects.size(), 1u);
   EXPECT_EQ(rules[1].mask.rects[0].width, 10);
 
   DiffOptions o;
   o.rules = rules;
+  o.mask.images = {path("cli_mask.png")};
+  EXPECT_EQ(options_for(o, "scene/hero.png").mask.images,
+            (std::vector<std::string>{path("cli_mask.png"), path("masks/hud.png")}));  // added, not replaced
   EXPECT_EQ(options_for(o, "ui/button.png").thresholds.fail, 0.02);
   EXPECT_EQ(options_for(o, "ui/button.png").metric, DiffMetric::kIdiff);
   EXPECT_EQ(options_for(o, "scene/hero.png").metric, DiffMetric::kFlip);
@@ -124,7 +130,7 @@ TEST_F(DiffRulesTest, AMaskImageLeavesOutItsWhitePixelsAlsoForFlip) {
   o.metric = DiffMetric::kFlip;
   o.thresholds = flip_thresholds({}, {});
   EXPECT_EQ(diff_pair({"p", a, b, ""}, o).status, DiffStatus::kFail);
-  o.mask.image = mask;
+  o.mask.images = {mask};
   const ImageDiff d = diff_pair({"p", a, b, ""}, o);
   EXPECT_EQ(d.status, DiffStatus::kPass) << d.reason;
   EXPECT_EQ(d.max_error, 0.0);
@@ -135,14 +141,14 @@ TEST_F(DiffRulesTest, AMaskImageLeavesOutItsWhitePixelsAlsoForFlip) {
 TEST_F(DiffRulesTest, AMaskOfAnotherSizeIsAnInputError) {
   const std::string a = image("a.png", 8, 8, 3, 0.0f), b = image("b.png", 8, 8, 3, 0.1f);
   DiffOptions o;
-  o.mask.image = image("mask.png", 4, 8, 1, 1.0f);
+  o.mask.images = {image("mask.png", 4, 8, 1, 1.0f)};
   try {
     diff_pair({"p", a, b, ""}, o);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), o.mask.image + ": the mask is 4x8, the images 8x8");
+    EXPECT_EQ(std::string(e.what()), o.mask.images[0] + ": the mask is 4x8, the images 8x8");
   }
-  o.mask.image = path("missing.png");
+  o.mask.images = {path("missing.png")};
   EXPECT_THROW(diff_pair({"p", a, b, ""}, o), InputError);
 }
 

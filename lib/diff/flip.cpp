@@ -124,7 +124,11 @@ struct Plane {
   Plane& operator=(const Plane&) = default;
   Plane& operator=(Plane&&) = default;
   ~Plane() {
-    if (v.capacity() > 0) spare_planes.push_back(std::move(v));
+    if (v.capacity() == 0) return;
+    try {
+      spare_planes.push_back(std::move(v));
+    } catch (...) {  // no room to keep it: it is freed instead (a destructor must not throw)
+    }
   }
 };
 
@@ -417,9 +421,11 @@ std::vector<double> flip_error_map(const float* reference_srgb, const float* tes
     const size_t first = region.y0 + band * rows, count = std::min(rows, region.y1 - first);
     const std::vector<float> ref = band_with_halo(reference_srgb, width, height, first, count, halo, region);
     const std::vector<float> test = band_with_halo(test_srgb, width, height, first, count, halo, region);
+    struct Release {  // also when the band throws (out of memory)
+      ~Release() { release_spare_planes(); }
+    } release;
     flip_band(ref.data(), test.data(), columns, count, halo, options.ppd, options.linear_input, colour, region.x0 - region.cx0,
               region.x1 - region.x0, error.data() + first * width + region.x0, width);
-    release_spare_planes();
   });
   return error;
 }
@@ -430,6 +436,7 @@ namespace {
 // t(x) = (k0 x² + k1 x + k2) / (k3 x² + k4 x + k5), clamped to [0, 1].
 constexpr double kAces[6] = {0.6 * 0.6 * 2.51, 0.6 * 0.03, 0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14};
 constexpr double kExposureTarget = 0.85;  // the brightest pixel at the first exposure, the median at the last
+constexpr int kMaxExposures = 64;
 
 double aces(double x) {
   const double t = (kAces[0] * x * x + kAces[1] * x + kAces[2]) / (kAces[3] * x * x + kAces[4] * x + kAces[5]);
@@ -448,8 +455,14 @@ double luminance709(const float* rgb) { return 0.2126 * double(rgb[0]) + 0.7152 
 }  // namespace
 
 HdrExposures hdr_exposures(const float* reference_rgb, size_t pixels) {
-  std::vector<double> y(pixels);
-  for (size_t i = 0; i < pixels; ++i) y[i] = std::max(0.0, luminance709(reference_rgb + 3 * i));
+  // Infinite and NaN pixels say nothing about the range a person would look at: left out.
+  std::vector<double> y;
+  y.reserve(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    const double v = luminance709(reference_rgb + 3 * i);
+    if (std::isfinite(v)) y.push_back(std::max(0.0, v));
+  }
+  pixels = y.size();
   HdrExposures e;
   if (y.empty()) return e;
   const double brightest = *std::max_element(y.begin(), y.end());
@@ -460,7 +473,9 @@ HdrExposures hdr_exposures(const float* reference_rgb, size_t pixels) {
   const double target = aces_target_input();
   e.start = std::log2(target / brightest);
   e.stop = std::log2(target / median);
-  e.count = std::max(2, int(std::ceil(e.stop - e.start)));
+  // One exposure per stop, at least two; at most kMaxExposures (a reference from 1e38 down to a denormal
+  // would ask for hundreds of full passes), spread over the same range.
+  e.count = int(std::clamp(std::ceil(e.stop - e.start), 2.0, double(kMaxExposures)));
   return e;
 }
 
@@ -477,13 +492,18 @@ std::vector<double> hdr_flip_error_map(const float* reference_rgb, const float* 
     const double c = e.count > 1 ? e.start + i * (e.stop - e.start) / (e.count - 1) : e.start;
     const double scale = std::exp2(c);
     for (size_t k = 0; k < 3 * pixels; ++k) {
-      // Negative and NaN light is no light; infinity saturates.
-      const auto shown = [scale](float v) { return float(aces(std::isnan(v) ? 0.0 : scale * std::max(0.0, double(v)))); };
+      // Negative and NaN light is no light; infinite light is white (ACES of infinity would be inf / inf).
+      const auto shown = [scale](float v) {
+        if (std::isnan(v) || v <= 0) return 0.0f;
+        const double x = scale * double(v);
+        return std::isfinite(x) ? float(aces(x)) : 1.0f;
+      };
       ref[k] = shown(reference_rgb[k]);
       test[k] = shown(test_rgb[k]);
     }
     const std::vector<double> at = flip_error_map(ref.data(), test.data(), width, height, ldr);
-    for (size_t k = 0; k < pixels; ++k) error[k] = std::max(error[k], at[k]);
+    for (size_t k = 0; k < pixels; ++k)
+      if (!(at[k] <= error[k])) error[k] = at[k];  // a NaN would be kept, never hidden
   }
   return error;
 }

@@ -6,7 +6,7 @@
 #include "../test_support/read_file.hpp"
 #include "flip.hpp"
 #include "flip_heat_map.hpp"
-#include "image_diff_fixture.hpp"
+#include "../test_support/image_diff_fixture_oiio.hpp"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -131,6 +131,14 @@ TEST_F(ImageDiffTest, FlipMeasuresFloatFilesWithHdrFlip) {
   EXPECT_NEAR(d.mean_error, map[0], 1e-12);  // summed over the pixels
   EXPECT_DOUBLE_EQ(d.max_error, map[0]);
   EXPECT_NE(diff_text(diff_images(a, b, flip_options())).find("HDR-FLIP mean "), std::string::npos);
+}
+
+TEST_F(ImageDiffTest, FlipRefusesDisplayValuesAgainstLinearLight) {
+  const std::string png = image("a.png", 8, 8, 3, 0.5f), exr = image("b.exr", 8, 8, 3, 0.5f);
+  const ImageDiff d = diff_pair({"mixed", png, exr, ""}, flip_options());
+  EXPECT_FALSE(d.compared);
+  EXPECT_EQ(d.status, DiffStatus::kFail);
+  EXPECT_EQ(d.problem, "FLIP compares like with like: A holds display values (integer), B linear light (float)");
 }
 
 TEST_F(FlipDiffTest, HeatMapIsMagmaWithALegendAndTheSameBytesTwice) {

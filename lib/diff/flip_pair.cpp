@@ -85,12 +85,13 @@ std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout&
   return errors;
 }
 
-uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options) {
+uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options, bool hdr) {
   using saturating::add;
   using saturating::mul;
   const uint64_t pixels = mul(width, height);
   // Both images as RGB floats while the bands run; then the error map and the quartiles' sorted copy.
-  const uint64_t computing = add(mul(pixels, 2 * 3 * sizeof(float)), flip_working_bytes(width, height, flip_options(options)));
+  uint64_t computing = add(mul(pixels, 2 * 3 * sizeof(float)), flip_working_bytes(width, height, flip_options(options)));
+  if (hdr) computing = add(computing, mul(pixels, 2 * 3 * sizeof(float) + sizeof(double)));
   // With a mask: its mark per pixel, and the kept values copied out for the figures.
   const uint64_t masked = options.mask.empty() ? 0 : mul(pixels, 1 + sizeof(double));
   return add(add(mul(pixels, sizeof(double)), std::max(computing, mul(pixels, sizeof(double)))), masked);

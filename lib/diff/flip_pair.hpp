@@ -34,6 +34,7 @@ std::vector<double> flip_pair(const float* a, const float* b, const PixelLayout&
 
 // The most memory flip_pair holds beside the two images: both as FLIP's RGB, the error map, its sorted
 // copy for the quartiles and the bands being computed.
-uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options);
+// `hdr`: float files, whose HDR-FLIP also holds both tone-mapped exposures and one exposure's map.
+uint64_t flip_pair_bytes(size_t width, size_t height, const DiffOptions& options, bool hdr);
 
 }  // namespace dqskin::diff_detail

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -174,6 +175,31 @@ TEST(HdrFlip, AUniformShiftIsTheColourPipelineAtTheExposureThatShowsIt) {
   for (double v : map) ASSERT_NEAR(v, expected, 2e-6);  // the tone-mapped values are floats
   EXPECT_GT(expected, 0.01);
   for (double v : hdr_flip_error_map(a.rgb.data(), a.rgb.data(), 24, 24)) ASSERT_EQ(v, 0.0);
+}
+
+TEST(HdrFlip, InfiniteAndNanLightNeitherHideNorSpreadAnError) {
+  // An infinite pixel in the reference leaves the exposure range to the finite ones, and shows as white;
+  // the difference elsewhere still counts. A NaN pixel is black.
+  Image a(24, 24, 3.0f), b(24, 24, 3.0f);
+  b.set(5, 5, 30.0f);
+  const std::vector<double> plain = hdr_flip_error_map(a.rgb.data(), b.rgb.data(), 24, 24);
+  a.set(20, 20, std::numeric_limits<float>::infinity());
+  b.set(20, 20, std::numeric_limits<float>::infinity());
+  HdrExposures e;
+  const std::vector<double> with_inf = hdr_flip_error_map(a.rgb.data(), b.rgb.data(), 24, 24, {}, &e);
+  EXPECT_TRUE(std::isfinite(e.start) && std::isfinite(e.stop));
+  EXPECT_GT(with_inf[5 * 24 + 5], 0.05);
+  for (double v : with_inf) ASSERT_TRUE(v >= 0 && v <= 1);
+  EXPECT_EQ(with_inf[20 * 24 + 20], 0.0);  // white in both
+  EXPECT_EQ(with_inf[5 * 24 + 5], plain[5 * 24 + 5]);  // the same exposures; (20, 20) is beyond the filters' reach
+  Image nan_test = b;
+  nan_test.set(20, 20, std::numeric_limits<float>::quiet_NaN());  // black against white: seen
+  EXPECT_GT(hdr_flip_error_map(a.rgb.data(), nan_test.rgb.data(), 24, 24)[20 * 24 + 20], 0.2);
+}
+
+TEST(HdrFlip, ExposuresAreCappedForAnAbsurdRange) {
+  const std::vector<float> rgb = {1e-30f, 1e-30f, 1e-30f, 1e-30f, 1e-30f, 1e-30f, 1e30f, 1e30f, 1e30f};
+  EXPECT_EQ(hdr_exposures(rgb.data(), 3).count, 64);
 }
 
 TEST(Flip, PoolingWeighsEachPixelByItsError) {

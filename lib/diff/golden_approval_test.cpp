@@ -4,7 +4,7 @@
 #include "dqskin/error.hpp"
 #include "dqskin/golden_approval.hpp"
 #include "../test_support/read_file.hpp"
-#include "image_diff_fixture.hpp"
+#include "../test_support/image_diff_fixture_oiio.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -3,7 +3,7 @@
 #include "dqskin/image_diff.hpp"
 #include "../test_support/scratch_dir.hpp"
 #include "../test_support/read_file.hpp"
-#include "image_diff_fixture.hpp"
+#include "../test_support/image_diff_fixture_oiio.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>

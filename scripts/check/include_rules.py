@@ -56,6 +56,7 @@ PUBLIC = {
     "bake": "bake", "render": "render", "lint": "lint", "optimize": "optimize", "report": "report", "verify": "verify", "info": "info",
     "bench": "bench",
     "image_diff": "diff", "diff_report": "diff", "geometry_diff": "diff", "geometry_report": "diff",
+    "ci_annotations": "diff", "diff_page": "diff", "golden_approval": "diff",
 }
 
 # Third-party headers only the loader compiles.

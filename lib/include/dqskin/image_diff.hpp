@@ -117,9 +117,9 @@ struct PixelRect {
   int x = 0, y = 0, width = 0, height = 0;
 };
 struct DiffMask {
-  std::string image;             // a mask image, or none
-  std::vector<PixelRect> rects;  // parts beyond the image are ignored
-  bool empty() const { return image.empty() && rects.empty(); }
+  std::vector<std::string> images;  // mask images (each leaves out its white pixels)
+  std::vector<PixelRect> rects;     // parts beyond the image are ignored
+  bool empty() const { return images.empty() && rects.empty(); }
 };
 
 // A preset's rule for the pairs whose name matches `pattern` (a glob on the '/'-separated relative path:

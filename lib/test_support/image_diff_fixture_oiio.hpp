@@ -1,8 +1,8 @@
-// The scratch folder and generated images of the image diff's tests (image_diff_test.cpp,
+// The scratch folder and generated images of the image diff's tests (lib/diff: image_diff_test.cpp,
 // flip_diff_test.cpp).
 #pragma once
 
-#include "../test_support/scratch_dir.hpp"
+#include "scratch_dir.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
