@@ -24,6 +24,14 @@ using io::xml;
 
 Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
+// The thresholds as the document and a preset rule's pairs report them (infinite: null, that is off).
+Json thresholds_json(const DiffThresholds& t) {
+  return {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
+          {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
+          {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)},
+          {"fail_mean", finite_or_null(t.fail_mean)}, {"warn_mean", finite_or_null(t.warn_mean)}};
+}
+
 std::string max_text(const ImageDiff& d) {
   std::string text = number(d.max_error);
   if (d.max_error != 0)
@@ -119,12 +127,7 @@ std::string diff_json(const DiffReport& report) {
     p["status"] = status_name(d.status);
     if (!d.rule.empty()) {
       // The rule's metric and thresholds, which are not the document's.
-      const DiffThresholds& rt = d.thresholds;
-      p["rule"] = {{"match", d.rule}, {"metric", metric_name(d.metric)},
-                   {"thresholds", {{"fail", finite_or_null(rt.fail)},           {"fail_percent", rt.fail_percent},
-                                   {"hard_fail", finite_or_null(rt.hard_fail)}, {"warn", finite_or_null(rt.warn)},
-                                   {"warn_percent", rt.warn_percent},           {"hard_warn", finite_or_null(rt.hard_warn)},
-                                   {"fail_mean", finite_or_null(rt.fail_mean)}, {"warn_mean", finite_or_null(rt.warn_mean)}}}};
+      p["rule"] = {{"match", d.rule}, {"metric", metric_name(d.metric)}, {"thresholds", thresholds_json(d.thresholds)}};
     }
     if (!d.compared) {
       p["problem"] = d.problem;
@@ -151,10 +154,7 @@ std::string diff_json(const DiffReport& report) {
   doc["b"] = report.b;
   doc["metric"] = metric_name(report.metric);
   if (report.metric == DiffMetric::kFlip) doc["pixels_per_degree"] = report.pixels_per_degree;
-  doc["thresholds"] = {{"fail", finite_or_null(t.fail)},           {"fail_percent", t.fail_percent},
-                       {"hard_fail", finite_or_null(t.hard_fail)}, {"warn", finite_or_null(t.warn)},
-                       {"warn_percent", t.warn_percent},           {"hard_warn", finite_or_null(t.hard_warn)},
-                       {"fail_mean", finite_or_null(t.fail_mean)}, {"warn_mean", finite_or_null(t.warn_mean)}};
+  doc["thresholds"] = thresholds_json(t);
   doc["pairs"] = std::move(pairs);
   if (report.approval) {
     Json files = Json::array();

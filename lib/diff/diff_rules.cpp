@@ -132,9 +132,11 @@ std::vector<DiffRule> read_diff_rules(const std::string& path) {
   return rules;
 }
 
-DiffOptions options_for(const DiffOptions& options, const std::string& name) {
+DiffOptions options_for(const DiffOptions& options, const std::string& name, const DiffRule** matched) {
+  if (matched) *matched = nullptr;
   for (const DiffRule& rule : options.rules) {
     if (!glob_match(rule.pattern, name)) continue;
+    if (matched) *matched = &rule;
     DiffOptions o = options;
     o.metric = rule.metric;
     o.thresholds = rule.thresholds;

@@ -1,6 +1,7 @@
 #include "flip_pair.hpp"
 #include "flip.hpp"
 #include "../base/saturating.hpp"
+#include "../base/srgb.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +9,6 @@
 
 namespace dqskin::diff_detail {
 namespace {
-
-// The IEC 61966-2-1 (sRGB) encoding of a linear value, clamped to [0, 1] first.
-float srgb_encode(float linear) {
-  const double c = std::clamp(double(linear), 0.0, 1.0);
-  return float(c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055);
-}
 
 FlipOptions flip_options(const DiffOptions& options) { return {options.pixels_per_degree, options.threads, 0}; }
 
@@ -27,7 +22,7 @@ std::vector<float> flip_rgb(const float* pixels, const PixelLayout& layout) {
       // NaN is not a display value: FLIP sees it as black, as a viewer would show it.
       const float v = pixels[i * channels + (channels >= 3 ? c : 0)];
       const float shown = std::isnan(v) ? 0.0f : v;
-      rgb[3 * i + c] = layout.linear ? srgb_encode(shown) : shown;
+      rgb[3 * i + c] = layout.linear ? float(io::srgb_encode(double(shown))) : shown;
     }
   return rgb;
 }

@@ -211,15 +211,12 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   }
   for (const DiffPair& pair : pairs) {
     check_cancelled(options.cancel);
-    const DiffOptions pair_options = options_for(options, pair.name);
+    const DiffRule* rule = nullptr;
+    const DiffOptions pair_options = options_for(options, pair.name, &rule);
     ImageDiff d = diff_pair(pair, pair_options);
     d.thresholds = pair_options.thresholds;
     d.metric = pair_options.metric;  // also for a pair that could not be measured
-    for (const DiffRule& rule : options.rules)
-      if (glob_match(rule.pattern, pair.name)) {
-        d.rule = rule.pattern;
-        break;
-      }
+    if (rule) d.rule = rule->pattern;
     report.pairs.push_back(std::move(d));
   }
   return report;

@@ -223,7 +223,8 @@ ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options);
 
 // The options a pair is compared with: `options`, or for the first rule whose pattern matches `name`, its
 // metric, thresholds and viewing conditions, and its mask added.
-DiffOptions options_for(const DiffOptions& options, const std::string& name);
+// `rule`, when given, is set to the matching rule (null when none matches).
+DiffOptions options_for(const DiffOptions& options, const std::string& name, const DiffRule** rule = nullptr);
 
 // pair_inputs, then diff_pair for every pair (with options_for its name), in order. Throws as they do, and JobCancelled once
 // options.cancel is set.
