@@ -95,34 +95,6 @@ void write_junit(const std::string& path, const std::string& text) {
   junit.commit(Overwrite::kReplace);
 }
 
-// Two glTF files: their animations deformed and compared surface to surface; two bakes: their files
-// vertex by vertex.
-int run_geometry_diff(const DiffSettings& s) {
-  GeometryDiffOptions o;
-  o.load = to_load_options(s.load);
-  if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
-  if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
-  const FrameSelection& frames = s.selection;
-  o.clips = frames.anim;
-  if (frames.fps && !(*frames.fps > 0 && *frames.fps <= 1000)) throw InputError("--fps must be above 0 and at most 1000");
-  if (frames.chosen()) o.frames = to_frame_spec(frames);
-  if (frames.fps && !frames.times.empty()) throw InputError("give --fps or --times, not both");
-  if (s.image_size < 64 || s.image_size > 8192) throw InputError("--image-size must be from 64 to 8192 pixels");
-  o.image_size = s.image_size;
-  o.thresholds = s.thresholds;
-  o.relative = s.relative;
-  o.out_dir = s.out_dir;
-  o.cancel = catch_interrupts("diff");
-  const GeometryDiffReport report = is_gltf_file(s.a) ? diff_geometry(s.a, s.b, o) : diff_bakes(s.a, s.b, o);
-  std::cout << (s.json ? geometry_json(report) : geometry_text(report)) << std::flush;
-  if (s.verbose)
-    std::fprintf(stderr, "dqskin: diff: correspondence %.3g s, whole diff %.3g s\n", report.correspondence_seconds,
-                 report.wall_seconds);
-  write_junit(s.junit, geometry_junit(report));
-  write_annotations(s, report.status(), ci_rows(report));
-  return exit_status(report.status());
-}
-
 // diff's statuses are idiff's order of severity: 0 all pass, 1 warnings only, 2 a failure. A usage or
 // input error is 2 as everywhere in dqskin (README "Exit status"), so CI treats it as a failure.
 constexpr int kDiffWarn = 1;
@@ -255,6 +227,54 @@ private:
   std::string dir_, staging_;
 };
 
+// The page's folder of --html, or none: its pictures go to a staging folder beside it, and the page and
+// they appear together at the end. Refuses an --out inside it, which the page would replace.
+std::unique_ptr<PageFolder> open_page(const DiffSettings& settings) {
+  if (settings.html.empty()) return nullptr;
+  if (!settings.out_dir.empty()) {
+    namespace fs = std::filesystem;
+    std::error_code e1, e2;
+    const fs::path html = fs::weakly_canonical(fs::absolute(settings.html), e1);
+    const fs::path out = fs::weakly_canonical(fs::absolute(settings.out_dir), e2);
+    const auto [end, ignored] = std::mismatch(html.begin(), html.end(), out.begin(), out.end());
+    if (end == html.end())
+      throw InputError("--out " + settings.out_dir + " is inside --html " + settings.html +
+                       ", which the page replaces: give the heat maps another folder");
+  }
+  return std::make_unique<PageFolder>(settings.html);
+}
+
+// Two glTF files: their animations deformed and compared surface to surface; two bakes: their files
+// vertex by vertex.
+int run_geometry_diff(const DiffSettings& s) {
+  GeometryDiffOptions o;
+  o.load = to_load_options(s.load);
+  if (!parse_blend_mode(s.mode, o.mode)) throw InputError("--mode '" + s.mode + "' is not one of lbs, dqs, dib");
+  if (!parse_backend(s.backend, o.backend)) throw InputError(unknown_backend(s.backend));
+  const FrameSelection& frames = s.selection;
+  o.clips = frames.anim;
+  if (frames.fps && !(*frames.fps > 0 && *frames.fps <= 1000)) throw InputError("--fps must be above 0 and at most 1000");
+  if (frames.chosen()) o.frames = to_frame_spec(frames);
+  if (frames.fps && !frames.times.empty()) throw InputError("give --fps or --times, not both");
+  if (s.image_size < 64 || s.image_size > 8192) throw InputError("--image-size must be from 64 to 8192 pixels");
+  o.image_size = s.image_size;
+  o.thresholds = s.thresholds;
+  o.relative = s.relative;
+  o.out_dir = s.out_dir;
+  const std::unique_ptr<PageFolder> page = open_page(s);
+  if (page) o.page_dir = page->staging();
+  o.cancel = catch_interrupts("diff");
+  const GeometryDiffReport report = is_gltf_file(s.a) ? diff_geometry(s.a, s.b, o) : diff_bakes(s.a, s.b, o);
+  if (page) page->commit(geometry_page_html(report));
+  std::cout << (s.json ? geometry_json(report) : geometry_text(report)) << std::flush;
+  if (s.verbose)
+    std::fprintf(stderr, "dqskin: diff: correspondence %.3g s, whole diff %.3g s\n", report.correspondence_seconds,
+                 report.wall_seconds);
+  write_junit(s.junit, geometry_junit(report));
+  write_annotations(s, report.status(), ci_rows(report));
+  return exit_status(report.status());
+}
+
 // "X,Y,W,H" in pixels (--ignore).
 PixelRect parse_rect(const std::string& text) {
   PixelRect r;
@@ -285,8 +305,6 @@ int run_diff(const DiffSettings& settings) {
       throw InputError("--metric " + settings.metric + " compares images; glTF files and bakes are compared by distance");
     if (geometry && (settings.thresholds.fail_mean != kOff || settings.thresholds.warn_mean != kOff))
       throw InputError("--failmean and --warnmean judge images; glTF files and bakes are judged by distance");
-    if (geometry && !settings.html.empty())
-      throw InputError("--html makes the page of an image diff; for glTF files and bakes, --out writes the heat maps");
     if (geometry && (!settings.mask.empty() || !settings.ignore.empty() || !settings.preset.empty()))
       throw InputError("--mask, --ignore and --preset apply to images; glTF files and bakes are compared by distance");
     if (geometry && settings.approve)
@@ -307,22 +325,8 @@ int run_diff(const DiffSettings& settings) {
     }
     options.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
     if (!settings.mask.empty()) options.mask.images.push_back(settings.mask);
-    // The page's pictures go to a staging folder beside it; the page and they appear together at the end.
-    std::unique_ptr<PageFolder> page;
-    if (!settings.html.empty() && !settings.out_dir.empty()) {
-      namespace fs = std::filesystem;
-      std::error_code e1, e2;
-      const fs::path html = fs::weakly_canonical(fs::absolute(settings.html), e1);
-      const fs::path out = fs::weakly_canonical(fs::absolute(settings.out_dir), e2);
-      const auto [end, ignored] = std::mismatch(html.begin(), html.end(), out.begin(), out.end());
-      if (end == html.end())
-        throw InputError("--out " + settings.out_dir + " is inside --html " + settings.html +
-                         ", which the page replaces: give the heat maps another folder");
-    }
-    if (!settings.html.empty()) {
-      page = std::make_unique<PageFolder>(settings.html);
-      options.page_dir = page->staging();
-    }
+    const std::unique_ptr<PageFolder> page = open_page(settings);
+    if (page) options.page_dir = page->staging();
     for (const std::string& r : settings.ignore) options.mask.rects.push_back(parse_rect(r));
     if (!settings.preset.empty()) options.rules = read_diff_rules(settings.preset);
     options.max_memory = parse_byte_size(settings.load.max_memory, "--max-memory");
@@ -438,8 +442,9 @@ Command add_diff_command(CLI::App& app) {
                        "a pair decides it, the command line's flags the others")
       ->type_name("FILE");
   diff_cmd->add_option("--html", diff.html,
-                       "Images: also write one page to look at, DIR/index.html with its pictures in DIR/images: every pair, "
-                       "failing first, reference, candidate and difference side by side, a toggle and a swipe (replaces DIR)")
+                       "Also write one page to look at, DIR/index.html with its pictures in DIR/images (replaces DIR): every "
+                       "pair, failing first, reference, candidate and difference side by side, a toggle and a swipe; for "
+                       "glTF files every clip, both surfaces at its worst frame shaded by their distance, its error over time")
       ->type_name("DIR");
   diff_cmd->add_flag("--approve", diff.approve,
                      "Images: make the candidates of failing pairs (B) the goldens (A), all or none, and say so in the "

@@ -244,8 +244,23 @@ dqskin_diff_test(html_dot_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --html .
   STDOUT "^$" STDERR "^dqskin: --html '.': give the page a folder of its own \\(not '.', '..' or '/'\\)\n$")
 dqskin_diff_test(out_inside_html_exits_2 2 ARGS diff ${d}/a.ppm ${d}/very.ppm --html ${diff_scratch}/outpage
   --out ${diff_scratch}/outpage/heat STDOUT "^$" STDERR "^dqskin: --out [^\n]* is inside --html [^\n]*, which the page replaces: [^\n]*\n$")
-dqskin_diff_test(html_for_gltf_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --html ${diff_scratch}/gltf_page
-  STDOUT "^$" STDERR "^dqskin: --html makes the page of an image diff[^\n]*\n$")
+dqskin_diff_test(gltf_out_inside_html_exits_2 2 ARGS diff ${diff_arm} ${diff_arm} --html ${diff_scratch}/gltf_outpage
+  --out ${diff_scratch}/gltf_outpage/heat STDOUT "^$" STDERR "^dqskin: --out [^\n]* is inside --html [^\n]*, which the page replaces: [^\n]*\n$")
+# The page of two glTF files, B with one key of the elbow turned (make_diff_cases.py): the clip's section,
+# both pictures, the chart with a point per frame, the toggle and the swipe. Renders through a GL context:
+# Mesa's leaks are not ours (app/CMakeLists.txt).
+find_package(Python3 COMPONENTS Interpreter REQUIRED)
+set(page_args --relative\;--fail\;1e-3\;--warn\;1e-4\;--image-size\;256)
+set(page_make rotate-key\;--joint\;elbow)
+add_test(NAME cli.diff_html_page_gltf
+         COMMAND ${CMAKE_COMMAND} -DDQSKIN=$<TARGET_FILE:dqskin_cli> -DNODE=${DQSKIN_NODE} -DCHROMIUM=${DQSKIN_CHROMIUM}
+                 -DSCRIPT=${PROJECT_SOURCE_DIR}/lib/diff/diff_page_check.mjs -DA=${diff_arm}
+                 -DB=${diff_scratch}/html_gltf/b.gltf -DPYTHON=${Python3_EXECUTABLE}
+                 -DMAKE_SCRIPT=${PROJECT_SOURCE_DIR}/scripts/testdata/make_diff_cases.py "-DMAKE=${page_make}"
+                 "-DARGS=${page_args}" -DWORK=${diff_scratch}/html_gltf
+                 -P ${PROJECT_SOURCE_DIR}/lib/diff/diff_page_check.cmake)
+set_tests_properties(cli.diff_html_page_gltf PROPERTIES SKIP_REGULAR_EXPRESSION "diff_page_check: SKIPPED" TIMEOUT 120
+                     ENVIRONMENT "${bake_test_environment}" LABELS gpu)
 
 # Usage and input errors: one line, exit status 2, no report.
 dqskin_diff_test(negative_threshold_exits_2 2 ARGS diff ${d}/a.ppm ${d}/same.ppm --fail -1

@@ -33,4 +33,10 @@ inline std::string percent(uint64_t count, uint64_t pixels) {
 using dqskin::length_text;
 using dqskin::length_with_unit;
 
+// A length in scene units with the SI prefix that suits it: "3.1 mm"; "0 m" for zero.
+inline std::string scene_length(double value) {
+  if (!std::isfinite(value)) return number(value);
+  return value == 0 ? "0 m" : length_with_unit(value, value);
+}
+
 }  // namespace dqskin::diff_detail

@@ -5,6 +5,8 @@
 #
 #   cmake -DDQSKIN=dqskin -DNODE=node -DCHROMIUM=chromium -DSCRIPT=diff_page_check.mjs -DA=dir -DB=dir
 #         [-DARGS=--metric;flip] -DWORK=dir -P diff_page_check.cmake
+# For a geometric diff, B may be made from A first by scripts/testdata/make_diff_cases.py:
+#         -DPYTHON=python3 -DMAKE_SCRIPT=make_diff_cases.py -DMAKE=rotate-key;--joint;elbow -DB=WORK/b.gltf
 cmake_minimum_required(VERSION 3.25)
 
 foreach(need NODE CHROMIUM)
@@ -15,6 +17,14 @@ foreach(need NODE CHROMIUM)
 endforeach()
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
+if(DEFINED MAKE)
+  list(POP_FRONT MAKE make_command)
+  execute_process(COMMAND "${PYTHON}" "${MAKE_SCRIPT}" ${make_command} "${A}" "${B}" ${MAKE}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE made ERROR_VARIABLE err TIMEOUT 100)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "make_diff_cases.py ${make_command} failed (${status}):\n${made}${err}")
+  endif()
+endif()
 execute_process(COMMAND "${DQSKIN}" diff "${A}" "${B}" ${ARGS} --html "${WORK}/page" --json
                 OUTPUT_FILE "${WORK}/report.json" ERROR_VARIABLE err RESULT_VARIABLE status TIMEOUT 100)
 if(NOT status MATCHES "^[012]$" OR NOT EXISTS "${WORK}/page/index.html")

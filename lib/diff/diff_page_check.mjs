@@ -6,11 +6,12 @@
 // Opens DIR/index.html from file://, then checks that
 //   - nothing went wrong: no console error, no uncaught exception, no failed request, and every request
 //     is a file: or data: URL (nothing from the network);
-//   - every pair of the report has one section, in the page's order: failures, then warnings, then passes;
-//     every link to a section finds it;
+//   - every pair of the report (of a geometric diff: every clip or file) has one section, in the page's
+//     order: failures, then warnings, then passes; every link to a section finds it;
 //   - every picture of every section decodes (lazy ones loaded by scrolling to them);
 //   - the toggle, clicked with the mouse, hides the candidate over the reference and shows it again, and
 //     the swipe clips the candidate at the slider's place;
+//   - a geometric diff's clips have their chart, one point per frame of the report;
 // and, with --shot, saves a screenshot of the first section. Prints what it checked, or one line per
 // problem. Exit status: 0 no problem, 1 problems, 2 usage or the browser could not run.
 import { existsSync, readFileSync, writeFileSync } from 'node:fs';
@@ -68,7 +69,7 @@ const browser = launchChromium(chromium, {
 });
 
 const rank = { FAIL: 2, WARN: 1, PASS: 0 };
-let checkedImages = 0, interactions = 'none';
+let checkedImages = 0, checkedCharts = 0, interactions = 'none';
 try {
   const { targetId } = await browser.send('Target.createTarget', { url: 'about:blank' });
   const { sessionId } = await browser.send('Target.attachToTarget', { targetId, flatten: true });
@@ -84,8 +85,8 @@ try {
   // Sections against the report.
   const sections = await evaluate(`[...document.querySelectorAll('section.pair')].map((s) => ({
     id: s.id, name: s.dataset.name, status: s.dataset.status }))`);
-  const pairs = report.pairs ?? [];
-  if (sections.length !== pairs.length) problems.push(`${sections.length} sections for ${pairs.length} pairs`);
+  const pairs = report.pairs ?? report.clips ?? [];  // an image diff's pairs, a geometric diff's clips or files
+  if (sections.length !== pairs.length) problems.push(`${sections.length} sections for ${pairs.length} entries of the report`);
   for (const p of pairs) {
     const s = sections.find((x) => x.name === p.name);
     if (!s) problems.push(`pair ${p.name}: no section`);
@@ -138,8 +139,22 @@ try {
     const swiped = await evaluate(state);
     if (swiped.clip !== 'inset(0px 0px 0px 30%)') problems.push(`swipe at 30: candidate clipped "${swiped.clip}"`);
     interactions = 'toggle and swipe';
-  } else if (pairs.some((p) => p.status !== 'PASS' && p.max_error)) {
+  } else if (report.kind !== 'bakes' && pairs.some((p) => p.status !== 'PASS' && p.max_error)) {  // bakes: figures only
     problems.push('no toggle or swipe for pairs that differ');
+  }
+
+  // A geometric diff's clips: each with more than one frame has its chart, one point per frame.
+  if (report.clips && report.kind === 'gltf') {
+    const charts = await evaluate(`[...document.querySelectorAll('section.pair')].map((s) => ({
+      name: s.dataset.name, points: s.querySelectorAll('svg.chart circle.frame').length,
+      width: s.querySelector('svg.chart')?.getBoundingClientRect().width ?? 0 }))`);
+    for (const clip of report.clips) {
+      const chart = charts.find((c) => c.name === clip.name);
+      if (!chart || clip.frames.length < 2) continue;
+      if (chart.points !== clip.frames.length) problems.push(`clip ${clip.name}: chart has ${chart.points} points for ${clip.frames.length} frames`);
+      if (chart.width === 0) problems.push(`clip ${clip.name}: chart not shown`);
+    }
+    checkedCharts = charts.filter((c) => c.points > 0).length;
   }
 
   if (shot) {
@@ -159,7 +174,8 @@ try {
 await browser.close();
 
 for (const problem of problems) console.log(`diff_page_check: ${htmlPath}: ${problem}`);
-console.log(`diff_page_check: ${htmlPath}: checked ${report.pairs?.length ?? 0} sections, ${checkedImages} pictures, ` +
+console.log(`diff_page_check: ${htmlPath}: checked ${(report.pairs ?? report.clips)?.length ?? 0} sections, ${checkedImages} pictures, ` +
+            (report.clips ? `${checkedCharts} charts, ` : '') +
             `${interactions}, ${requests.length} requests, the console and exceptions: ` +
             (problems.length ? `${problems.length} problem${problems.length > 1 ? 's' : ''}` : 'OK'));
 process.exit(problems.length ? 1 : 0);

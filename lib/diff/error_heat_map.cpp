@@ -31,8 +31,8 @@ Image render_error_heat_map(GpuContext& context, const ErrorHeatMap& map, int si
   options.width = options.height = size;
   options.shade = Shade::kModeDiff;
   Renderer renderer(context, side.asset, side.instances, options);
-  Bounds box;
-  box.add(view);
+  Bounds box = map.framing;
+  if (box.empty()) box.add(view);
   const Image frame = renderer.render(view, frame_camera(box, CameraOptions{}, 1.0), scalars);
 
   // The legend in a panel of its own on the right, so that it never hides the surface: a bar from 0

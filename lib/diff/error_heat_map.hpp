@@ -5,6 +5,7 @@
 
 #include "diff_side.hpp"
 
+#include "dqskin/camera.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/renderer.hpp"
 
@@ -19,6 +20,7 @@ struct ErrorHeatMap {
   const std::vector<float>& error;  // per vertex of side, scene units
   double top = 0;                   // the error the top of the color bar stands for (the clip's max)
   std::string caption;              // drawn top left ("t = 0.433 s"); only characters of the built-in font
+  Bounds framing;                   // the box the camera frames; when empty, the frame's own
 };
 
 // Renders the heat map (`size` pixels square, the automatic camera framed on the frame) and draws the

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <filesystem>
@@ -217,6 +218,7 @@ public:
                             c.max_error, c.over_warn, c.over_fail, std::max<uint64_t>(c.samples, 1));
     c.reason = verdict_reason(c, options_.thresholds, abs, options_.relative);
     if (!options_.out_dir.empty() && c.status == DiffStatus::kFail) c.heat_map = heat_map(clip_a, clip_b, c);
+    if (!options_.page_dir.empty()) page_pictures(clip_a, clip_b, c);
     return c;
   }
 
@@ -301,28 +303,69 @@ private:
     return r;
   }
 
-  // The worst frame of a failing clip, A's surface colored by its error against B.
-  std::string heat_map(const Clip* clip_a, const Clip* clip_b, const ClipGeometryDiff& c) {
+  // Each vertex's distance to its corresponding point on the other side's surface (0 where it has none).
+  static std::vector<float> vertex_errors(const Correspondence& from_to, size_t vertices, const SideFrame& from,
+                                          const SideFrame& onto) {
+    std::vector<float> error(vertices, 0.0f);
+    for (size_t i = 0; i < from_to.vertices.size(); ++i) {
+      const SurfacePoint& s = from_to.points[i];
+      glm::vec3 p(0.0f);
+      for (int k = 0; k < 3; ++k) p += s.weight[k] * at(onto.positions, s.vertex[k]);
+      error[from_to.vertices[i]] = glm::length(at(from.positions, from_to.vertices[i]) - p);
+    }
+    return error;
+  }
+
+  // Both sides deformed at the clip's worst frame.
+  void worst_frame(const Clip* clip_a, const Clip* clip_b, const ClipGeometryDiff& c, std::vector<SideFrame>& fa,
+                   std::vector<SideFrame>& fb) {
     const double time[1] = {c.worst.time};
-    std::vector<SideFrame> fa(1), fb(1);
+    fa.resize(1), fb.resize(1);
     deform(*deform_a_, a_, clip_a, time, fa);
     deform(*deform_b_, b_, clip_b, time, fb);
-    std::vector<float> error(a_.vertices, 0.0f);
-    for (size_t i = 0; i < a_to_b_.vertices.size(); ++i) {
-      const SurfacePoint& s = a_to_b_.points[i];
-      glm::vec3 p(0.0f);
-      for (int k = 0; k < 3; ++k) p += s.weight[k] * at(fb[0].positions, s.vertex[k]);
-      error[a_to_b_.vertices[i]] = glm::length(at(fa[0].positions, a_to_b_.vertices[i]) - p);
-    }
+  }
+
+  // The worst frame of a failing clip, A's surface colored by its error against B.
+  std::string heat_map(const Clip* clip_a, const Clip* clip_b, const ClipGeometryDiff& c) {
+    std::vector<SideFrame> fa, fb;
+    worst_frame(clip_a, clip_b, c, fa, fb);
+    const std::vector<float> error = vertex_errors(a_to_b_, a_.vertices, fa[0], fb[0]);
     // Made with the first image, so that a diff that stops before one (an input error) leaves nothing.
     std::filesystem::create_directories(options_.out_dir);
     const std::string file = diff_detail::heat_map_file_name(c.name);
     diff_detail::ErrorHeatMap map{a_, fa[0], error, c.max_error,
-                                  "t = " + diff_detail::number(c.worst.time) + " s"};
+                                  "t = " + diff_detail::number(c.worst.time) + " s", Bounds{}};
     const Image image = diff_detail::render_error_heat_map(context_.get(), map, options_.image_size);
     diff_detail::write_heat_map(options_.out_dir + "/" + file, image);
     sheet_.add(image, int(sheet_.size()));
     return file;
+  }
+
+  // The page's two pictures of a clip (GeometryDiffOptions::page_dir): A and B at the worst frame, each
+  // shaded by its own distance to the other (A's vertices against B's surface, B's against A's), on the
+  // clip's one scale and framed on the box of both, so that the pictures line up pixel for pixel.
+  void page_pictures(const Clip* clip_a, const Clip* clip_b, ClipGeometryDiff& c) {
+    std::vector<SideFrame> fa, fb;
+    worst_frame(clip_a, clip_b, c, fa, fb);
+    const std::vector<float> error_a = vertex_errors(a_to_b_, a_.vertices, fa[0], fb[0]);
+    const std::vector<float> error_b = vertex_errors(b_to_a_, b_.vertices, fb[0], fa[0]);
+    Bounds both;
+    for (const auto& [side, frame] : {std::pair{&a_, &fa[0]}, std::pair{&b_, &fb[0]}})
+      for (size_t v = 0; v < side->vertices; ++v)
+        if (side->on_surface[v]) both.add(at(frame->positions, v));
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "images/clip%04zu", page_pictures_++);  // by the clip's place in the report
+    const std::string time = "t = " + diff_detail::number(c.worst.time) + " s";
+    std::filesystem::create_directories(std::filesystem::path(options_.page_dir) / "images");
+    for (const char side : {'A', 'B'}) {
+      const bool is_a = side == 'A';
+      const diff_detail::ErrorHeatMap map{is_a ? a_ : b_, is_a ? fa[0] : fb[0], is_a ? error_a : error_b,
+                                          c.max_error, std::string(1, side) + "  " + time, both};
+      std::string& file = is_a ? c.page_a : c.page_b;
+      file = std::string(stem) + (is_a ? ".a.png" : ".b.png");
+      diff_detail::write_heat_map((std::filesystem::path(options_.page_dir) / file).string(),
+                                  diff_detail::render_error_heat_map(context_.get(), map, options_.image_size));
+    }
   }
 
   std::string write_sheet() {
@@ -343,6 +386,7 @@ private:
   std::vector<std::string> joint_names_;
   std::vector<uint32_t> joint_a_, joint_b_;  // each side's joint table into joint_names_
   size_t frames_at_once_ = 1;
+  size_t page_pictures_ = 0;  // clips with page pictures so far
   ContactSheet sheet_{256};
 };
 

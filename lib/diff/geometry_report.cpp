@@ -21,11 +21,7 @@ constexpr size_t kNotesShown = 10;
 
 Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
-// A length with the SI prefix that suits it: "3.1 mm"; "0 m" for zero.
-std::string length(double value) {
-  if (!std::isfinite(value)) return number(value);
-  return value == 0 ? "0 m" : diff_detail::length_with_unit(value, value);
-}
+std::string length(double value) { return diff_detail::scene_length(value); }
 
 double relative(double value, double diagonal) { return diagonal > 0 ? value / diagonal : 0; }
 

@@ -37,6 +37,10 @@ struct GeometryDiffOptions {
   // When set: for each failing clip, OUT/<clip>.error.png (its worst frame shaded by A's per-vertex error,
   // with a color bar and its scale in scene units), and OUT/worst_frames.png, a contact sheet of them.
   std::string out_dir;
+  // When set: for every clip, the pictures of `dqskin diff --html` (dqskin/diff_page.hpp) under
+  // PAGE/images: A's surface at the clip's worst frame shaded by its distance to B, and B's by its distance
+  // to A, framed alike and on one scale, so that a toggle between them shows what moved.
+  std::string page_dir;
   int image_size = 512;
   const std::atomic<bool>* cancel = nullptr;
 };
@@ -81,6 +85,7 @@ struct ClipGeometryDiff {
   std::vector<FrameDiff> frames;
   std::vector<JointDiff> joints;  // worst first
   std::string heat_map;           // relative to out_dir, or empty
+  std::string page_a, page_b;     // the page's pictures of A and B, relative to page_dir, or empty
 };
 
 // Something the files' animations say before anything is measured: a clip, channel or target in one file
