@@ -4,6 +4,7 @@
 #pragma once
 
 #include "baked_file.hpp"
+#include "memory_ledger.hpp"
 
 #include "dqskin/image_diff.hpp"
 
@@ -19,8 +20,9 @@ std::pair<DiffStatus, std::string> judge(const DiffThresholds& t, double max_err
 
 class DiffImageFiles {
 public:
-  // diff_pair of dqskin/image_diff.hpp, for a pair with both files.
-  virtual ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) const = 0;
+  // diff_pair of dqskin/image_diff.hpp, for a pair with both files. With a ledger, the pair holds what it
+  // needs in it (waiting while other pairs hold too much) from before its pixels are read until it ends.
+  virtual ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options, MemoryLedger* ledger = nullptr) const = 0;
   // An EXR texture's texels as points (read_baked_file); InputError with OpenImageIO's reason.
   virtual BakedPoints read_exr(const std::string& path) const = 0;
   // declared_size of an EXR; empty when it cannot be opened (read_exr then says why).

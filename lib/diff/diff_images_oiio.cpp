@@ -6,6 +6,7 @@
 #include "flip_heat_map.hpp"
 #include "flip_pair.hpp"
 #include "image_bands_oiio.hpp"
+#include "memory_ledger.hpp"
 #include "../base/byte_size.hpp"
 #include "../base/file_kind.hpp"
 #include "../base/image_file_oiio.hpp"
@@ -96,10 +97,10 @@ bool is_linear(const OIIO::ImageSpec& declared) {
   return t == OIIO::TypeDesc::HALF || t == OIIO::TypeDesc::FLOAT || t == OIIO::TypeDesc::DOUBLE;
 }
 
-// Why reading image `i` (0: A, 1: B) of a pair needs more memory than the budget, or "": A is read first,
-// then B beside it, then the measuring (FLIP's) and the heat map (when one may be written) beside both.
-// `a` and `b` are what the files declare; b is unused for A.
-std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const DiffOptions& options) {
+// The memory reading image `i` (0: A, 1: B) of a pair takes: A is read first, then B beside it, then the
+// measuring (FLIP's) and the heat map (when one may be written) beside both. `a` and `b` are what the
+// files declare; b is unused for A.
+uint64_t bytes_needed(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const DiffOptions& options) {
   using saturating::add;
   using saturating::mul;
   const bool heat_map = !options.heat_map_dir.empty() || !options.page_dir.empty();
@@ -113,7 +114,15 @@ std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpe
   } else if (i == 1 && heat_map) {
     beside = std::max(beside, mul(diff_detail::pixel_count(a), kHeatMapBytesPerPixel));
   }
-  const uint64_t need = add(add(other, diff_detail::float_bytes(s)), beside);
+  return add(add(other, diff_detail::float_bytes(s)), beside);
+}
+
+// Why reading image `i` (0: A, 1: B) needs more than --max-memory (see bytes_needed), or "".
+std::string over_budget(size_t i, const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const DiffOptions& options) {
+  const OIIO::ImageSpec& s = i == 0 ? a : b;
+  const uint64_t other = i == 0 ? 0 : diff_detail::float_bytes(a);
+  const bool heat_map = !options.heat_map_dir.empty() || !options.page_dir.empty();
+  const uint64_t need = bytes_needed(i, a, b, options);
   if (need <= options.max_memory) return "";
   std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
   if (s.depth > 1) size.append("x").append(std::to_string(s.depth));
@@ -277,7 +286,7 @@ void write_preview(const std::string& path, const FloatImage& image, bool linear
 
 class OiioDiffImageFiles final : public diff_detail::DiffImageFiles {
 public:
-  ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options) const override {
+  ImageDiff diff_pair(const DiffPair& pair, const DiffOptions& options, diff_detail::MemoryLedger* ledger) const override {
       assert(!pair.a.empty() || !pair.b.empty());
       ImageDiff d;
       d.name = pair.name;
@@ -291,27 +300,44 @@ public:
       }
 
       // Each file is opened and its declared size checked against --max-memory before its pixels are
-      // allocated: a header of a few bytes may declare any size.
+      // allocated: a header of a few bytes may declare any size. Both headers come first, so that the pair
+      // holds what it needs in the ledger of pairs compared at once before any pixel is read; a problem
+      // is still reported as reading one file after the other would meet it (A's, then B's).
       FloatImage images[2];
       OIIO::ImageSpec declared[2];
+      std::unique_ptr<OIIO::ImageInput> in[2];
+      std::string why[2];
       const std::string* paths[2] = {&pair.a, &pair.b};
-      for (size_t i = 0; i < 2; ++i) {
-        std::unique_ptr<OIIO::ImageInput> in;
-        std::string why = open_image(*paths[i], in);
-        if (why.empty()) {
-          declared[i] = in->spec();
-          why = over_budget(i, declared[0], declared[i], options);
+      size_t opened = 0;
+      for (; opened < 2; ++opened) {
+        why[opened] = open_image(*paths[opened], in[opened]);
+        if (why[opened].empty()) {
+          declared[opened] = in[opened]->spec();
+          why[opened] = over_budget(opened, declared[0], declared[opened], options);
         }
+        // A reader holds buffers of its own (OpenEXR's, as wide as a row): one file open at a time, each
+        // opened again when its pixels are read.
+        in[opened].reset();
+        if (!why[opened].empty()) break;
+      }
+      diff_detail::MemoryLedger::Reservation held;
+      if (ledger && opened > 0) held = ledger->reserve(bytes_needed(opened - 1, declared[0], declared[opened - 1], options));
+      for (size_t i = 0; i < 2; ++i) {
         try {
-          if (why.empty()) why = read_pixels(*in, images[i]);
+          if (why[i].empty()) {
+            why[i] = open_image(*paths[i], in[i]);
+            if (why[i].empty() && !mismatch(in[i]->spec(), declared[i]).empty()) why[i] = "the file changed while it was compared";
+          }
+          if (why[i].empty()) why[i] = read_pixels(*in[i], images[i]);
+          in[i].reset();  // its buffers freed before the next file is read
         } catch (const std::bad_alloc&) {
           images[0] = {}, images[1] = {};  // freed before the message is made
-          why = out_of_memory_message();
+          why[i] = out_of_memory_message();
         }
-        if (!why.empty()) {
+        if (!why[i].empty()) {
           d.unreadable = *paths[i];
-          d.read_error = why;
-          d.problem = "cannot read " + *paths[i] + ": " + why;
+          d.read_error = why[i];
+          d.problem = "cannot read " + *paths[i] + ": " + why[i];
           d.reason = d.problem;
           return d;
         }

@@ -5,16 +5,19 @@
 #include "diff_image_files.hpp"
 #include "diff_numbers.hpp"
 #include "../base/image_module.hpp"
+#include "../base/parallel_for.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/job.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -209,16 +212,38 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
     std::snprintf(stem, sizeof stem, "images/%04zu", i);
     pairs[i].page_stem = stem;  // by place in name order: the same names give the same files
   }
-  for (const DiffPair& pair : pairs) {
-    check_cancelled(options.cancel);
-    const DiffRule* rule = nullptr;
-    const DiffOptions pair_options = options_for(options, pair.name, &rule);
-    ImageDiff d = diff_pair(pair, pair_options);
-    d.thresholds = pair_options.thresholds;
-    d.metric = pair_options.metric;  // also for a pair that could not be measured
-    if (rule) d.rule = rule->pattern;
-    report.pairs.push_back(std::move(d));
-  }
+  // Pairs are compared side by side, each on its share of the threads: a folder of small renders keeps
+  // every core busy, where one image's bands alone would not (a 512² image is a band or two), and one
+  // large image still gets them all. They share --max-memory through a ledger. Pairs start in name order
+  // and the first failure (an error, not a failing pair) stops new ones, so the error reported is the one
+  // that comparing them one after the other would meet, and the report is in name order whatever finished
+  // first.
+  const size_t workers = std::clamp<size_t>(options.threads, 1, std::max<size_t>(pairs.size(), 1));
+  diff_detail::MemoryLedger ledger(options.max_memory);
+  DiffOptions shared = options;
+  shared.threads = unsigned(std::max<size_t>(1, options.threads / workers));
+  report.pairs.resize(pairs.size());
+  std::vector<std::exception_ptr> errors(pairs.size());
+  std::atomic<bool> stop{false};
+  concurrency::parallel_for(pairs.size(), unsigned(workers), [&](size_t i) {
+    if (stop) return;
+    try {
+      check_cancelled(options.cancel);
+      const DiffRule* rule = nullptr;
+      const DiffOptions pair_options = options_for(shared, pairs[i].name, &rule);
+      ImageDiff d = pairs[i].a.empty() || pairs[i].b.empty() ? diff_pair(pairs[i], pair_options)
+                                                             : diff_detail::diff_image_files().diff_pair(pairs[i], pair_options, &ledger);
+      d.thresholds = pair_options.thresholds;
+      d.metric = pair_options.metric;  // also for a pair that could not be measured
+      if (rule) d.rule = rule->pattern;
+      report.pairs[i] = std::move(d);
+    } catch (...) {
+      errors[i] = std::current_exception();
+      stop = true;
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   return report;
 }
 

@@ -217,6 +217,75 @@ TEST_F(ImageDiffTest, FoldersPairByRelativePathRecursivelyAndIgnoreOtherFiles) {
   EXPECT_EQ(r.status(), DiffStatus::kFail);
 }
 
+// A folder whose pairs pass, warn, fail, differ in size, are missing or unreadable, some of them FLIP's by
+// a rule: compared several at once (threads), under a budget that holds one pair but not two, the report
+// and the heat maps are those of one pair at a time.
+TEST_F(ImageDiffTest, PairsComparedAtOnceGiveTheReportOfOneAtATime) {
+  for (int i = 0; i < 12; ++i) {
+    const std::string name = "p" + std::to_string(10 + i) + ".png";
+    image("A/" + name, 64, 48, 3, 0.5f);
+    if (i % 6 == 1) continue;  // missing in B
+    if (i % 6 == 2) {
+      image("B/" + name, 32, 48, 3, 0.5f);  // another size
+    } else if (i % 6 == 3) {
+      text_file("B/" + name, "not a PNG");
+    } else {
+      image("B/" + name, 64, 48, 3, 0.5f, {{i * 37, 0, i % 6 == 4 ? 0.9f : 0.51f}, {i * 50, 2, 0.2f}});
+    }
+  }
+  DiffOptions o;
+  o.thresholds.fail = 0.1, o.thresholds.warn = 0.001;
+  DiffRule flip;
+  flip.pattern = "p2?.png";
+  flip.metric = DiffMetric::kFlip;
+  flip.thresholds = flip_thresholds({}, {});
+  o.rules = {flip};
+  const auto run = [&](unsigned threads, uint64_t budget, const std::string& out) {
+    DiffOptions t = o;
+    t.threads = threads;
+    t.max_memory = budget;
+    t.heat_map_dir = path(out);
+    std::string text = diff_json(diff_images(path("A"), path("B"), t));
+    for (size_t at; (at = text.find(t.heat_map_dir)) != std::string::npos;) text.replace(at, t.heat_map_dir.size(), "OUT");
+    return text;
+  };
+  const std::string one = run(1, kDefaultMaxMemory, "one");
+  EXPECT_EQ(nlohmann::json::parse(one)["pairs"].size(), 12u);
+  EXPECT_EQ(run(4, kDefaultMaxMemory, "four"), one);
+  EXPECT_EQ(run(4, 2 << 20, "tight"), one);  // one FLIP pair (about 1.3 MiB at 64x48) at a time, not two
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_ / "one")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(testing_support::read_file((dir_ / "four" / name).string()), testing_support::read_file(e.path().string())) << name;
+    EXPECT_EQ(testing_support::read_file((dir_ / "tight" / name).string()), testing_support::read_file(e.path().string())) << name;
+  }
+}
+
+// An error (not a failing pair) stops the diff; compared at once, it is still the first pair's in name order.
+TEST_F(ImageDiffTest, TheErrorOfPairsComparedAtOnceIsTheFirstInNameOrder) {
+  for (const char* name : {"a", "b", "c", "d", "e", "f", "g", "h"}) {
+    image(std::string("A/") + name + ".png", 64, 64, 3, 0.5f);
+    image(std::string("B/") + name + ".png", 64, 64, 3, 0.5f);
+  }
+  const std::string small = image("small.png", 2, 2, 1, 1.0f);
+  DiffOptions o;
+  o.threads = 4;
+  for (const char* pattern : {"f.png", "c.png"}) {
+    DiffRule rule;
+    rule.pattern = pattern;
+    rule.thresholds = o.thresholds;
+    rule.mask.images = {small};
+    o.rules.push_back(rule);
+  }
+  for (int run = 0; run < 10; ++run) {
+    try {
+      diff_images(path("A"), path("B"), o);
+      ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), small + ": the mask is 2x2, the images 64x64");
+    }
+  }
+}
+
 TEST_F(ImageDiffTest, ImageAndFolderCompareWithTheSameNameAsIdiffDoes) {
   const std::string a = image("a/frame.png", 2, 2, 3, 0.5f);
   image("b/frame.png", 2, 2, 3, 0.5f);

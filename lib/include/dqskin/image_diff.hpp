@@ -152,7 +152,9 @@ struct DiffOptions {
   // FLIP's viewing conditions: pixels per degree of visual angle; the FLIP paper's 0.7 m from a 0.7 m
   // wide 4K monitor by default (67.02).
   double pixels_per_degree = 67.02064327658226;
-  unsigned threads = 1;  // FLIP's bands computed at once
+  // Threads: pairs of a folder compared at once (up to this many), each with its share for FLIP's bands
+  // (a single pair gets them all). The report is the same for any number.
+  unsigned threads = 1;
   // When set, a heat map is written for every failing pair that could be compared, to
   // heat_map_dir/heat_map_name (folders created as needed): an 8-bit RGB PNG of each pixel's largest
   // channel difference, black where it is at most `fail`, else the viridis colormap from dark (just over
@@ -162,8 +164,9 @@ struct DiffOptions {
   // the same inputs.
   std::string heat_map_dir;
   // Most memory comparing one pair may take (--max-memory): both images as float, what reading takes and
-  // the heat map; for FLIP also its error map and the bands being computed. Checked against what each file declares before its pixels are allocated; a file that
-  // needs more is unreadable ("comparing it needs about …").
+  // the heat map; for FLIP also its error map and the bands being computed. Checked against what each
+  // file declares before its pixels are allocated; a file that needs more is unreadable ("comparing it
+  // needs about …"). Pairs compared at once share it: a pair waits while it does not fit beside the others.
   uint64_t max_memory = kDefaultMaxMemory;
   // When set, the pictures of the HTML page (diff_page.hpp) are written under it for every pair that
   // could be read: page_dir/DiffPair::page_stem.{a,b,diff}.png.
