@@ -7,7 +7,7 @@ on those the rules below forbid (docs/ARCHITECTURE.md, "Who may include whom").
 A folder may include itself and the folders its rule lists; a public header (lib/include/dqskin/X.hpp)
 counts as its owner folder's. Tests (*_test.cpp) are the library's first users, not part of it: they build
 their inputs with the loader and the commands, so they may include any folder, as may app/, fuzz/ and bench/,
-which drive the library. Only the loader compiles tinygltf, Draco and meshoptimizer; its tests may too.
+which drive the library, and python/ (the module). Only the loader compiles tinygltf, Draco and meshoptimizer; its tests may too.
 Only the image module's files (named *_oiio.cpp or *_oiio.hpp, built into libdqskin_image.so and opened
 at run time: lib/base/image_module.hpp) include OpenImageIO; tests and drivers may too.
 Exit status 0 when every include is allowed, 1 otherwise, 2 when a folder or public header has no rule.
@@ -61,7 +61,7 @@ PUBLIC = {
 
 # Third-party headers only the loader compiles.
 LOADER_ONLY = re.compile(r"^(tiny_gltf\.h|draco/|meshoptimizer\.h)")
-DRIVERS = ("app", "fuzz", "bench")
+DRIVERS = ("app", "fuzz", "bench", "python")
 # OpenImageIO: the image module only.
 IMAGE_MODULE_ONLY = re.compile(r"^OpenImageIO/")
 

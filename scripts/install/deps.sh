@@ -17,6 +17,8 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri                 # Mesa's EGL and its drivers (llvmpipe without a GPU)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests and benchmarks
   python3                                      # generators of the test inputs (scripts/make_*.py)
+  python3-dev pybind11-dev python3-numpy       # the Python module (python/)
+  python3-pytest                               # its tests
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
   chromium                                     # headless WebGL2 (SwiftShader) for the player's tests (web/)
   glslang-tools                                # glslangValidator: the shader kits' compile test (glsl/kits/)
