@@ -27,6 +27,17 @@ struct Command {
 // The whole command line (main.cpp): parses argv, runs the command named and returns its ExitCode.
 int run_cli(int argc, const char* const* argv);
 
+// A long option of a command as the command line parses it (for the Python module's keyword arguments):
+// its name without dashes, whether it is a flag (no value), and whether it takes several values
+// (--resource-root A B, --viewing D W P) rather than one.
+struct OptionShape {
+  std::string name;
+  bool flag = false;
+  bool several = false;
+};
+// The options of command `name` ("bake"), in --help's order; none for an unknown command.
+std::vector<OptionShape> command_options(const std::string& name);
+
 // Each adds its subcommand and flags to `app`, in the order --help lists them.
 Command add_info_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);

@@ -1,5 +1,6 @@
 #include "interrupt.hpp"
 #include "console.hpp"
+#include "exit_codes.hpp"
 
 #include "dqskin/atomic_file.hpp"
 
@@ -33,6 +34,7 @@ std::atomic<bool> g_dying{false};  // one thread prints the last message and end
 int g_pipe[2] = {-1, -1};          // the handler wakes the watchdog through it (write is async-signal-safe)
 int g_stderr = -1;                 // stderr as it was at the start: a library may have it redirected
 const char* g_what = "work";
+const std::atomic<bool>* g_embedded = nullptr;  // EmbeddedInterrupts' flag, while one is alive
 
 extern "C" void on_interrupt(int signal) {
   g_signal = signal;
@@ -104,6 +106,7 @@ void watchdog() {
 }  // namespace
 
 const std::atomic<bool>* catch_interrupts(const char* what) {
+  if (g_embedded) return g_embedded;
   g_what = what;
   if (g_stderr < 0) g_stderr = ::fcntl(2, F_DUPFD_CLOEXEC, 3);
   if (g_pipe[0] < 0 && ::pipe2(g_pipe, O_CLOEXEC | O_NONBLOCK) == 0) std::thread(watchdog).detach();
@@ -113,6 +116,10 @@ const std::atomic<bool>* catch_interrupts(const char* what) {
 }
 
 int die_of_interrupt(const char* what) {
+  if (g_embedded) {
+    print_error(std::string(what) + " stopped; no partial files were left under final names");
+    return kInterrupted;
+  }
   if (g_dying.exchange(true)) {
     for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // the watchdog is ending the process
   }
@@ -120,5 +127,8 @@ int die_of_interrupt(const char* what) {
               "; no partial files were left under final names");
   die_of(g_signal.load());
 }
+
+EmbeddedInterrupts::EmbeddedInterrupts(const std::atomic<bool>* cancel) { g_embedded = cancel; }
+EmbeddedInterrupts::~EmbeddedInterrupts() { g_embedded = nullptr; }
 
 }  // namespace dqskin::cli

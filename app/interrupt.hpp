@@ -14,7 +14,19 @@ namespace dqskin::cli {
 // the work in the last message ("bake").
 const std::atomic<bool>* catch_interrupts(const char* what);
 
-// Prints "dqskin: WHAT stopped by signal N; …" and re-raises the signal with its default action.
-[[noreturn]] int die_of_interrupt(const char* what);
+// Prints "dqskin: WHAT stopped by signal N; …" and re-raises the signal with its default action. Embedded
+// (below), prints "dqskin: WHAT stopped; …" and returns kInterrupted instead.
+int die_of_interrupt(const char* what);
+
+// The command line run inside another program (the Python module): while one is alive, catch_interrupts
+// installs no handler and starts no watchdog (the host owns its signals) and returns `cancel`, which the
+// host sets; die_of_interrupt returns. One at a time.
+class EmbeddedInterrupts {
+public:
+  explicit EmbeddedInterrupts(const std::atomic<bool>* cancel);
+  ~EmbeddedInterrupts();
+  EmbeddedInterrupts(const EmbeddedInterrupts&) = delete;
+  EmbeddedInterrupts& operator=(const EmbeddedInterrupts&) = delete;
+};
 
 }  // namespace dqskin::cli

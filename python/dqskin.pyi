@@ -1,6 +1,7 @@
 """Type stubs of the dqskin module (python/, docs/commands/python.md): what editors complete and check."""
 from types import SimpleNamespace
-from typing import Iterable, Optional, Sequence, Union
+from os import PathLike
+from typing import Any, Iterable, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -18,6 +19,9 @@ class OutputError(Error, OSError):
 
 class NoGpuContext(Error, RuntimeError):
     """No GL context for the backend asked (egl, osmesa)."""
+
+class Warning(UserWarning):
+    """A warning the command printed (bake, diff, lint, report), passed to the warnings module."""
 
 class Clip(SimpleNamespace):
     """An animation: a SimpleNamespace with these attributes."""
@@ -62,3 +66,13 @@ class Asset:
 
 def load(path: str, resource_root: Union[str, Iterable[str], None] = None,
          max_memory: Union[int, str, None] = None) -> Asset: ...
+
+_Path = Union[str, PathLike[str]]
+_Paths = Union[_Path, Sequence[_Path]]
+# The commands: their options as `dqskin COMMAND --help` lists them, as keyword arguments (dashes as
+# underscores; flags True or False; a list for several values or a comma-separated one).
+
+def bake(inputs: _Paths, **options: Any) -> dict[str, Any]: ...
+def report(inputs: _Paths, **options: Any) -> dict[str, Any]: ...
+def diff(a: _Path, b: _Path, **options: Any) -> dict[str, Any]: ...
+def lint(inputs: _Paths, **options: Any) -> dict[str, Any]: ...

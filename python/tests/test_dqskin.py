@@ -139,6 +139,21 @@ def test_bad_arguments_are_type_and_value_errors_naming_the_argument():
         dqskin.load(str(ARM), max_memory="1M").deform("bend", np.linspace(0, 1, 2000))
 
 
+def interrupt_after(script, delay):
+    """Runs `script` in a Python of its own, which prints "started" first, and sends it SIGINT `delay`
+    seconds later. Returns its stdout, its stderr and how long it took to end after the signal."""
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline().strip() == "started"
+        time.sleep(delay)
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=10)
+        return out, err, time.monotonic() - sent
+    finally:
+        child.kill()
+
+
 def test_ctrl_c_stops_a_long_deform_within_a_second():
     model = shared_model("BrainStem")
     script = (
@@ -151,17 +166,7 @@ def test_ctrl_c_stops_a_long_deform_within_a_second():
         "except KeyboardInterrupt:\n"
         "    print('interrupted', flush=True)\n"
     )
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                             env=dict(os.environ))
-    try:
-        assert child.stdout.readline().strip() == "started"
-        time.sleep(0.5)
-        sent = time.monotonic()
-        child.send_signal(signal.SIGINT)
-        out, err = child.communicate(timeout=10)
-        took = time.monotonic() - sent
-    finally:
-        child.kill()
+    out, err, took = interrupt_after(script, 0.5)
     assert out.strip() == "interrupted", (out, err)
     assert took < 1.0, f"stopped {took:.2f} s after Ctrl-C"
 
@@ -181,3 +186,78 @@ def test_the_type_stubs_name_what_the_module_has():
     assert methods == {name for name in dir(dqskin.Asset) if not name.startswith("_")}
     for name in ("load", "Asset", "InputError"):
         assert getattr(dqskin, name).__doc__, f"{name} has no docstring"
+
+
+def tree_bytes(root):
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(pathlib.Path(root).rglob("*")) if p.is_file()}
+
+
+def test_bake_writes_what_the_cli_writes_and_returns_its_summary(tmp_path):
+    summary = dqskin.bake(str(ARM), out=str(tmp_path / "py"), format=["ply", "vat"], fps=4, mode="lbs",
+                          backend="fast-cpu")
+    subprocess.run([CLI, "bake", str(ARM), "-o", str(tmp_path / "cli"), "--format", "ply,vat", "--fps", "4",
+                    "--mode", "lbs", "--backend", "fast-cpu"], check=True, capture_output=True)
+    py_files, cli_files = tree_bytes(tmp_path / "py"), tree_bytes(tmp_path / "cli")
+    assert py_files == cli_files  # every file, byte for byte (the manifest names no folder)
+    assert summary["event"] == "summary" and summary["failures"] == []
+    assert summary["files_written"] == len(py_files) - 1  # all but the manifest itself
+    assert summary["manifest"] == str(tmp_path / "py" / "manifest.json")
+
+
+def test_diff_and_lint_return_the_clis_json_reports(tmp_path):
+    bent = tmp_path / "b.gltf"
+    subprocess.run([sys.executable, str(SOURCE / "scripts" / "testdata" / "make_diff_cases.py"), "rotate-key", str(ARM),
+                    str(bent), "--joint", "elbow"], check=True, capture_output=True)
+    report = dqskin.diff(str(ARM), bent, relative=True, fail=1e-3, backend="fast-cpu")
+    cli = subprocess.run([CLI, "diff", str(ARM), str(bent), "--relative", "--fail", "1e-3", "--backend", "fast-cpu",
+                          "--json"], capture_output=True, text=True)
+    assert cli.returncode == 2  # a failing diff: a result, which the module returns rather than raises
+    assert report == __import__("json").loads(cli.stdout)
+    assert report["status"] == "FAIL" and report["clips"][0]["worst_joint"] == "elbow"
+
+    bad = SOURCE / "testdata" / "bad_skins" / "negative_weight.gltf"
+    lint = dqskin.lint([str(bad), str(ARM)], max_influences=4)
+    cli = subprocess.run([CLI, "lint", "--max-influences", "4", "--json", str(bad), str(ARM)], capture_output=True, text=True)
+    assert lint == __import__("json").loads(cli.stdout)
+
+
+def test_report_returns_each_inputs_report_json(tmp_path):
+    summary = dqskin.report(str(ARM), out=str(tmp_path), backend="fast-cpu")
+    assert "bending_arm/report.json" in summary["files"]
+    written = __import__("json").loads((tmp_path / "bending_arm" / "report.json").read_text())
+    assert summary["reports"] == [written]
+
+
+def test_commands_refuse_as_the_cli_does(tmp_path):
+    missing = tmp_path / "missing.glb"
+    expected = cli_error("bake", str(missing), "-o", str(tmp_path / "out"))
+    with pytest.raises(dqskin.InputError) as raised:
+        dqskin.bake(str(missing), out=str(tmp_path / "out"))
+    assert str(raised.value) == expected
+    with pytest.raises(dqskin.InputError, match=r"^--fail must be at least 0, not -1$"):
+        dqskin.diff(str(ARM), str(ARM), fail=-1)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'colour'"):
+        dqskin.bake(str(ARM), colour="red")
+    with pytest.raises(TypeError, match="argument 'keys' is a flag"):
+        dqskin.bake(str(ARM), keys="yes")
+    with pytest.raises(TypeError, match="argument 'fps' takes a string, a number or a path"):
+        dqskin.bake(str(ARM), fps={"a": 1})
+    with pytest.raises(TypeError, match="unexpected keyword argument 'json'"):
+        dqskin.lint(str(ARM), json=True)
+
+
+def test_ctrl_c_stops_a_long_bake_within_a_second(tmp_path):
+    model = shared_model("BrainStem")
+    script = (
+        "import dqskin\n"
+        "print('started', flush=True)\n"
+        "try:\n"
+        f"    dqskin.bake({str(model)!r}, out={str(tmp_path / 'out')!r}, format='ply', fps=120, backend='cpu')\n"
+        "    print('finished', flush=True)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n"
+    )
+    out, err, took = interrupt_after(script, 1.5)  # loading done, deforming under way
+    assert out.strip() == "interrupted", (out, err)
+    assert took < 1.0, f"stopped {took:.2f} s after Ctrl-C"
+    assert not list((tmp_path / "out").rglob("*.tmp*")), "no temporary file left"
