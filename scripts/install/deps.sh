@@ -19,6 +19,7 @@ packages=(
   python3                                      # generators of the test inputs (scripts/make_*.py)
   python3-dev pybind11-dev python3-numpy       # the Python module (python/)
   python3-pytest                               # its tests
+  blender                                      # its test inside a real host (python/tests/test_in_blender.py)
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
   chromium                                     # headless WebGL2 (SwiftShader) for the player's tests (web/)
   glslang-tools                                # glslangValidator: the shader kits' compile test (glsl/kits/)
