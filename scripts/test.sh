@@ -78,4 +78,15 @@ fi
 
 stage "sanitize test"
 ctest --preset sanitize -j "$jobs"
+
+# The Debian packages, built, checked by lintian and installed into a fresh Debian root (docs/building.md
+# "Debian packages"): a second Release build and a root from the apt mirror, so asked for by name.
+stage packages
+if [ "${DQSKIN_PACKAGES:-0}" = 1 ]; then
+  mapfile -t debs < <(bash scripts/package/debian.sh | tail -n 3)
+  bash scripts/package/debian_install_test.sh "${debs[@]}"
+else
+  echo "packages: SKIPPED: DQSKIN_PACKAGES=1 scripts/test.sh builds the Debian packages (a second Release build)," \
+       "runs lintian on them and installs them into a fresh Debian root (about 8 minutes more)"
+fi
 stage ""

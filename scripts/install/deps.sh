@@ -20,6 +20,7 @@ packages=(
   python3-dev pybind11-dev python3-numpy       # the Python module (python/)
   python3-pytest                               # its tests
   blender                                      # its test inside a real host (python/tests/test_in_blender.py)
+  lintian mmdebstrap                           # the Debian packages' checks (scripts/package/)
   clang libclang-rt-14-dev                     # the libFuzzer build (fuzz/)
   chromium                                     # headless WebGL2 (SwiftShader) for the player's tests (web/)
   glslang-tools                                # glslangValidator: the shader kits' compile test (glsl/kits/)
