@@ -261,3 +261,37 @@ def test_ctrl_c_stops_a_long_bake_within_a_second(tmp_path):
     assert out.strip() == "interrupted", (out, err)
     assert took < 1.0, f"stopped {took:.2f} s after Ctrl-C"
     assert not list((tmp_path / "out").rglob("*.tmp*")), "no temporary file left"
+
+
+@pytest.fixture(scope="module")
+def malformed(tmp_path_factory):
+    """The catalogue of malformed glTF files (scripts/testdata/make_malformed.py): (folder, names)."""
+    out = tmp_path_factory.mktemp("malformed")
+    subprocess.run([sys.executable, str(SOURCE / "scripts" / "testdata" / "make_malformed.py"), str(out)], check=True,
+                   capture_output=True)
+    names = []
+    for listing in ("cases.txt", "undeformable.txt"):
+        names += [line.split("\t")[0] for line in (out / listing).read_text().splitlines() if line.strip()]
+    return out, names
+
+
+def test_the_malformed_catalogue_is_refused_with_the_clis_messages(malformed, tmp_path, monkeypatch):
+    folder, names = malformed
+    assert len(names) > 150
+    monkeypatch.chdir(folder / "cwd")  # as the CLI's tests run: a buffer here must not be found
+    mismatches, refused = [], 0
+    for name in names:
+        path = str(folder / name)
+        result = subprocess.run([CLI, "bake", path, "--format", "ply", "-o", str(tmp_path / "out")],
+                                capture_output=True, text=True)
+        expected = result.stderr.splitlines()[0][len("dqskin: "):] if result.returncode == 2 else None
+        refused += expected is not None
+        try:
+            dqskin.load(path)
+            got = None
+        except dqskin.InputError as e:
+            got = str(e)
+        if got != expected:
+            mismatches.append(f"{name}: CLI {expected!r}, module {got!r}")
+    assert not mismatches, "\n".join(mismatches)
+    assert refused > 150, f"the CLI refused only {refused} of {len(names)}: the catalogue is not what it was"
