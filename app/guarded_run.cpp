@@ -4,15 +4,23 @@
 #include "exit_codes.hpp"
 #include "interrupt.hpp"
 
+#include "dqskin/error.hpp"
 #include "dqskin/gpu_context.hpp"
 #include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 
+#include <atomic>
 #include <filesystem>
 #include <new>
 #include <optional>
 
 namespace dqskin::cli {
+
+namespace {
+std::atomic<bool> g_output_error{false};
+}  // namespace
+
+bool take_output_error() { return g_output_error.exchange(false); }
 
 int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy) {
   // What runs after a failure runs without the memory ceiling: the failed work's memory is freed by then,
@@ -38,6 +46,11 @@ int guarded_run(const char* command, const std::function<int()>& body, const std
   } catch (const std::bad_alloc&) {
     tidy_up();
     print_error(out_of_memory_message());
+    return kUsageOrInputError;
+  } catch (const OutputError& e) {
+    tidy_up();
+    g_output_error = true;
+    print_error(e.what());
     return kUsageOrInputError;
   } catch (const std::exception& e) {
     tidy_up();

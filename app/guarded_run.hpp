@@ -17,4 +17,9 @@ namespace dqskin::cli {
 // `command` names the command in the interrupt's message ("bake: interrupted").
 int guarded_run(const char* command, const std::function<int()>& body, const std::function<void()>& tidy = {});
 
+// Whether the last failure guarded_run mapped was an OutputError (a file or folder that cannot be
+// written), which the exit status does not tell from an input error; cleared by the call.
+// For an embedding that raises its own kinds of errors (the Python module's OutputError).
+bool take_output_error();
+
 }  // namespace dqskin::cli

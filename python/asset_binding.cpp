@@ -1,5 +1,5 @@
 // dqskin.load and what it returns: the file's scenes, skins and their joints, and its clips with their
-// names, durations and key times, as plain Python objects (docs/commands/python.md).
+// names, durations and key times, as plain Python objects (docs/python.md).
 #include "interruptible.hpp"
 #include "python_asset.hpp"
 
@@ -143,6 +143,10 @@ void register_asset(py::module_& module) {
             throw InputError(path + ": " + e.what());  // as the command line prints it
           }
         });
+        // What the CLI prints as "dqskin: FILE: warning: …", as Python warnings at the caller's line.
+        const py::object warn = py::module_::import("warnings").attr("warn");
+        const py::object category = py::module_::import("dqskin").attr("Warning");
+        for (const std::string& w : loaded->asset.warnings) warn(path + ": " + w, category, 1);
         return PyAsset(std::move(loaded));
       },
       py::arg("path"), py::arg("resource_root") = py::none(), py::arg("max_memory") = py::none(),

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "guarded_run.hpp"
 #include "interrupt.hpp"
 
 #include <pybind11/pybind11.h>
@@ -25,6 +26,7 @@ namespace {
 
 struct Captured {
   int status = 0;
+  bool output_error = false;  // the command stopped on a file it could not write
   std::string out, err;
 };
 
@@ -43,7 +45,9 @@ Captured run_captured(const std::vector<std::string>& argv) {
     const cli::EmbeddedInterrupts embedded(&cancel);
     std::vector<const char*> args;
     for (const std::string& a : argv) args.push_back(a.c_str());
+    cli::take_output_error();
     c.status = cli::run_cli(int(args.size()), args.data());
+    c.output_error = cli::take_output_error();
     c.out = out.str(), c.err = err.str();
   });
   return c;
@@ -102,6 +106,9 @@ std::vector<std::string> command_line(const std::string& command, const std::vec
       if (s.name == name) shape = &s;
     if (!shape || name == machine.substr(2) || name == "json" || name == "json-progress")
       throw py::type_error(command + "() got an unexpected keyword argument '" + key + "'");
+    // bake's dry run prints a plan instead of baking: no summary to return.
+    if (command == "bake" && name == "dry-run")
+      throw py::type_error("bake() does not take 'dry_run': it prints a plan instead of baking; use the command line");
     add_option(argv, command, key, *shape, v);
   }
   argv.push_back(machine);
@@ -128,13 +135,13 @@ void raise_or_warn(const Captured& c, bool has_report) {
     throw py::error_already_set();
   }
   if (!has_report && c.status != cli::kSuccess) {
-    PyErr_SetString(module.attr("InputError").ptr(), error_line(c).c_str());
+    PyErr_SetString(module.attr(c.output_error ? "OutputError" : "InputError").ptr(), error_line(c).c_str());
     throw py::error_already_set();
   }
   std::istringstream lines(c.err);
   const py::object warn = py::module_::import("warnings").attr("warn");
   for (std::string line; std::getline(lines, line);)
-    if (line.rfind("dqskin: ", 0) == 0) warn(line.substr(8), module.attr("Warning"), 2);
+    if (line.rfind("dqskin: ", 0) == 0) warn(line.substr(8), module.attr("Warning"), 1);  // at the caller's line
 }
 
 py::object parse_json(const std::string& text) { return py::module_::import("json").attr("loads")(text); }

@@ -1,7 +1,7 @@
-"""Type stubs of the dqskin module (python/, docs/commands/python.md): what editors complete and check."""
+"""Type stubs of the dqskin module (python/, docs/python.md): what editors complete and check."""
 from types import SimpleNamespace
 from os import PathLike
-from typing import Any, Iterable, Optional, Sequence, Union
+from typing import Any, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -64,7 +64,7 @@ class Asset:
     def deform(self, clip: Union[Clip, str, int, None], times: Union[Sequence[float], npt.ArrayLike],
                mode: str = "dqs", backend: str = "auto") -> Frames: ...
 
-def load(path: str, resource_root: Union[str, Iterable[str], None] = None,
+def load(path: str, resource_root: Union[str, Sequence[str], None] = None,
          max_memory: Union[int, str, None] = None) -> Asset: ...
 
 _Path = Union[str, PathLike[str]]

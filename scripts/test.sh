@@ -83,8 +83,9 @@ ctest --preset sanitize -j "$jobs"
 # "Debian packages"): a second Release build and a root from the apt mirror, so asked for by name.
 stage packages
 if [ "${DQSKIN_PACKAGES:-0}" = 1 ]; then
-  mapfile -t debs < <(bash scripts/package/debian.sh | tail -n 3)
-  bash scripts/package/debian_install_test.sh "${debs[@]}"
+  bash scripts/package/debian.sh >build/packages.txt  # its status stops the stage; the last 3 lines are the packages
+  mapfile -t debs < <(tail -n 3 build/packages.txt)
+  DQSKIN_REQUIRE_ROOT_TEST=1 bash scripts/package/debian_install_test.sh "${debs[@]}"
 else
   echo "packages: SKIPPED: DQSKIN_PACKAGES=1 scripts/test.sh builds the Debian packages (a second Release build)," \
        "runs lintian on them and installs them into a fresh Debian root (about 8 minutes more)"

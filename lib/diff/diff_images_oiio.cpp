@@ -17,6 +17,7 @@
 
 #include "dqskin/atomic_file.hpp"
 #include "dqskin/error.hpp"
+#include "dqskin/job.hpp"
 #include "dqskin/memory_ceiling.hpp"
 
 #include <OpenImageIO/imagebuf.h>
@@ -321,7 +322,10 @@ public:
         if (!why[opened].empty()) break;
       }
       diff_detail::MemoryLedger::Reservation held;
-      if (ledger && opened > 0) held = ledger->reserve(bytes_needed(opened - 1, declared[0], declared[opened - 1], options));
+      if (ledger && opened > 0) {
+        held = ledger->reserve(bytes_needed(opened - 1, declared[0], declared[opened - 1], options));
+        check_cancelled(options.cancel);  // it may have waited for other pairs
+      }
       for (size_t i = 0; i < 2; ++i) {
         try {
           if (why[i].empty()) {

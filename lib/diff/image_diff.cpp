@@ -224,9 +224,11 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
   shared.threads = unsigned(std::max<size_t>(1, options.threads / workers));
   report.pairs.resize(pairs.size());
   std::vector<std::exception_ptr> errors(pairs.size());
-  std::atomic<bool> stop{false};
+  // The first pair (in name order) that failed so far: later ones are not started; earlier ones finish,
+  // since one of them may fail too and is then the error to report.
+  std::atomic<size_t> first_failed{pairs.size()};
   concurrency::parallel_for(pairs.size(), unsigned(workers), [&](size_t i) {
-    if (stop) return;
+    if (i > first_failed) return;
     try {
       check_cancelled(options.cancel);
       const DiffRule* rule = nullptr;
@@ -239,7 +241,8 @@ DiffReport diff_images(const std::string& a, const std::string& b, const DiffOpt
       report.pairs[i] = std::move(d);
     } catch (...) {
       errors[i] = std::current_exception();
-      stop = true;
+      for (size_t seen = first_failed; i < seen && !first_failed.compare_exchange_weak(seen, i);) {
+      }
     }
   });
   for (const std::exception_ptr& e : errors)

@@ -244,6 +244,14 @@ def test_commands_refuse_as_the_cli_does(tmp_path):
         dqskin.bake(str(ARM), fps={"a": 1})
     with pytest.raises(TypeError, match="unexpected keyword argument 'json'"):
         dqskin.lint(str(ARM), json=True)
+    with pytest.raises(TypeError, match="does not take 'dry_run'"):
+        dqskin.bake(str(ARM), dry_run=True)
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    expected = cli_error("bake", str(ARM), "-o", str(blocker / "out"))
+    with pytest.raises(dqskin.OutputError) as raised:  # a folder that cannot be made: an OSError
+        dqskin.bake(str(ARM), out=str(blocker / "out"))
+    assert str(raised.value) == expected and isinstance(raised.value, OSError)
 
 
 def test_ctrl_c_stops_a_long_bake_within_a_second(tmp_path):
@@ -284,6 +292,7 @@ def test_the_malformed_catalogue_is_refused_with_the_clis_messages(malformed, tm
         path = str(folder / name)
         result = subprocess.run([CLI, "bake", path, "--format", "ply", "-o", str(tmp_path / "out")],
                                 capture_output=True, text=True)
+        assert result.returncode in (0, 1, 2), f"{name}: dqskin bake exited {result.returncode}: {result.stderr}"
         expected = result.stderr.splitlines()[0][len("dqskin: "):] if result.returncode == 2 else None
         refused += expected is not None
         try:

@@ -960,7 +960,11 @@ def influence_set_cases(cat, base):
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return
+    # An option is never a folder: "--help" once became one, full of cases.
+    if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
         sys.exit("usage: make_malformed.py OUTDIR")
     outdir = sys.argv[1]
     if os.path.isdir(outdir) and os.listdir(outdir):
