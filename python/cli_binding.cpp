@@ -14,6 +14,7 @@
 
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -53,6 +54,13 @@ Captured run_captured(const std::vector<std::string>& argv) {
   return c;
 }
 
+// A str or an os.PathLike as the path it names; none for anything else.
+std::optional<std::string> path_text(const py::handle& v) {
+  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  if (py::hasattr(v, "__fspath__")) return py::str(v.attr("__fspath__")()).cast<std::string>();
+  return std::nullopt;
+}
+
 // The value of keyword `key` as command-line words, or a TypeError naming it.
 void add_option(std::vector<std::string>& argv, const std::string& command, const std::string& key,
                 const cli::OptionShape& shape, const py::handle& value) {
@@ -69,9 +77,8 @@ void add_option(std::vector<std::string>& argv, const std::string& command, cons
   }
   const auto word = [&](const py::handle& v) -> std::string {
     if (py::isinstance<py::bool_>(v)) throw wrong("takes a value");
-    if (py::isinstance<py::str>(v) || py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v))
-      return py::str(v).cast<std::string>();
-    if (py::hasattr(v, "__fspath__")) return py::str(v.attr("__fspath__")()).cast<std::string>();
+    if (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v)) return py::str(v).cast<std::string>();
+    if (std::optional<std::string> path = path_text(v)) return *path;
     throw wrong("takes a string, a number or a path");
   };
   if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
@@ -158,9 +165,9 @@ py::object summary_of(const std::string& out) {
 std::vector<std::string> paths(const py::handle& value, const char* command, const char* what) {
   std::vector<std::string> out;
   const auto one = [&](const py::handle& v) {
-    if (py::isinstance<py::str>(v)) out.push_back(v.cast<std::string>());
-    else if (py::hasattr(v, "__fspath__")) out.push_back(py::str(v.attr("__fspath__")()).cast<std::string>());
-    else throw py::type_error(std::string(command) + "(): " + what + " must be a path or a list of paths");
+    std::optional<std::string> path = path_text(v);
+    if (!path) throw py::type_error(std::string(command) + "(): " + what + " must be a path or a list of paths");
+    out.push_back(std::move(*path));
   };
   if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
     for (const py::handle& v : value) one(v);
@@ -202,10 +209,11 @@ void register_commands(py::module_& module) {
         py::object summary = job_summary("report", inputs, kwargs);
         // Each input's report.json, as the command wrote it, under "reports" (in the order of "files").
         py::list reports;
-        const std::string out = kwargs.contains("out") ? py::str(kwargs["out"]).cast<std::string>() : ".";
+        // report refuses to run without out=, which may be a number as a folder name
+        const std::string out = path_text(kwargs["out"]).value_or(py::str(kwargs["out"]).cast<std::string>());
         for (const py::handle& f : summary["files"]) {
           const std::string file = f.cast<std::string>();
-          if (file.size() >= 11 && file.compare(file.size() - 11, 11, "report.json") == 0) {
+          if (file.ends_with("report.json")) {
             const py::object path = py::module_::import("pathlib").attr("Path")(out, file);
             reports.append(parse_json(path.attr("read_text")(py::arg("encoding") = "utf-8").cast<std::string>()));
           }

@@ -217,8 +217,14 @@ public:
                              options_.thresholds.warn_percent, abs.hard_warn},
                             c.max_error, c.over_warn, c.over_fail, std::max<uint64_t>(c.samples, 1));
     c.reason = verdict_reason(c, options_.thresholds, abs, options_.relative);
-    if (!options_.out_dir.empty() && c.status == DiffStatus::kFail) c.heat_map = heat_map(clip_a, clip_b, c);
-    if (!options_.page_dir.empty()) page_pictures(clip_a, clip_b, c);
+    // The worst frame deformed once for both pictures that show it.
+    const bool out = !options_.out_dir.empty() && c.status == DiffStatus::kFail, page = !options_.page_dir.empty();
+    if (out || page) {
+      std::vector<SideFrame> fa, fb;
+      worst_frame(clip_a, clip_b, c, fa, fb);
+      if (out) c.heat_map = heat_map(fa[0], fb[0], c);
+      if (page) page_pictures(fa[0], fb[0], c);
+    }
     return c;
   }
 
@@ -326,14 +332,12 @@ private:
   }
 
   // The worst frame of a failing clip, A's surface colored by its error against B.
-  std::string heat_map(const Clip* clip_a, const Clip* clip_b, const ClipGeometryDiff& c) {
-    std::vector<SideFrame> fa, fb;
-    worst_frame(clip_a, clip_b, c, fa, fb);
-    const std::vector<float> error = vertex_errors(a_to_b_, a_.vertices, fa[0], fb[0]);
+  std::string heat_map(const SideFrame& fa, const SideFrame& fb, const ClipGeometryDiff& c) {
+    const std::vector<float> error = vertex_errors(a_to_b_, a_.vertices, fa, fb);
     // Made with the first image, so that a diff that stops before one (an input error) leaves nothing.
     std::filesystem::create_directories(options_.out_dir);
     const std::string file = diff_detail::heat_map_file_name(c.name);
-    diff_detail::ErrorHeatMap map{a_, fa[0], error, c.max_error,
+    diff_detail::ErrorHeatMap map{a_, fa, error, c.max_error,
                                   "t = " + diff_detail::number(c.worst.time) + " s", Bounds{}};
     const Image image = diff_detail::render_error_heat_map(context_.get(), map, options_.image_size);
     diff_detail::write_heat_map(options_.out_dir + "/" + file, image);
@@ -344,13 +348,11 @@ private:
   // The page's two pictures of a clip (GeometryDiffOptions::page_dir): A and B at the worst frame, each
   // shaded by its own distance to the other (A's vertices against B's surface, B's against A's), on the
   // clip's one scale and framed on the box of both, so that the pictures line up pixel for pixel.
-  void page_pictures(const Clip* clip_a, const Clip* clip_b, ClipGeometryDiff& c) {
-    std::vector<SideFrame> fa, fb;
-    worst_frame(clip_a, clip_b, c, fa, fb);
-    const std::vector<float> error_a = vertex_errors(a_to_b_, a_.vertices, fa[0], fb[0]);
-    const std::vector<float> error_b = vertex_errors(b_to_a_, b_.vertices, fb[0], fa[0]);
+  void page_pictures(const SideFrame& fa, const SideFrame& fb, ClipGeometryDiff& c) {
+    const std::vector<float> error_a = vertex_errors(a_to_b_, a_.vertices, fa, fb);
+    const std::vector<float> error_b = vertex_errors(b_to_a_, b_.vertices, fb, fa);
     Bounds both;
-    for (const auto& [side, frame] : {std::pair{&a_, &fa[0]}, std::pair{&b_, &fb[0]}})
+    for (const auto& [side, frame] : {std::pair{&a_, &fa}, std::pair{&b_, &fb}})
       for (size_t v = 0; v < side->vertices; ++v)
         if (side->on_surface[v]) both.add(at(frame->positions, v));
     char stem[32];
@@ -359,7 +361,7 @@ private:
     std::filesystem::create_directories(std::filesystem::path(options_.page_dir) / "images");
     for (const char side : {'A', 'B'}) {
       const bool is_a = side == 'A';
-      const diff_detail::ErrorHeatMap map{is_a ? a_ : b_, is_a ? fa[0] : fb[0], is_a ? error_a : error_b,
+      const diff_detail::ErrorHeatMap map{is_a ? a_ : b_, is_a ? fa : fb, is_a ? error_a : error_b,
                                           c.max_error, std::string(1, side) + "  " + time, both};
       std::string& file = is_a ? c.page_a : c.page_b;
       file = std::string(stem) + (is_a ? ".a.png" : ".b.png");
