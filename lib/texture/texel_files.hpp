@@ -28,7 +28,8 @@ class TexelFiles {
 public:
   virtual std::unique_ptr<TexelFileWriter::Impl> open_writer(AtomicFile& file, TexelType type, size_t width,
                                                              size_t height, int channels,
-                                                             const std::string& compression, bool digest) const = 0;
+                                                             const std::string& compression, bool digest,
+                                                             TexelRows rows) const = 0;
   virtual std::unique_ptr<TexelFileReader::Impl> open_reader(const std::string& path, const std::string& name,
                                                              TexelType type, size_t width, size_t height,
                                                              int channels) const = 0;

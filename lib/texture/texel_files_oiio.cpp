@@ -15,6 +15,7 @@
 #include <climits>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 #include <thread>
 
 namespace dqskin::texture {
@@ -77,6 +78,7 @@ public:
   std::string temporary_path;
   TexelType type{};
   size_t width = 0, height = 0, next_row = 0;
+  size_t first_row = 0, end_row = 0;  // the rows this file holds (EXR: its data window), of `height`
   int channels = 0;
   size_t row_bytes = 0;
   std::unique_ptr<OIIO::ImageOutput> exr;  // EXR: rows are compressed and written as chunks fill
@@ -100,7 +102,7 @@ public:
       next_row += take;
       rows -= take;
       if (data) data += take * row_bytes;
-      if (next_row - chunk_first == chunk_rows || next_row == height) flush_exr_rows();
+      if (next_row - chunk_first == chunk_rows || next_row == end_row) flush_exr_rows();
     }
   }
   void flush_exr_rows() {
@@ -112,20 +114,30 @@ public:
   }
 
   OiioTexelWriter(AtomicFile& output, TexelType texel_type, size_t image_width, size_t image_height,
-                  int image_channels, const std::string& requested_compression, bool keep_digest)
+                  int image_channels, const std::string& requested_compression, bool keep_digest, TexelRows rows)
       : file(&output), type(texel_type), width(image_width), height(image_height), channels(image_channels),
         digesting(keep_digest) {
+    first_row = next_row = chunk_first = rows.first;
+    end_row = rows.whole() ? height : rows.end;
     row_bytes = width * size_t(channels) * channel_bytes(type);
     if (width == 0 || height == 0 || width > size_t(INT_MAX) / 16 || height > size_t(INT_MAX))
       throw InputError(output.path() + ": " + std::to_string(width) + " x " + std::to_string(height) +
                        " texels is not a size an image file holds");
     temporary_path = output.hand_over();
+    if (first_row >= end_row || end_row > height)
+      throw std::logic_error("TexelFileWriter: rows " + std::to_string(first_row) + " to " + std::to_string(end_row) +
+                             " of an image " + std::to_string(height) + " high");
     if (is_png(type)) {
+      if (first_row != 0 || end_row != height)
+        throw std::logic_error("TexelFileWriter: a PNG is one compressed stream and holds the whole image");
       png = TexelImage(type, width, height, channels);
       return;
     }
     compression = exr_compression(requested_compression);
-    OIIO::ImageSpec spec(int(width), int(height), channels, oiio_type(type));
+    OIIO::ImageSpec spec(int(width), int(end_row - first_row), channels, oiio_type(type));
+    // Some rows of the image (exr_rows.hpp): the data window is those rows, the display window the image.
+    spec.y = int(first_row);
+    spec.full_height = int(height);
     // Lossless only, as the texels must reach the shader bit for bit (DWA and B44 are lossy, PXR24 rounds
     // floats to 24 bits). ZIP (zlib over blocks of 16 scanlines, OpenImageIO's level 4) and PIZ (wavelet
     // and Huffman) are decoded by every EXR reader, small ones included (three.js's EXRLoader, tinyexr), and
@@ -145,13 +157,13 @@ public:
     const size_t cores = std::max(1u, std::thread::hardware_concurrency());
     size_t blocks = std::max(4 * cores, ((size_t(8) << 20) + block_bytes - 1) / block_bytes);
     blocks = std::max<size_t>(1, std::min(blocks, (size_t(64) << 20) / block_bytes));
-    chunk_rows = std::min(height, blocks * block);
+    chunk_rows = std::min(end_row - first_row, blocks * block);
     chunk.resize(chunk_rows * row_bytes);
   }
 
   void write(const TexelImage& band) override {
     assert(band.type() == type && band.width() == width && band.channels() == channels);
-    assert(band.first_row() >= next_row && band.first_row() + band.rows() <= height);
+    assert(band.first_row() >= next_row && band.first_row() + band.rows() <= end_row);
     if (exr) {
       add_exr_rows(nullptr, band.first_row() - next_row);  // skipped rows are zeros
       add_exr_rows(band.data(), band.rows());
@@ -163,12 +175,12 @@ public:
 
   void close() override {
     if (exr) {
-      add_exr_rows(nullptr, height - next_row);
+      add_exr_rows(nullptr, end_row - next_row);
       flush_exr_rows();
       chunk = std::vector<uint8_t>();
       if (!exr->close()) fail(oiio_message(exr->geterror()));
       exr.reset();
-      if (!exr_is_whole(temporary_path, height, rows_per_block(compression)))
+      if (!exr_is_whole(temporary_path, end_row - first_row, rows_per_block(compression)))
         fail("the image is incomplete after writing (is the disk full?)");
       return;
     }
@@ -223,8 +235,8 @@ class OiioTexelFiles final : public TexelFiles {
 public:
   std::unique_ptr<TexelFileWriter::Impl> open_writer(AtomicFile& file, TexelType type, size_t width, size_t height,
                                                      int channels, const std::string& compression,
-                                                     bool digest) const override {
-    return std::make_unique<OiioTexelWriter>(file, type, width, height, channels, compression, digest);
+                                                     bool digest, TexelRows rows) const override {
+    return std::make_unique<OiioTexelWriter>(file, type, width, height, channels, compression, digest, rows);
   }
   std::unique_ptr<TexelFileReader::Impl> open_reader(const std::string& path, const std::string& name, TexelType type,
                                                      size_t width, size_t height, int channels) const override {

@@ -156,8 +156,8 @@ bool is_lossless_exr_compression(const std::string& name) {
 std::string exr_compression(const std::string& requested) { return requested.empty() ? "zip" : requested; }
 
 TexelFileWriter::TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
-                                 const std::string& compression, bool digest)
-    : impl_(texel_files().open_writer(file, type, width, height, channels, compression, digest)) {}
+                                 const std::string& compression, bool digest, TexelRows rows)
+    : impl_(texel_files().open_writer(file, type, width, height, channels, compression, digest, rows)) {}
 
 TexelFileWriter::~TexelFileWriter() = default;
 

@@ -79,6 +79,12 @@ private:
   uint64_t size_ = 0;
 };
 
+// Rows [first, end) of an image; end 0 means every row.
+struct TexelRows {
+  size_t first = 0, end = 0;
+  bool whole() const { return first == 0 && end == 0; }
+};
+
 // Writes an image into `file`'s temporary, band after band in row order (the caller commits the file):
 // EXR with channels R, G, B(, A), a lossless compression (exr_compression) and no capture date; PNG with
 // no colour-space chunk (the values are data, not colours). Rows never written are zeros. Byte-identical
@@ -91,22 +97,25 @@ private:
 class TexelFileWriter {
 public:
   // Throws OutputError naming the file when it cannot be created, InputError for sizes no file holds.
-  // `digest`: keep digest() (the decode-back check wants it; it costs a pass over the bytes).
+  // `digest`: keep digest() (the decode-back check wants it; it costs a pass over the bytes). `rows`: an
+  // EXR of those rows only (its data window), whose blocks are the whole image's, byte for byte, when its
+  // first row starts a block: what a shard writes of a texture for merge to splice (exr_rows.hpp).
   TexelFileWriter(AtomicFile& file, TexelType type, size_t width, size_t height, int channels,
-                  const std::string& compression = "", bool digest = false);
+                  const std::string& compression = "", bool digest = false, TexelRows rows = {});
   ~TexelFileWriter();
   TexelFileWriter(const TexelFileWriter&) = delete;
   TexelFileWriter& operator=(const TexelFileWriter&) = delete;
 
-  // The next rows: band.first_row() must be the first row not yet written (rows skipped are zeros).
+  // The next rows: band.first_row() must be the first row not yet written (rows skipped are zeros), all
+  // within the file's rows.
   void write(const TexelImage& band);
   // Writes the remaining rows as zeros, closes the file and checks that it is whole (an EXR's offset
   // table and last block, which a full disk can cut short while OpenImageIO reports nothing).
   void close();
   // The temporary being written (the file's final name comes with the commit).
   const std::string& temporary() const;
-  // With `digest`: the digest of every row of the image in row order (zeros included) as handed to the
-  // file; complete after close().
+  // With `digest`: the digest of every row of the file in row order (zeros included) as handed to it;
+  // complete after close().
   uint64_t digest() const;
 
   // What the image module does behind these calls (texel_files.hpp).
