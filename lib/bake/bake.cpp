@@ -3,6 +3,7 @@
 #include "dqskin/bake.hpp"
 
 #include "bake_plan.hpp"
+#include "bake_shares.hpp"
 #include "bake_work.hpp"
 #include "../base/byte_size.hpp"
 #include "dqskin/error.hpp"
@@ -169,7 +170,7 @@ public:
     // Only when some frame is deformed (a bones-only bake needs no deformer, nor its texture size limit).
     // The decode-back check of bone textures deforms too.
     const bool checks_bones = has(options.formats, BakeFormat::kBones) && options.textures.check && !input.skins.empty() &&
-                              std::any_of(input.clips.begin(), input.clips.end(), [](const ClipPlan& c) { return c.clip_mine; });
+                              std::any_of(input.clips.begin(), input.clips.end(), [](const ClipPlan& c) { return c.has_texture_frames(); });
     const bool deforms = checks_bones || std::any_of(input.clips.begin(), input.clips.end(), [&](const ClipPlan& c) {
                            return !frames_to_deform(c, options.formats).empty();
                          });
@@ -197,16 +198,18 @@ public:
     if (per_clip_formats(options_) == 0) return 0;  // only textures of every clip (--combine-clips): no folder
     journal_.make_folders(ledger_.absolute(clip.folder));
     if (clip.clip_mine) write_clip_files(clip);
+    // The bone textures: their head writes them; each slice checks its frames.
+    if (has(per_clip_formats(options_), BakeFormat::kBones) && !input_.skins.empty() && clip.has_texture_frames())
+      write_bones(clip_texture_set(clip));
 
     const unsigned formats = per_clip_formats(options_);
     std::vector<size_t> frames = frames_to_deform(clip, formats);
     if (frames.empty()) return 0;
     const size_t counted = frames.size();  // what the progress counter expects of this clip
     std::unique_ptr<VatClipBake> vat;
-    if (clip.clip_mine && has(formats, BakeFormat::kVat)) {
+    if (clip.has_texture_frames() && has(formats, BakeFormat::kVat)) {
       const Clock::time_point start = Clock::now();  // the texture's own passes: rest, planner, measuring
-      vat = std::make_unique<VatClipBake>(*deformer_, input_, TextureClips{{&clip}, clip.folder, "clip " + clip.name, true},
-                                          options_, look_.get());
+      vat = std::make_unique<VatClipBake>(*deformer_, input_, clip_texture_set(clip), options_, look_.get());
       ledger_.add_time(&BakeStageTimes::check, since(start));
     }
     // A texture of other frames than the bake's (the planner decimated them) deforms its own; the bake's
@@ -219,7 +222,7 @@ public:
     }
     // The morph animation takes every frame of the bake's pass (frames_to_deform gives them all).
     std::unique_ptr<MorphClipBake> morph;
-    if (clip.clip_mine && has(options_.formats, BakeFormat::kMorph)) morph = std::make_unique<MorphClipBake>(input_, clip, options_);
+    if (clip.morph_mine && has(options_.formats, BakeFormat::kMorph)) morph = std::make_unique<MorphClipBake>(input_, clip, options_);
     std::vector<double> times;
     for (size_t f : frames) times.push_back(clip.times[f]);
     auto sink = [&](const DeformedBatch& batch) { encode_batch(batch, clip, frames, shared, morph.get()); };
@@ -271,8 +274,11 @@ private:
     }
     ledger_.add_time(&BakeStageTimes::check, since(start));
     ledger_.record_files(names, committed);
-    for (size_t c = 0; c < vat.checks().size(); ++c)
-      ledger_.record_check(bake_detail::texture_check(vat.checks()[c], input_.path, vat.clips().clips[c]->name, "vat"));
+    for (size_t c = 0; c < vat.checks().size(); ++c) {
+      TextureCheck check = bake_detail::texture_check(vat.checks()[c], input_.path, vat.clips().clips[c]->name, "vat");
+      check.share = vat.share();
+      ledger_.record_check(std::move(check));
+    }
   }
 
   // The bone textures of a set of clips (texture/bones_bake.hpp).
@@ -291,16 +297,14 @@ private:
     ledger_.add_time(options_.textures.check ? &BakeStageTimes::check : &BakeStageTimes::sample, since(start));
   }
 
-  // Whole-animation files that need no deformation: the glb frames' shared images, the OBJ material library
-  // and the bone textures.
+  // Whole-animation files that need no deformation: the glb frames' shared images and the OBJ material
+  // library.
   void write_clip_files(const ClipPlan& clip) {
     if (glb_)
       for (const GlbImageFile& image : glb_->image_files())
         ledger_.write(clip.folder + "/" + image.name, image.bytes, journal_);
     if (has(options_.formats, BakeFormat::kObj) && !asset_.materials.empty())
       ledger_.write(clip.folder + "/materials.mtl", encode_mtl(asset_), journal_);
-    if (!has(per_clip_formats(options_), BakeFormat::kBones) || input_.skins.empty()) return;
-    write_bones({{&clip}, clip.folder, "clip " + clip.name, true});
   }
 
   // Encodes and writes the frames of one batch on all cores; the VAT rows go in order on one of them, the
@@ -314,7 +318,7 @@ private:
       if (task >= batch.frame_count) {
         const Clock::time_point start = Clock::now();
         for (size_t k = 0; k < batch.frame_count; ++k) {
-          if (task == batch.frame_count && vat) vat->append(frame_view(batch, k));
+          if (task == batch.frame_count && vat) vat->append(frame_view(batch, k), frames[batch.first_frame + k]);
           else morph->append(frame_view(batch, k));
         }
         ledger_.add_time(&BakeStageTimes::encode, since(start));
@@ -427,6 +431,7 @@ BakeReport bake(const std::vector<std::string>& inputs, const BakeOptions& optio
       options.plan.shard.index == 0 ? kit::shader_kit_files(kits) : std::vector<kit::KitFile>{};
 
   std::vector<InputPlan> plans = plan_inputs(inputs, plan_options(options), report.times.load);
+  deal_bake_shares(plans, options);
   for (const InputPlan& plan : plans) {
     for (const ClipPlan& clip : plan.clips) report.frames_total += frames_to_deform(clip, per_clip_formats(options)).size();
     if (options.textures.combine_clips && has(options.formats, BakeFormat::kVat))

@@ -1,6 +1,7 @@
 #include "bake_plan.hpp"
 #include "morph_bake.hpp"
 #include "vat_bake.hpp"
+#include "../texture/vat_writer.hpp"
 #include "../write/glb_appearance.hpp"
 
 namespace dqskin::bake_detail {
@@ -11,10 +12,20 @@ size_t TextureClips::frames() const {
   return n;
 }
 
+TextureClips clip_texture_set(const ClipPlan& clip) {
+  TextureClips set{{&clip}, clip.folder, "clip " + clip.name, clip.has_texture_frames()};
+  if (set.mine && !clip.whole_textures()) {
+    set.first = clip.texture_first;
+    set.end = clip.texture_end;
+    set.head = clip.clip_mine;
+  }
+  return set;
+}
+
 std::vector<TextureClips> texture_clip_sets(const InputPlan& input, bool combine) {
   std::vector<TextureClips> sets;
   if (!combine) {
-    for (const ClipPlan& clip : input.clips) sets.push_back({{&clip}, clip.folder, "clip " + clip.name, clip.clip_mine});
+    for (const ClipPlan& clip : input.clips) sets.push_back(clip_texture_set(clip));
     return sets;
   }
   if (input.clips.empty()) return sets;
@@ -35,11 +46,15 @@ unsigned per_clip_formats(const BakeOptions& options) {
 }
 
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats) {
-  const bool textures = clip.clip_mine && (formats & (unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kMorph)));
+  const bool morph = clip.morph_mine && (formats & unsigned(BakeFormat::kMorph));
+  const bool vat = clip.has_texture_frames() && (formats & unsigned(BakeFormat::kVat));
   const bool per_frame = formats & (unsigned(BakeFormat::kGlb) | unsigned(BakeFormat::kPly) | unsigned(BakeFormat::kObj));
+  auto texture_frame = [&](size_t f) {
+    return (f >= clip.texture_first && f < clip.texture_end) || (f == 0 && clip.texture_first > 0) || f == clip.texture_end;
+  };
   std::vector<size_t> out;
   for (size_t f = 0; f < clip.times.size(); ++f)
-    if (textures || (per_frame && clip.frame_mine[f])) out.push_back(f);
+    if (morph || (vat && texture_frame(f)) || (per_frame && clip.frame_mine[f])) out.push_back(f);
   return out;
 }
 
@@ -63,6 +78,11 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
     if (formats & unsigned(format))
       for (size_t f = 0; f < clip.times.size(); ++f)
         if (clip.frame_mine[f]) files.push_back(clip.frame_file(f, extension));
+  if (!options.textures.combine_clips) {
+    const std::vector<std::string> textures = planned_texture_files(input, clip_texture_set(clip), options);
+    files.insert(files.end(), textures.begin(), textures.end());
+  }
+  if ((formats & unsigned(BakeFormat::kMorph)) && clip.morph_mine) files.push_back(morph_file(clip));
   if (!clip.clip_mine) return files;
   if ((formats & unsigned(BakeFormat::kGlb)) && options.glb_images == GlbImages::kShared)
     for (size_t i = 0; i < input.asset->images.size(); ++i)
@@ -70,11 +90,6 @@ std::vector<std::string> planned_files(const InputPlan& input, const ClipPlan& c
         files.push_back(clip.folder + "/" + name);
   if ((formats & unsigned(BakeFormat::kObj)) && !input.asset->materials.empty())
     files.push_back(clip.folder + "/materials.mtl");
-  if (!options.textures.combine_clips) {
-    const std::vector<std::string> textures = planned_texture_files(input, {{&clip}, clip.folder, "clip " + clip.name, true}, options);
-    files.insert(files.end(), textures.begin(), textures.end());
-  }
-  if (formats & unsigned(BakeFormat::kMorph)) files.push_back(morph_file(clip));
   return files;
 }
 
@@ -83,11 +98,15 @@ std::vector<std::string> planned_texture_files(const InputPlan& input, const Tex
   if (!set.mine) return files;
   if (options.formats & unsigned(BakeFormat::kVat))
     for (auto& [name, size] : planned_vat_files(input, set, options.textures)) files.push_back(std::move(name));
-  if ((options.formats & unsigned(BakeFormat::kBones)) && !input.skins.empty()) {
+  if ((options.formats & unsigned(BakeFormat::kBones)) && !input.skins.empty() && set.head) {
     files.push_back(set.folder + "/" + kBonesMeshFile);
-    for (int skin : input.skins)
-      for (const char* extension : {".exr", ".json"})
-        files.push_back(set.folder + "/bones_skin" + std::to_string(skin) + extension);
+    // A slice's checked texture: its JSON as a template the merge fills with every slice's figures.
+    const bool to_fill = set.sliced() && options.textures.check;
+    for (int skin : input.skins) {
+      const std::string base = set.folder + "/bones_skin" + std::to_string(skin);
+      files.push_back(base + ".exr");
+      files.push_back(to_fill ? texture::template_file_name(base + ".json") : base + ".json");
+    }
   }
   return files;
 }

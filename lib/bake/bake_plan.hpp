@@ -18,18 +18,29 @@ struct TextureClips {
   std::string folder;  // relative to the output folder
   std::string what;    // for messages: "clip Walk", "clips Survey, Walk, Run"
   bool mine = false;   // this shard writes the textures (a combined texture goes with its first clip)
+  // A shard's slice of one clip's textures (ClipPlan::texture_first, texture_end): frames [first, end),
+  // whose rows it writes as pieces and whose figures it checks; `head`: it writes the other files too.
+  // The whole texture when end is 0.
+  size_t first = 0, end = 0;
+  bool head = true;
   size_t frames() const;  // of every clip together
+  bool sliced() const { return end != 0 && (first != 0 || end != frames()); }
 };
 
-// The texture sets of an input: one per clip, or one of every clip with `combine`.
+// One clip's textures as this shard bakes them.
+TextureClips clip_texture_set(const ClipPlan& clip);
+
+// The texture sets of an input: one per clip (with the shard's slice of it), or one of every clip with
+// `combine`.
 std::vector<TextureClips> texture_clip_sets(const InputPlan& input, bool combine);
 
 // The formats a clip's own pass bakes: with --combine-clips the textures (vat, bones) are baked once per
 // input, from their own pass over every clip, so they leave the clips' passes.
 unsigned per_clip_formats(const BakeOptions& options);
 
-// Frames to deform: all of them when whole-animation textures or the morph animation are due, else the
-// shard's own.
+// Frames to deform: all of them when the morph animation is due; a texture slice's frames and its
+// neighbours (the clip's first frame and the one after the slice, which its check compares with); and the
+// shard's own per-frame outputs' frames.
 std::vector<size_t> frames_to_deform(const ClipPlan& clip, unsigned formats);
 
 // Every frame time and, between neighbours, the midpoint: t0, (t0+t1)/2, t1, … (2n − 1 times; frame f at

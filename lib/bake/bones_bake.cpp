@@ -6,6 +6,7 @@
 #include "../texture/bones_mesh_glb.hpp"
 #include "../texture/vat_check.hpp"
 #include "../texture/vat_codec.hpp"
+#include "../texture/vat_writer.hpp"
 
 #include "dqskin/error.hpp"
 #include "dqskin/frame_view.hpp"
@@ -49,9 +50,11 @@ struct SkinCheck {
 
 // Compares one primitive at one time: each vertex skinned from `image` at `frame` against `reference`.
 // Vertices are split among threads; their figures are merged afterwards.
+// `baseline`: the clip's first frame before a slice that starts later, kept to measure motion from and
+// not compared.
 void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t prim_index, const Pose& pose,
                        const BoneImage& image, size_t frame, const PrimitiveView& reference, bool midpoint,
-                       bool first, size_t skinned, SkinCheck& check, unsigned threads) {
+                       bool first, bool baseline, size_t skinned, SkinCheck& check, unsigned threads) {
   const Primitive& prim = asset.meshes[size_t(instance.mesh)].primitives[prim_index];
   const size_t n = prim.vertex_count();
   const std::vector<double>& morph = pose.weights[size_t(instance.node)];
@@ -87,6 +90,11 @@ void compare_primitive(const Asset& asset, const MeshInstance& instance, size_t 
       const std::span<const float> weights(&prim.weights[v * per], per);
       const SkinnedVertex s = skin_vertex(image, frame, std::span<const int>(joints.data(), per), weights, p, nrm);
       const glm::dvec3 want(reference.positions[3 * v], reference.positions[3 * v + 1], reference.positions[3 * v + 2]);
+      if (baseline) {
+        check.first_decoded[skinned][v] = s.position;
+        check.first_reference[skinned][v] = want;
+        continue;
+      }
       out.errors.add(glm::length(s.position - want));
       out.bounds.add(want);
       if (first) {
@@ -173,7 +181,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
 
   BonesClipResult result;
   std::vector<std::unique_ptr<texture::BoneTextureWriter>> writers;
-  std::vector<std::string> bases;
+  std::vector<std::string> bases, jsons;
   std::vector<std::vector<texture::VatClipEntry>> tables;  // per skin: the clip table with its loops
   for (int skin : input.skins) {
     std::vector<JointTransforms> frames;
@@ -184,10 +192,13 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
     BoneImage image = pack_bones(profile, frames);
     if (const std::string why = bone_size_problem(profile, {image.width, image.height}, o.max_size); !why.empty())
       throw InputError(set.what + ": skin " + std::to_string(skin) + ": " + why);
+    // A slice's checked texture: the JSON as a template the merge fills with every slice's figures.
+    const std::string json = set.sliced() && o.check ? texture::template_file_name(base + ".json") : base + ".json";
     writers.push_back(std::make_unique<texture::BoneTextureWriter>(
-        options.plan.out_dir + "/" + base + ".exr", options.plan.out_dir + "/" + base + ".json", std::move(image),
+        options.plan.out_dir + "/" + base + ".exr", options.plan.out_dir + "/" + json, std::move(image),
         bone_texel_type(o), asset, skin, times, fps, o.exr_compression));
     bases.push_back(base);
+    jsons.push_back(json);
   }
 
   std::vector<std::optional<texture::DecodeCheck>> figures_of(writers.size());
@@ -200,11 +211,21 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
       const ClipPlan& clip = *set.clips[c];
       const size_t first = table[c].first_frame;
       std::vector<SkinCheck> checks(writers.size());
-      // Every frame, and between neighbours the midpoint.
-      const std::vector<double> clip_times = frames_and_midpoints(clip.times);
+      // Every frame, and between neighbours the midpoint (frame f at 2f, the midpoint after it at 2f + 1); a
+      // slice's frames and the midpoints after them, and before them the clip's first frame to measure
+      // motion from.
+      const std::vector<double> all_times = frames_and_midpoints(clip.times);
+      const size_t from = set.sliced() ? 2 * set.first : 0;
+      const size_t to = set.sliced() ? std::min(2 * set.end, all_times.size()) : all_times.size();
+      const size_t baseline = from > 0 ? 1 : 0;
+      std::vector<double> clip_times;
+      if (baseline) clip_times.push_back(all_times[0]);
+      for (size_t i = from; i < to; ++i) clip_times.push_back(all_times[i]);
       deformer->run(clip.clip, clip_times, [&](const DeformedBatch& batch) {
         for (size_t k = 0; k < batch.frame_count; ++k) {
-          const size_t i = batch.first_frame + k;
+          const size_t at_batch = batch.first_frame + k;
+          const bool only_baseline = at_batch < baseline;
+          const size_t i = only_baseline ? 0 : from + at_batch - baseline;
           const bool midpoint = i % 2 == 1;
           // Morph weights: the frames' poses were sampled for packing; only midpoints need sampling.
           const Pose midpoint_pose = midpoint ? sample_pose(asset, clip.clip, clip_times[i]) : Pose();
@@ -219,7 +240,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
               if (instance.skin == input.skins[s])
                 for (size_t p = 0; p < primitives; ++p, ++skinned)
                   compare_primitive(asset, instance, p, pose, images[s], first + i / 2, view.primitives[at + p],
-                                    midpoint, i == 0, skinned, checks[s], threads);
+                                    midpoint, i == 0, only_baseline, skinned, checks[s], threads);
               at += primitives;
             }
           }
@@ -242,6 +263,14 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
         }
         clip_figures[s].push_back(d);
         result.checks.push_back(texture_check(d, input.path, clip.name, "bones_skin" + std::to_string(input.skins[s])));
+        if (set.sliced()) {
+          texture::DecodeShare share;
+          share.frames = check.frames;
+          share.midpoints = check.midpoints;
+          share.max_normal_degrees = check.normal_degrees;
+          share.max_midpoint_normal_degrees = check.midpoint_normal_degrees;
+          result.checks.back().share = share.to_json().dump();
+        }
         whole[s].frames.merge(check.frames);
         whole[s].midpoints.merge(check.midpoints);
         whole[s].normal_degrees = std::max(whole[s].normal_degrees, check.normal_degrees);
@@ -250,7 +279,8 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
     }
     for (size_t s = 0; s < writers.size(); ++s) figures_of[s] = figures(whole[s]);
   }
-  if (writers.empty()) return result;
+  // Only the head writes the files (a slice's other shards check their frames); their temporaries go.
+  if (writers.empty() || !set.head) return result;
   // The skinned mesh the textures deform, first: a reader that finds a texture finds its mesh.
   const std::string mesh_name = set.folder + "/" + kBonesMeshFile;
   AtomicFile mesh(options.plan.out_dir + "/" + mesh_name, false);
@@ -261,10 +291,11 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
   for (size_t s = 0; s < writers.size(); ++s) {
     // One clip: the texture's figures are the clip's; several: each clip's too, in the clip table.
     const std::vector<texture::DecodeCheck> per_clip = set.clips.size() > 1 ? clip_figures[s] : std::vector<texture::DecodeCheck>();
+    const bool to_fill = set.sliced() && figures_of[s];
     const std::vector<Committed> c =
-        writers[s]->commit(figures_of[s] ? &*figures_of[s] : nullptr, commit, tables[s], per_clip);
+        writers[s]->commit(figures_of[s] && !to_fill ? &*figures_of[s] : nullptr, commit, tables[s], per_clip);
     result.files.emplace_back(bases[s] + ".exr", c[0]);
-    result.files.emplace_back(bases[s] + ".json", c[1]);
+    result.files.emplace_back(jsons[s], c[1]);
   }
   return result;
 }

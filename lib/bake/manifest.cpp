@@ -1,5 +1,6 @@
 #include "manifest.hpp"
 
+#include "file_pieces.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/version.hpp"
 
@@ -15,9 +16,11 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     json in = job_manifest::input_record(plan, report.inputs[i].error);
     for (size_t c = 0; c < plan.clips.size(); ++c) {
       const ClipPlan& clip = plan.clips[c];
-      json checks = json::object();
+      json checks = json::object(), shares = json::object();
       for (const TextureCheck& k : report.checks)
-        if (k.input == plan.path && k.clip == clip.name)
+        if (k.input == plan.path && k.clip == clip.name && !k.share.empty())
+          shares[k.texture] = json::parse(k.share);  // a slice's: the merge adds them up
+        else if (k.input == plan.path && k.clip == clip.name)
           checks[k.texture] = {{"max_error", k.max_error},
                                {"p99_error", k.p99_error},
                                {"max_midpoint_error", k.max_midpoint_error},
@@ -27,6 +30,7 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
                                {"samples", k.samples}};
       json& record = in["animations"][c];
       if (!checks.empty()) record["decode_check"] = std::move(checks);
+      if (!shares.empty()) record["decode_check_share"] = std::move(shares);
       for (const MorphCheck& m : report.morphs)
         if (m.input == plan.path && m.clip == clip.name)
           record["morph"] = {{"frames", m.frames},
@@ -39,8 +43,24 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
     }
     inputs.push_back(std::move(in));
   }
-  json outputs = json::array();
-  for (const BakeOutput& out : report.outputs) outputs.push_back({{"path", out.path}, {"size", out.size}, {"sha256", out.sha256}});
+  json outputs = json::array(), pieces = json::array();
+  for (const BakeOutput& out : report.outputs) {
+    outputs.push_back({{"path", out.path}, {"size", out.size}, {"sha256", out.sha256}});
+    // Pieces of files the merge assembles, with what it needs to know of each (file_pieces.hpp).
+    const std::optional<FilePiece> piece = file_piece(out.path);
+    if (!piece) continue;
+    json p = {{"path", out.path}, {"whole", piece->whole}, {"splice", to_string(piece->kind)}};
+    if (piece->kind == FilePiece::Kind::kExrRows) {
+      p["rows"] = {piece->first_row, piece->end_row};
+    } else {
+      p["texture"] = piece->texture;
+      const std::string folder = piece->whole.substr(0, piece->whole.rfind('/'));
+      for (size_t i = 0; i < plans.size(); ++i)
+        for (size_t c = 0; c < plans[i].clips.size(); ++c)
+          if (plans[i].clips[c].folder == folder) p["input"] = i, p["animation"] = c;
+    }
+    pieces.push_back(std::move(p));
+  }
 
   json formats = json::array();
   for (const auto& [bit, name] : {std::pair{BakeFormat::kGlb, "glb"}, {BakeFormat::kPly, "ply"}, {BakeFormat::kObj, "obj"},
@@ -56,6 +76,8 @@ std::string write_manifest(const std::vector<InputPlan>& plans, const BakeOption
       {"inputs", inputs},
       {"outputs", outputs},
   };
+  // Only a shard with pieces lists them: other manifests stay as they were.
+  if (!pieces.empty()) manifest["pieces"] = std::move(pieces);
   // Where the glb frames' images went, only where glb frames are written: other manifests stay as they were.
   if (options.formats & unsigned(BakeFormat::kGlb)) manifest["glb_images"] = to_string(options.glb_images);
   // --max-influences only where given: the manifests of other runs stay as they were.

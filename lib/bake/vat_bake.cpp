@@ -21,7 +21,7 @@ using namespace texture;
 TextureCheck texture_check(const texture::DecodeCheck& c, const std::string& input, const std::string& clip,
                            const std::string& texture) {
   return {input, clip, texture, c.max_error, c.p99_error, c.max_midpoint_error, c.p99_midpoint_error,
-          c.max_normal_degrees, c.max_midpoint_normal_degrees, c.samples};
+          c.max_normal_degrees, c.max_midpoint_normal_degrees, c.samples, {}};
 }
 
 namespace {
@@ -64,6 +64,21 @@ VatFormat chosen_format(const TextureOptions& o) {
 
 VatFormat vat_format(const TextureOptions& options) { return chosen_format(options); }
 
+std::optional<VatEncoding> sliceable_vat(const InputPlan& input, const ClipPlan& clip, const TextureOptions& options) {
+  if (planner_active(options) || options.combine_clips) return std::nullopt;
+  try {
+    size_t vertices = 0;
+    for (const VatSource& s : vat_sources(*input.asset, input.instances)) vertices += s.vertices;
+    VatEncoding e;
+    e.compression = options.exr_compression;
+    e.layout = plan_vat_layout(chosen_format(options), vertices, clip.times.size(), options.max_size, options.pot, clip.name);
+    if (vertices > 0 && sliceable(e)) return e;
+  } catch (const InputError&) {
+    // The profile cannot hold the clip: the whole texture's shard says so.
+  }
+  return std::nullopt;
+}
+
 
 std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const TextureClips& set,
                                                                const TextureOptions& options) {
@@ -99,10 +114,18 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
   std::vector<std::pair<std::string, uint64_t>> files;
   const std::string folder = set.folder + "/";
   for (size_t page = 0; page < l.pages; ++page) {
-    files.emplace_back(folder + page_file_name(names.positions, page, l.pages), image(format.type, l.position_channels()));
+    // A slice's pieces of the page, or the page's images.
+    const TexelRows rows = set.sliced() ? slice_page_rows(l, set.first, set.end, page) : TexelRows{0, l.page_height(page)};
+    if (rows.end == 0) continue;
+    auto name = [&](const std::string& whole) {
+      const std::string n = page_file_name(whole, page, l.pages);
+      return set.sliced() ? piece_file_name(n, rows.first, rows.end) : n;
+    };
+    files.emplace_back(folder + name(names.positions), image(format.type, l.position_channels()));
     if (const std::optional<TexelType> type = e.normal_image_type())
-      files.emplace_back(folder + page_file_name(names.normals, page, l.pages), image(*type, normal_channels(e)));
+      files.emplace_back(folder + name(names.normals), image(*type, normal_channels(e)));
   }
+  if (!set.head) return files;
   // The rest mesh: its attributes (a third texture coordinate set at most) and indices, and the source's
   // images, which it embeds with the materials.
   uint64_t images = 0;
@@ -110,7 +133,8 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
   files.emplace_back(folder + names.rest_mesh,
                      4096 + uint64_t(vertices) * (12 + 12 + 8 + 8 + 8) + uint64_t(indices) * 4 + images);
   if (!names.profile_side_file.empty()) files.emplace_back(folder + names.profile_side_file, 4096 + set.clips.size() * 200);
-  files.emplace_back(folder + names.dqskin_side_file, 8192 + uint64_t(set.frames()) * 200 + set.clips.size() * 400);
+  const std::string json = set.sliced() && options.check ? template_file_name(names.dqskin_side_file) : names.dqskin_side_file;
+  files.emplace_back(folder + json, 8192 + uint64_t(set.frames()) * 200 + set.clips.size() * 400);
   return files;
 }
 
@@ -165,8 +189,14 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, TextureClip
   }
   if (planned) info.plan = {to_string(planned->format.type), planned->step, planned->error(), planned->encoding_error,
                             planned->interpolation_error, planned->bytes};
+  // A slice that is not the head skips it where the encoding does not remap (dqskin's float and half
+  // store positions as they are) and no --max-error is relative to the clip's size: the bounds then only
+  // go into vat.json, which the head writes. Every frame deformed once more costs a slice as much as
+  // about a tenth of its own work.
+  const bool measured = !set_.sliced() || set_.head || format.profile != VatProfile::kDqskin ||
+                        (o.max_error > 0 && o.max_error_relative);
   VatMeasure measure(e, info.clips);
-  for (size_t c = 0; c < set_.clips.size(); ++c) {
+  for (size_t c = 0; c < set_.clips.size() && measured; ++c) {
     const size_t first = info.clips[c].first_frame;
     deformer.run(set_.clips[c]->clip, times_[c], [&](const DeformedBatch& batch) {
       for (size_t k = 0; k < batch.frame_count; ++k) {
@@ -176,12 +206,13 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, TextureClip
       }
     });
   }
-  measure.finish(info, what);
+  if (measured) measure.finish(info, what);
 
   const std::string folder = options.plan.out_dir + "/" + set_.folder;
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   std::string rest_glb = encode_rest_glb(*input.asset, input.instances, frame_view(rest, 0), e.layout, input.stem, look);
-  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb), o.check);
+  const VatSlice slice{set_.first, set_.end, set_.head};
+  writer_ = std::make_unique<VatWriter>(std::move(e), std::move(info), folder, names, std::move(rest_glb), o.check, slice);
   // Several clips: each has its own figures, its motion measured from its own first frame.
   if (set_.clips.size() > 1 && writer_->frame_check()) {
     std::vector<size_t> starts;
@@ -207,7 +238,12 @@ void VatClipBake::encode_own_frames(Deformer& deformer) {
 
 VatClipBake::~VatClipBake() = default;
 
-void VatClipBake::append(const FrameView& frame) { writer_->append(distinct_vertices(frame, sharing_)); }
+void VatClipBake::append(const FrameView& frame, size_t f) {
+  const VatSlice& slice = writer_->slice();
+  if (f >= slice.first && f < slice.end) writer_->append(distinct_vertices(frame, sharing_));
+  else if (f == 0) writer_->append_first(distinct_vertices(frame, sharing_));
+  else if (f == slice.end) writer_->append_next(distinct_vertices(frame, sharing_));
+}
 
 void VatClipBake::complete_images() {
   if (complete_) return;
@@ -225,18 +261,22 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
     // digests (docs/DESIGN.md §4.8). One reader for the whole texture; midpoints within each clip only.
     VatDecodeChecker checker(*writer_);
     size_t first = 0;
+    // A slice checks the midpoints after each of its frames (the last one's with the next slice's first).
+    const VatSlice& slice = writer_->slice();
     for (size_t c = 0; c < set_.clips.size(); ++c) {
       const std::vector<double>& t = times_[c];
       std::vector<double> midpoints;
-      for (size_t f = 0; f + 1 < t.size(); ++f) midpoints.push_back(t[f] + (t[f + 1] - t[f]) / 2);
+      const size_t from = std::max(first, slice.first) - first;
+      for (size_t f = from; f + 1 < t.size() && first + f < slice.end; ++f) midpoints.push_back(t[f] + (t[f + 1] - t[f]) / 2);
       if (!midpoints.empty())
         deformer.run(set_.clips[c]->clip, midpoints, [&](const DeformedBatch& batch) {
           for (size_t k = 0; k < batch.frame_count; ++k)
-            checker.midpoint(first + batch.first_frame + k, distinct_vertices(frame_view(batch, k), sharing_));
+            checker.midpoint(first + from + batch.first_frame + k, distinct_vertices(frame_view(batch, k), sharing_));
         });
       first += t.size();
     }
     whole = checker.finish();
+    if (set_.sliced()) share_ = checker.share().to_json().dump();
     for (size_t c = 0; c < set_.clips.size(); ++c) {
       const std::string what = "clip " + set_.clips[c]->name;
       const DecodeCheck check = checker.clip_result(c);

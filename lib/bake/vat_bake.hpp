@@ -27,6 +27,10 @@ namespace dqskin::bake_detail {
 // cannot write.
 texture::VatFormat vat_format(const TextureOptions& options);
 
+// The encoding of `clip`'s texture when shards may cut it into slices (texture::sliceable; no planner,
+// which weighs every frame, and a layout the profile can hold); none otherwise.
+std::optional<texture::VatEncoding> sliceable_vat(const InputPlan& input, const ClipPlan& clip, const TextureOptions& options);
+
 // The VAT files of one texture, relative to the output folder, each with an upper bound of its size (images
 // uncompressed). Throws InputError when the profile cannot hold the clip.
 std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan& input, const TextureClips& set,
@@ -45,8 +49,9 @@ public:
   // it through append(); else (the planner decimated them, or several clips) encode_own_frames() deforms
   // its frames.
   bool uses_bake_frames() const;
-  // The bake's pass: every frame of the clip, in order.
-  void append(const FrameView& frame);
+  // The bake's pass: frame f of the clip, frames in order; a slice takes its own frames and its
+  // neighbours (the clip's first frame, the frame after it) and ignores others.
+  void append(const FrameView& frame, size_t f);
   void encode_own_frames(Deformer& deformer);
   // Frames the texture holds, over every clip.
   size_t frames() const;
@@ -61,6 +66,8 @@ public:
 
   // The check's figures per clip (in the set's order), once finish() has run it.
   const std::vector<texture::DecodeCheck>& checks() const { return checks_; }
+  // A slice's figures as a share for the merge (TextureCheck::share); empty for a whole texture.
+  const std::string& share() const { return share_; }
   const TextureClips& clips() const { return set_; }
 
 private:
@@ -70,6 +77,7 @@ private:
   SharedVertexLayout sharing_;  // the texture holds each distinct vertex once (vertex_sharing.hpp)
   std::unique_ptr<texture::VatWriter> writer_;
   std::vector<texture::DecodeCheck> checks_;
+  std::string share_;
   bool complete_ = false;
 };
 

@@ -215,6 +215,8 @@ std::vector<InputPlan> plan_inputs(const std::vector<std::string>& inputs, const
     // Units are numbered after the input is known to load, so a failing input takes none.
     for (ClipPlan& cp : plan.clips) {
       cp.clip_mine = options.shard.owns(clip_unit++);
+      cp.morph_mine = cp.clip_mine;
+      cp.texture_end = cp.clip_mine ? cp.times.size() : 0;
       for (size_t f = 0; f < cp.times.size(); ++f) cp.frame_mine.push_back(options.shard.owns(frame_unit++));
     }
     plans.push_back(std::move(plan));

@@ -24,12 +24,20 @@ struct ClipPlan {
   double fps = 0;                 // 0 when the times are keys or explicit
   std::vector<bool> frame_mine;   // per frame: its per-frame outputs belong to this shard
   bool clip_mine = false;         // the clip's whole-animation outputs belong to this shard
+  // A bake deals some whole-animation work apart (bake/bake_shares.hpp); as planned here, it goes with
+  // clip_mine: the morph animation, and frames [texture_first, texture_end) of the clip's textures (a
+  // slice that this shard encodes and checks; all frames or none here).
+  bool morph_mine = false;
+  size_t texture_first = 0, texture_end = 0;
   int number_width = 4;
 
   // <folder>/frame_NNNN.<extension>
   std::string frame_file(size_t frame, const char* extension) const;
   // The frames whose per-frame outputs are this shard's.
   std::vector<size_t> my_frames() const;
+  // Whether this shard has frames of the clip's textures, and whether they are all of them.
+  bool has_texture_frames() const { return texture_end > texture_first; }
+  bool whole_textures() const { return texture_first == 0 && texture_end == times.size(); }
 };
 
 struct InputPlan {

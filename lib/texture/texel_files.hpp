@@ -32,7 +32,7 @@ public:
                                                              TexelRows rows) const = 0;
   virtual std::unique_ptr<TexelFileReader::Impl> open_reader(const std::string& path, const std::string& name,
                                                              TexelType type, size_t width, size_t height,
-                                                             int channels) const = 0;
+                                                             int channels, TexelRows rows) const = 0;
 
 protected:
   ~TexelFiles() = default;

@@ -200,13 +200,14 @@ public:
 class OiioTexelReader final : public TexelFileReader::Impl {
 public:
   OiioTexelReader(const std::string& path, const std::string& file_name, TexelType texel_type, size_t image_width,
-                  size_t image_height, int image_channels)
+                  size_t image_height, int image_channels, TexelRows rows)
       : name(file_name), type(texel_type), width(image_width), height(image_height), channels(image_channels) {
     in = OIIO::ImageInput::open(path);
     if (!in) throw OutputError(name + ": cannot be read back: " + oiio_message(OIIO::geterror()));
     const OIIO::ImageSpec& spec = in->spec();
-    if (size_t(spec.width) != width || size_t(spec.height) != height || spec.nchannels != channels ||
-        spec.format != oiio_type(type))
+    const size_t first = rows.first, end = rows.whole() ? height : rows.end;
+    if (size_t(spec.width) != width || size_t(spec.height) != end - first || size_t(spec.y) != first ||
+        size_t(spec.full_height) != height || spec.nchannels != channels || spec.format != oiio_type(type))
       throw OutputError(name + ": read back as " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                         " texels of " + std::to_string(spec.nchannels) + " " + spec.format.c_str() +
                         " channels, not what was written");
@@ -239,8 +240,9 @@ public:
     return std::make_unique<OiioTexelWriter>(file, type, width, height, channels, compression, digest, rows);
   }
   std::unique_ptr<TexelFileReader::Impl> open_reader(const std::string& path, const std::string& name, TexelType type,
-                                                     size_t width, size_t height, int channels) const override {
-    return std::make_unique<OiioTexelReader>(path, name, type, width, height, channels);
+                                                     size_t width, size_t height, int channels,
+                                                     TexelRows rows) const override {
+    return std::make_unique<OiioTexelReader>(path, name, type, width, height, channels, rows);
   }
 };
 

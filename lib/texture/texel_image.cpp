@@ -170,8 +170,8 @@ const std::string& TexelFileWriter::temporary() const { return impl_->temporary(
 uint64_t TexelFileWriter::digest() const { return impl_->digest(); }
 
 TexelFileReader::TexelFileReader(const std::string& path, const std::string& name, TexelType type, size_t width,
-                                 size_t height, int channels)
-    : impl_(texel_files().open_reader(path, name, type, width, height, channels)) {}
+                                 size_t height, int channels, TexelRows rows)
+    : impl_(texel_files().open_reader(path, name, type, width, height, channels, rows)) {}
 
 TexelFileReader::~TexelFileReader() = default;
 

@@ -129,9 +129,10 @@ private:
 class TexelFileReader {
 public:
   // `path` may be a temporary; `name` is what messages call the file. Throws OutputError when the file
-  // cannot be opened or is not `type` with `channels` channels and the expected size.
+  // cannot be opened or is not `type` with `channels` channels and the expected size (`rows`: a piece of
+  // those rows of the image, as TexelFileWriter writes one).
   TexelFileReader(const std::string& path, const std::string& name, TexelType type, size_t width, size_t height,
-                  int channels);
+                  int channels, TexelRows rows = {});
   ~TexelFileReader();
   TexelFileReader(const TexelFileReader&) = delete;
   TexelFileReader& operator=(const TexelFileReader&) = delete;

@@ -45,6 +45,32 @@ double ErrorHistogram::quantile(double q) const {
   return max_;
 }
 
+nlohmann::json ErrorHistogram::to_json() const {
+  nlohmann::json bins = nlohmann::json::array();
+  for (size_t i = 0; i < bins_.size(); ++i)
+    if (bins_[i]) bins.push_back({i, bins_[i]});
+  return {{"max", max_}, {"count", count_}, {"bins", std::move(bins)}};
+}
+
+ErrorHistogram ErrorHistogram::from_json(const nlohmann::json& j, const std::string& what) {
+  ErrorHistogram h;
+  try {
+    h.max_ = j.at("max").get<double>();
+    h.count_ = j.at("count").get<size_t>();
+    size_t sum = 0;
+    for (const nlohmann::json& bin : j.at("bins")) {
+      const size_t i = bin.at(0).get<size_t>(), n = bin.at(1).get<size_t>();
+      if (i >= h.bins_.size()) throw InputError("a bin past the last");
+      h.bins_[i] += n;
+      sum += n;
+    }
+    if (sum != h.count_ || !(h.max_ >= 0)) throw InputError("the bins do not add up to the count");
+  } catch (const std::exception& e) {
+    throw InputError(what + ": not an error histogram (" + e.what() + ")");
+  }
+  return h;
+}
+
 namespace {
 
 // Adds the distance of every decoded position to the reference's to `errors`, and lowers `min_cosine` to
@@ -123,12 +149,65 @@ void VatFrameCheck::frame(size_t f, const TexelImage& positions, const TexelImag
   c.reference_motion = std::max(c.reference_motion, motion(c.first_positions, nullptr, reference));
 }
 
+void VatFrameCheck::first_frame(const TexelImage& positions, const TexelImage* normals) {
+  std::vector<float> unused;
+  decode_vat_frame(e_, positions, normals, 0, clips_[0].first_positions, unused);
+}
+
+void VatFrameCheck::next_frame(size_t f, const TexelImage& positions, const TexelImage* normals) {
+  decode_vat_frame(e_, positions, normals, f, next_.positions, next_.normals);
+  next_.frame = f;
+}
+
+void DecodeShare::merge(const DecodeShare& other) {
+  frames.merge(other.frames);
+  midpoints.merge(other.midpoints);
+  max_normal_degrees = std::max(max_normal_degrees, other.max_normal_degrees);
+  max_midpoint_normal_degrees = std::max(max_midpoint_normal_degrees, other.max_midpoint_normal_degrees);
+}
+
+DecodeCheck DecodeShare::figures() const {
+  DecodeCheck c;
+  c.max_error = frames.max();
+  c.p99_error = frames.quantile(0.99);
+  c.max_midpoint_error = midpoints.max();
+  c.p99_midpoint_error = midpoints.quantile(0.99);
+  c.max_normal_degrees = max_normal_degrees;
+  c.max_midpoint_normal_degrees = max_midpoint_normal_degrees;
+  c.samples = frames.count() + midpoints.count();
+  return c;
+}
+
+nlohmann::json DecodeShare::to_json() const {
+  return {{"frames", frames.to_json()},
+          {"midpoints", midpoints.to_json()},
+          {"max_normal_degrees", max_normal_degrees},
+          {"max_midpoint_normal_degrees", max_midpoint_normal_degrees}};
+}
+
+DecodeShare DecodeShare::from_json(const nlohmann::json& j, const std::string& what) {
+  DecodeShare s;
+  if (!j.is_object()) throw InputError(what + ": not a decode-check share");
+  s.frames = ErrorHistogram::from_json(j.value("frames", nlohmann::json()), what + ".frames");
+  s.midpoints = ErrorHistogram::from_json(j.value("midpoints", nlohmann::json()), what + ".midpoints");
+  try {
+    s.max_normal_degrees = j.at("max_normal_degrees").get<double>();
+    s.max_midpoint_normal_degrees = j.at("max_midpoint_normal_degrees").get<double>();
+  } catch (const std::exception& e) {
+    throw InputError(what + ": " + e.what());
+  }
+  return s;
+}
+
 VatDecodeChecker::VatDecodeChecker(const VatWriter& writer)
     : writer_(writer), e_(writer.encoding()),
       frames_(writer.frame_check() ? *writer.frame_check()
                                    : throw std::logic_error("VatDecodeChecker: the writer did not check its frames")),
       pages_verified_(writer.encoding().layout.pages, false), midpoints_(frames_.clips()) {
-  open_page(0);
+  // Pages the slice has no rows in are not this writer's to verify.
+  for (size_t page = 0; page < pages_verified_.size(); ++page)
+    if (writer.page_rows(page).end == 0) pages_verified_[page] = true;
+  open_page(e_.layout.page_of(writer.slice().first));
 }
 
 VatDecodeChecker::~VatDecodeChecker() = default;
@@ -140,15 +219,17 @@ void VatDecodeChecker::open_page(size_t page) {
   const VatWriter::WrittenImage positions = writer_.positions(page), normals = writer_.normals(page);
   positions_name_ = positions.name;
   normals_name_ = normals.name;
+  rows_ = writer_.page_rows(page);
+  const TexelRows file_rows = rows_.first == 0 && rows_.end == l.page_height(page) ? TexelRows{} : rows_;
   positions_ = std::make_unique<TexelFileReader>(positions.temporary, positions.name, l.format.type, l.width,
-                                                 l.page_height(page), l.position_channels());
+                                                 l.page_height(page), l.position_channels(), file_rows);
   normals_.reset();
   if (const std::optional<TexelType> type = e_.normal_image_type())
     normals_ = std::make_unique<TexelFileReader>(normals.temporary, normals.name, *type, l.width, l.page_height(page),
-                                                 normal_channels(e_));
+                                                 normal_channels(e_), file_rows);
   page_ = page;
   band_read_ = false;
-  digested_rows_ = 0;
+  digested_rows_ = rows_.first;
   position_digest_ = TexelDigest();
   normal_digest_ = TexelDigest();
 }
@@ -173,7 +254,7 @@ void VatDecodeChecker::read_rows(size_t first, size_t count) {
 }
 
 void VatDecodeChecker::finish_page() {
-  const size_t height = e_.layout.page_height(page_);
+  const size_t height = rows_.end;
   const size_t rows = std::max<size_t>(256, position_band_.rows());
   while (digested_rows_ < height) read_rows(digested_rows_, std::min(rows, height - digested_rows_));
   band_read_ = false;
@@ -184,8 +265,10 @@ void VatDecodeChecker::finish_page() {
 }
 
 const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
-  for (const Decoded* d : {&current_, &next_})
+  for (const Decoded* d : std::initializer_list<const Decoded*>{&current_, &next_, &frames_.next()})
     if (d->frame == f) return *d;
+  if (f < writer_.slice().first || f >= writer_.slice().end)
+    throw std::logic_error("VatDecodeChecker: frame " + std::to_string(f) + " is not the slice's");
   const VatLayout& l = e_.layout;
   open_page(l.page_of(f));
   // Frame-major layouts read bands of whole frames, at least 256 rows and 8 MiB (many EXR blocks of 16 or
@@ -197,7 +280,7 @@ const VatDecodeChecker::Decoded& VatDecodeChecker::decode(size_t f) {
   if (!in_band) {
     size_t first = rows.first, count = rows.count;
     if (l.frame_major()) {
-      const size_t height = l.page_height(l.page_of(f));
+      const size_t height = rows_.end;
       const size_t row_bytes = l.width * size_t(l.position_channels()) * channel_bytes(l.format.type);
       const size_t band_rows = std::max<size_t>(256, (size_t(8) << 20) / row_bytes);
       const size_t frames = std::max<size_t>(1, band_rows / rows.count);
@@ -257,6 +340,18 @@ DecodeCheck VatDecodeChecker::finish() {
   c.max_midpoint_normal_degrees = degrees(midpoint_min_cosine);
   c.samples = frames.count() + midpoints.count();
   return c;
+}
+
+DecodeShare VatDecodeChecker::share() const {
+  DecodeShare s;
+  for (size_t c = 0; c < midpoints_.size(); ++c) {
+    s.frames.merge(frames_.clip(c).errors);
+    s.midpoints.merge(midpoints_[c].errors);
+  }
+  const DecodeCheck whole = midpoints_.size() == 1 ? clip_result(0) : DecodeCheck();
+  s.max_normal_degrees = whole.max_normal_degrees;
+  s.max_midpoint_normal_degrees = whole.max_midpoint_normal_degrees;
+  return s;
 }
 
 DecodeCheck VatDecodeChecker::clip_result(size_t c) const {

@@ -9,6 +9,9 @@
 #include "vat_side_files.hpp"
 #include "vat_writer.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,6 +29,9 @@ public:
   size_t count() const { return count_; }
   // The smallest bin edge at or above the q-quantile (never above max()).
   double quantile(double q) const;
+  // As a shard's manifest records it: {"max", "count", "bins": [[bin, count], ...]} (the bins not empty).
+  nlohmann::json to_json() const;
+  static ErrorHistogram from_json(const nlohmann::json& j, const std::string& what);
 
 private:
   static constexpr int kPerDecade = 200, kFirstDecade = -12, kDecades = 18;
@@ -50,6 +56,16 @@ public:
   // naming the file (`positions_name`, `normals_name`) and texel when a texel is not finite.
   void frame(size_t f, const TexelImage& positions, const TexelImage* normals, const FrameView& reference,
              const std::string& positions_name, const std::string& normals_name);
+  // A slice's neighbours (VatWriter::append_first, append_next), decoded, never compared: the clip's first
+  // frame (one clip), which a later slice measures motion from; the frame after the slice, for the last
+  // midpoint.
+  void first_frame(const TexelImage& positions, const TexelImage* normals);
+  void next_frame(size_t f, const TexelImage& positions, const TexelImage* normals);
+  struct Decoded {
+    size_t frame = SIZE_MAX;
+    std::vector<float> positions, normals;
+  };
+  const Decoded& next() const { return next_; }
 
   struct Clip {
     size_t first_frame = 0;
@@ -66,6 +82,19 @@ private:
   const VatEncoding& e_;
   std::vector<Clip> clips_;
   std::vector<float> positions_, normals_;
+  Decoded next_;
+};
+
+// A slice's figures in a form that adds up over slices (`dqskin merge`): the histograms and the largest
+// angles. The whole texture's figures are those of the sum.
+struct DecodeShare {
+  ErrorHistogram frames, midpoints;
+  double max_normal_degrees = 0, max_midpoint_normal_degrees = 0;
+  void merge(const DecodeShare& other);
+  DecodeCheck figures() const;
+  nlohmann::json to_json() const;
+  // Throws InputError naming `what` when `j` is not one.
+  static DecodeShare from_json(const nlohmann::json& j, const std::string& what);
 };
 
 // The read-back half (docs/DESIGN.md §4.8): reads the images back from the files written, proves that
@@ -87,6 +116,8 @@ public:
   DecodeCheck finish();
   // Clip c's figures (VatFrameCheck::set_clip_starts), once finish() has run.
   DecodeCheck clip_result(size_t c) const;
+  // The figures as a share that adds up over slices (one clip), once finish() has run.
+  DecodeShare share() const;
 
   // How far clip c's deformed meshes and decoded ones move away from its first frame decoded (largest
   // vertex distance over the clip, frames and midpoints): a texture whose frames all decode to one pose
@@ -96,10 +127,7 @@ public:
   double decoded_motion(size_t c = 0) const;
 
 private:
-  struct Decoded {
-    size_t frame = SIZE_MAX;
-    std::vector<float> positions, normals;
-  };
+  using Decoded = VatFrameCheck::Decoded;
   const Decoded& decode(size_t f);
   void open_page(size_t page);
   // Reads rows [first, first + count) of the current page into the bands, digesting those not yet
@@ -112,6 +140,7 @@ private:
   const VatEncoding& e_;
   const VatFrameCheck& frames_;
   size_t page_ = SIZE_MAX;  // the page the readers are open on
+  TexelRows rows_;          // the rows of that page the writer wrote
   std::string positions_name_, normals_name_;
   std::unique_ptr<TexelFileReader> positions_, normals_;
   TexelImage position_band_, normal_band_;

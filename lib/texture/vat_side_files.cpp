@@ -193,6 +193,13 @@ Box houdini_encoded_bounds(const Box& clip_bounds, const VatLayout& l, const std
   return b;
 }
 
+std::string with_decode_check(const std::string& json_text, const DecodeCheck& check, const std::string& what) {
+  Json doc = Json::parse(json_text, nullptr, false);
+  if (!doc.is_object()) throw InputError(what + ": not a JSON object");
+  doc["decode_check"] = check.to_json();
+  return dump(doc, 2);
+}
+
 std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFileNames& names, const DecodeCheck* check) {
   const VatLayout& l = e.layout;
   Json doc;

@@ -77,6 +77,11 @@ Box decimal_bounds(const Box& box);
 // `what` for more than 899 rows per frame, which that code cannot hold.
 Box houdini_encoded_bounds(const Box& clip_bounds, const VatLayout& layout, const std::string& what);
 
+// A side file written without its figures (a slice's template, VatSlice) with them: what vat_json and the
+// bone textures' writer write with a check, byte for byte (the figures are the document's last member).
+// Throws InputError naming `what` when `json_text` is not a JSON object.
+std::string with_decode_check(const std::string& json_text, const DecodeCheck& check, const std::string& what);
+
 // dqskin's JSON: everything a runtime or a person needs, for every profile.
 std::string vat_json(const VatEncoding& e, const VatClipInfo& info, const VatFileNames& names,
                      const DecodeCheck* check);

@@ -11,6 +11,7 @@
 #include "folder_check.hpp"
 #include "free_unbounded.hpp"
 #include "manifest_swap.hpp"
+#include "piece_assembly.hpp"
 
 #include <algorithm>
 #include <iterator>
@@ -28,7 +29,8 @@ namespace fs = std::filesystem;
 
 // Per animation, what only the shard that wrote its whole-animation files knows.
 // (render: the mode-diff scale, which only shards that drew frames of the animation record).
-constexpr const char* kShardOwnKeys[] = {"decode_check", "morph", "mode_diff_max_distance"};
+// A texture cut into slices: each slice's figures as a share, which the merge adds up (piece_assembly.hpp).
+constexpr const char* kShardOwnKeys[] = {"decode_check", "decode_check_share", "morph", "mode_diff_max_distance"};
 
 const json* animation(const json& manifest, size_t input, size_t clip) {
   const json& inputs = manifest["inputs"];
@@ -57,7 +59,7 @@ Level element_level(Level array) {
 
 // Whether member `key` of an object at `level` is the shard's own share, which shards do not agree on.
 bool shard_own(Level object, std::string_view key) {
-  if (object == Level::kManifest) return key == "shard" || key == "outputs";
+  if (object == Level::kManifest) return key == "shard" || key == "outputs" || key == "pieces";
   return object == Level::kClip && std::find(std::begin(kShardOwnKeys), std::end(kShardOwnKeys), key) != std::end(kShardOwnKeys);
 }
 
@@ -222,6 +224,14 @@ MergeReport merge_shards(const std::string& given_folder, unsigned threads, cons
     merge_job(folder, shards, merged.back().second, report.refusals);
   }
   if (!report.refusals.empty()) return report;
+  // Files written in pieces, whole (the pieces go once the merged manifest is in).
+  std::vector<std::string> pieces;
+  size_t job = 0;
+  for (const auto& [base, shards] : jobs) {
+    check_cancelled(cancel);
+    for (std::string& p : assemble_pieces(folder, shards, merged[job++].second, report.refusals)) pieces.push_back(std::move(p));
+  }
+  if (!report.refusals.empty()) return report;
 
   // All that the report says is made before the folder changes, so that nothing fails after it has.
   std::vector<ManifestText> written;
@@ -238,6 +248,10 @@ MergeReport merge_shards(const std::string& given_folder, unsigned threads, cons
     report.merged.push_back({base + ".json", shards.size()});
   }
   swap_in_manifests(folder, written, replaced, cancel);
+  for (const std::string& piece : pieces) {
+    std::error_code ignored;  // a piece left behind is only untidy: no manifest lists it
+    fs::remove(folder + "/" + piece, ignored);
+  }
   for (const auto& [name, manifest] : merged) job_manifest::clear_leftovers(folder, name, manifest);
   return report;
 }

@@ -258,13 +258,19 @@ TEST_F(VerifyTest, DeepPathsAndNestedOutputFoldersAreLookedAtOnce) {
 TEST_F(VerifyTest, ARerunShardRemovesWhatItsKilledRunLeft) {
   bake_into("sharded", {0, 2});
   bake_into("sharded", {1, 2});
-  const fs::path clip = root_ / "sharded" / "bending_arm" / "bend";
-  std::ofstream(clip / ".frame_0000.glb.tmp-1-0") << "partial";  // frame 0 is shard 0's
+  // A temporary of a file shard 0 writes (the shards' shares are dealt by cost: find one).
+  std::string file;
+  const nlohmann::json shard0 = nlohmann::json::parse(read_file(root_ / "sharded" / "manifest.shard-0-of-2.json"));
+  for (const nlohmann::json& out : shard0["outputs"]) file = out["path"].get<std::string>();
+  ASSERT_FALSE(file.empty());
+  const fs::path clip = (root_ / "sharded" / file).parent_path();
+  const std::string leftover = "." + fs::path(file).filename().string() + ".tmp-1-0";
+  std::ofstream(clip / leftover) << "partial";
   fs::remove(root_ / "sharded" / "manifest.shard-0-of-2.json");
   std::ofstream(root_ / "sharded" / ".manifest.shard-0-of-2.json.tmp-1-0") << "{\"partial";  // killed writing it
   EXPECT_FALSE(merge_shards(at("sharded")).ok());
   bake_into("sharded", {0, 2});
-  EXPECT_FALSE(fs::exists(clip / ".frame_0000.glb.tmp-1-0"));
+  EXPECT_FALSE(fs::exists(clip / leftover));
   EXPECT_FALSE(fs::exists(root_ / "sharded" / ".manifest.shard-0-of-2.json.tmp-1-0"));
   EXPECT_TRUE(merge_shards(at("sharded")).ok());
 }

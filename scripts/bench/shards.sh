@@ -3,10 +3,11 @@
 # in one process, against the GNU parallel recipe of docs/commands/bake.md (8 shards, -j nproc) followed by
 # `dqskin merge`, each run into a fresh folder, the two alternating, RUNS runs each; prints the medians and
 # their ratio.
-# Then where the shards' time goes, from the last run of each: every shard's process seconds (parallel's
-# joblog) beside its own --json-progress summary (wall and per-stage thread-seconds) and the one-process
-# bake's. Every shard starts up, loads the model and plans the whole bake; the shard that gets the one
-# animation's whole-animation files (vat, bones, morph) deforms every frame for them.
+# Then where the shards' time goes, from the last run of each: every shard's CPU seconds (GNU time) and
+# process seconds (parallel's joblog) beside its own --json-progress summary (wall and per-stage
+# thread-seconds) and the one-process bake's, and the balance: the longest shard's CPU time against the
+# mean, and the shards' sum against one process's. Every shard starts up, loads the model and plans the
+# whole bake; the textures' slices and the per-frame files are dealt by cost (docs/DESIGN.md §2.6).
 #
 # Usage: scripts/bench/shards.sh
 # Environment:
@@ -71,10 +72,12 @@ OUT="$WORK/out"
 
 # One shard as parallel runs it, its --json-progress lines kept for the table (the recipe of
 # docs/commands/bake.md has --quiet instead; both sides of the comparison print the same progress lines).
+# GNU time records each process's CPU seconds (user + system), which the table compares with one
+# process's: a shard's wall time depends on what runs beside it.
 cat >"$WORK/shard.sh" <<EOF
 #!/usr/bin/env bash
-exec "$DQSKIN" bake "$BRAINSTEM" -o "$OUT" --format $FORMATS --shard "\$1/$SHARDS" --json-progress ${EXTRA[*]} \
-  >"$WORK/shard-\$1.jsonl" 2>"$WORK/shard-\$1.stderr"
+exec /usr/bin/time -f '%U %S' -o "$WORK/shard-\$1.cpu" "$DQSKIN" bake "$BRAINSTEM" -o "$OUT" --format $FORMATS \
+  --shard "\$1/$SHARDS" --json-progress ${EXTRA[*]} >"$WORK/shard-\$1.jsonl" 2>"$WORK/shard-\$1.stderr"
 EOF
 
 now() { date +%s.%N; }
@@ -87,8 +90,8 @@ run_whole() {  # prints the seconds
   rm -rf "$OUT"
   local t0 t1
   t0="$(now)"
-  "$DQSKIN" bake "$BRAINSTEM" -o "$OUT" --format "$FORMATS" --json-progress "${EXTRA[@]}" \
-    >"$WORK/whole.jsonl" 2>"$WORK/whole.stderr" || { tail -n 5 "$WORK/whole.stderr" >&2; return 1; }
+  /usr/bin/time -f '%U %S' -o "$WORK/whole.cpu" "$DQSKIN" bake "$BRAINSTEM" -o "$OUT" --format "$FORMATS" --json-progress \
+    "${EXTRA[@]}" >"$WORK/whole.jsonl" 2>"$WORK/whole.stderr" || { tail -n 5 "$WORK/whole.stderr" >&2; return 1; }
   t1="$(now)"
   cp "$OUT/manifest.json" "$WORK/whole-manifest.json"
   seconds "$t0" "$t1"
@@ -100,7 +103,8 @@ run_sharded() {  # prints the seconds in all, of the shards and of the merge
   parallel -j "$JOBS" --joblog "$WORK/joblog" bash "$WORK/shard.sh" {} ::: $(seq 0 $((SHARDS - 1))) \
     2>"$WORK/parallel.stderr" || { tail -n 5 "$WORK"/shard-*.stderr "$WORK/parallel.stderr" >&2; return 1; }
   t1="$(now)"
-  "$DQSKIN" merge "$OUT" --quiet 2>"$WORK/merge.stderr" || { cat "$WORK/merge.stderr" >&2; return 1; }
+  /usr/bin/time -f '%U %S' -o "$WORK/merge.cpu" "$DQSKIN" merge "$OUT" --quiet 2>"$WORK/merge.stderr" ||
+    { cat "$WORK/merge.stderr" >&2; return 1; }
   t2="$(now)"
   echo "$(seconds "$t0" "$t2") $(seconds "$t0" "$t1") $(seconds "$t1" "$t2")"
 }
@@ -162,31 +166,47 @@ with open(os.path.join(work, "joblog")) as f:
     for row in csv.DictReader(f, delimiter="\t"):
         process_s[int(row["Command"].split()[-1])] = float(row["JobRuntime"])
 
-header = ["process", "frames", "files", "GB", "process_s", "wall_s", "start_s"] + stages
-print(("%-10s %6s %6s %6s %9s %7s %7s" + " %8s" * len(stages)) % tuple(header))
-rows = [("shard %d" % i, process_s.get(i), summary(os.path.join(work, "shard-%d.jsonl" % i))) for i in range(shards)]
-totals = {"process_s": 0.0, "wall_s": 0.0, **{k: 0.0 for k in stages}}
-for name, proc, s in rows:
+def cpu(path):
+    with open(path) as f:
+        user, system = f.read().split()[-2:]
+    return float(user) + float(system)
+
+header = ["process", "frames", "files", "GB", "cpu_s", "process_s", "wall_s", "start_s"] + stages
+print(("%-10s %6s %6s %6s %7s %9s %7s %7s" + " %8s" * len(stages)) % tuple(header))
+rows = [("shard %d" % i, process_s.get(i), cpu(os.path.join(work, "shard-%d.cpu" % i)),
+         summary(os.path.join(work, "shard-%d.jsonl" % i))) for i in range(shards)]
+totals = {"cpu_s": 0.0, "process_s": 0.0, "wall_s": 0.0, **{k: 0.0 for k in stages}}
+for name, proc, cpu_s, s in rows:
     if s is None:
         print("%-10s (no summary)" % name)
         continue
     t = s["stage_s"]
-    print(("%-10s %6d %6d %6.2f %9.2f %7.2f %7.2f" + " %8.2f" * len(stages)) % (
-        (name, s["frames"], s["files_written"], s["bytes"] / 1e9, proc, s["wall_s"], proc - s["wall_s"])
+    print(("%-10s %6d %6d %6.2f %7.2f %9.2f %7.2f %7.2f" + " %8.2f" * len(stages)) % (
+        (name, s["frames"], s["files_written"], s["bytes"] / 1e9, cpu_s, proc, s["wall_s"], proc - s["wall_s"])
         + tuple(t.get(k, 0.0) for k in stages)))
+    totals["cpu_s"] += cpu_s
     totals["process_s"] += proc
     totals["wall_s"] += s["wall_s"]
     for k in stages:
         totals[k] += t.get(k, 0.0)
-print(("%-10s %6s %6s %6s %9.2f %7.2f %7.2f" + " %8.2f" * len(stages)) % (
-    ("shards' sum", "", "", "", totals["process_s"], totals["wall_s"], totals["process_s"] - totals["wall_s"])
+print(("%-10s %6s %6s %6s %7.2f %9.2f %7.2f %7.2f" + " %8.2f" * len(stages)) % (
+    ("shards' sum", "", "", "", totals["cpu_s"], totals["process_s"], totals["wall_s"], totals["process_s"] - totals["wall_s"])
     + tuple(totals[k] for k in stages)))
+merge_cpu = cpu(os.path.join(work, "merge.cpu"))
+print("%-10s %6s %6s %6s %7.2f" % ("merge", "", "", "", merge_cpu))
 w = summary(os.path.join(work, "whole.jsonl"))
+whole_cpu = cpu(os.path.join(work, "whole.cpu"))
 if w is not None:
     t = w["stage_s"]
-    print(("%-10s %6d %6d %6.2f %9.2f %7.2f %7.2f" + " %8.2f" * len(stages)) % (
-        ("1 process", w["frames"], w["files_written"], w["bytes"] / 1e9, whole_process_s, w["wall_s"],
+    print(("%-10s %6d %6d %6.2f %7.2f %9.2f %7.2f %7.2f" + " %8.2f" * len(stages)) % (
+        ("1 process", w["frames"], w["files_written"], w["bytes"] / 1e9, whole_cpu, whole_process_s, w["wall_s"],
          whole_process_s - w["wall_s"])
         + tuple(t.get(k, 0.0) for k in stages)))
     print("deformer: %s" % w.get("deformer", "?"))
+cpus = [c for _, _, c, s in rows if s is not None]
+mean = sum(cpus) / len(cpus)
+print()
+print("balance (CPU seconds): longest shard %.2f = %.2f x the mean %.2f (target <= 1.5)" % (max(cpus), max(cpus) / mean, mean))
+print("overhead: shards' sum %.2f = %.2f x one process's %.2f (target <= 1.2); with the merge %.2f x" % (
+    sum(cpus), sum(cpus) / whole_cpu, whole_cpu, (sum(cpus) + merge_cpu) / whole_cpu))
 PY

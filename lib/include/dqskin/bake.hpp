@@ -103,6 +103,9 @@ struct TextureCheck {
   double max_midpoint_error = 0, p99_midpoint_error = 0;  // halfway between frames, interpolated linearly
   double max_normal_degrees = 0, max_midpoint_normal_degrees = 0;
   size_t samples = 0;  // vertex samples compared
+  // A shard's slice of the texture (its frames only): the figures as a share that adds up over the
+  // slices, as JSON, for `dqskin merge`; empty for a whole texture.
+  std::string share;
 };
 
 // One clip's morph-target animation: how many keys it kept and what the file decodes to against the

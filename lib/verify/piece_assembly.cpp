@@ -1,0 +1,155 @@
+#include "piece_assembly.hpp"
+
+#include "../base/sha256.hpp"
+#include "../texture/exr_rows.hpp"
+#include "../texture/vat_check.hpp"
+#include "../texture/vat_side_files.hpp"
+#include "dqskin/atomic_file.hpp"
+#include "dqskin/error.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace dqskin::verify_detail {
+namespace {
+
+using nlohmann::json;
+
+struct Listed {
+  const json* record;
+  std::string shard;  // the manifest that lists it, for messages
+};
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(path + ": cannot be read");
+  return text.str();
+}
+
+// The figures of texture `texture` of animation (input, clip), the shares of every shard added up.
+std::optional<texture::DecodeShare> added_shares(const std::vector<const JobManifest*>& shards, size_t input, size_t clip,
+                                                 const std::string& texture) {
+  std::optional<texture::DecodeShare> sum;
+  for (const JobManifest* shard : shards) {
+    const json& inputs = shard->json["inputs"];
+    if (input >= inputs.size() || !inputs[input].contains("animations")) continue;
+    const json& clips = inputs[input]["animations"];
+    if (clip >= clips.size() || !clips[clip].contains("decode_check_share")) continue;
+    const json& shares = clips[clip]["decode_check_share"];
+    if (!shares.contains(texture)) continue;
+    const texture::DecodeShare share = texture::DecodeShare::from_json(
+        shares[texture], shard->name + ": inputs[" + std::to_string(input) + "].animations[" + std::to_string(clip) +
+                             "].decode_check_share." + texture);
+    if (!sum) sum = share;
+    else sum->merge(share);
+  }
+  return sum;
+}
+
+json manifest_figures(const texture::DecodeCheck& d) {
+  return {{"max_error", d.max_error},
+          {"p99_error", d.p99_error},
+          {"max_midpoint_error", d.max_midpoint_error},
+          {"p99_midpoint_error", d.p99_midpoint_error},
+          {"max_normal_degrees", d.max_normal_degrees},
+          {"max_midpoint_normal_degrees", d.max_midpoint_normal_degrees},
+          {"samples", d.samples}};
+}
+
+}  // namespace
+
+std::vector<std::string> assemble_pieces(const std::string& folder, const std::vector<const JobManifest*>& shards,
+                                         json& merged, std::vector<std::string>& refusals) {
+  std::map<std::string, std::vector<Listed>> wholes;  // whole file → its pieces
+  std::vector<std::string> pieces;
+  for (const JobManifest* shard : shards)
+    if (shard->json.contains("pieces") && shard->json["pieces"].is_array())
+      for (const json& p : shard->json["pieces"]) {
+        if (!p.is_object() || !p.value("path", json()).is_string() || !p.value("whole", json()).is_string()) {
+          refusals.push_back(folder + "/" + shard->name + ": a piece without a path and a whole file");
+          continue;
+        }
+        wholes[p["whole"].get<std::string>()].push_back({&p, shard->name});
+        pieces.push_back(p["path"].get<std::string>());
+      }
+
+  // Each animation's figures, from the shares of every slice.
+  for (size_t i = 0; i < merged["inputs"].size(); ++i) {
+    json& in = merged["inputs"][i];
+    if (!in.contains("animations")) continue;
+    for (size_t c = 0; c < in["animations"].size(); ++c) {
+      json& clip = in["animations"][c];
+      std::set<std::string> textures;
+      for (const JobManifest* shard : shards) {
+        const json& inputs = shard->json["inputs"];
+        if (i < inputs.size() && inputs[i].contains("animations") && c < inputs[i]["animations"].size() &&
+            inputs[i]["animations"][c].contains("decode_check_share"))
+          for (const auto& [texture, share] : inputs[i]["animations"][c]["decode_check_share"].items()) textures.insert(texture);
+      }
+      clip.erase("decode_check_share");
+      try {
+        for (const std::string& texture : textures)
+          clip["decode_check"][texture] = manifest_figures(added_shares(shards, i, c, texture)->figures());
+      } catch (const InputError& e) {
+        refusals.push_back(folder + "/" + e.what());
+      }
+    }
+  }
+
+  std::map<std::string, json> written;  // whole file → its output record
+  for (auto& [whole, listed] : wholes) {
+    const std::string path = folder + "/" + whole;
+    try {
+      AtomicFile file(path);
+      const std::string kind = listed.front().record->value("splice", "");
+      if (kind == "exr_rows") {
+        std::vector<std::pair<size_t, std::string>> rows;
+        for (const Listed& l : listed) {
+          const json& r = l.record->value("rows", json());
+          if (!r.is_array() || r.size() != 2 || !r[0].is_number_unsigned())
+            throw InputError(l.shard + ": piece " + l.record->value("path", "") + " has no rows");
+          rows.emplace_back(r[0].get<size_t>(), folder + "/" + (*l.record)["path"].get<std::string>());
+        }
+        std::sort(rows.begin(), rows.end());
+        std::vector<std::string> paths;
+        for (auto& [first, p] : rows) paths.push_back(p);
+        texture::splice_exr_rows(paths, [&](std::span<const char> bytes) { file.write(bytes); });
+      } else if (kind == "decode_check" && listed.size() == 1) {
+        const json& r = *listed.front().record;
+        const std::optional<texture::DecodeShare> sum =
+            r["input"].is_number_unsigned() && r["animation"].is_number_unsigned() && r["texture"].is_string()
+                ? added_shares(shards, r["input"].get<size_t>(), r["animation"].get<size_t>(), r["texture"].get<std::string>())
+                : std::nullopt;
+        if (!sum) throw InputError("no shard recorded the figures of " + whole);
+        const std::string piece = folder + "/" + r["path"].get<std::string>();
+        file.write(texture::with_decode_check(read_text(piece), sum->figures(), piece));
+      } else {
+        throw InputError("its pieces are not of one kind this version splices");
+      }
+      file.commit();
+      written[whole] = {{"path", whole}, {"size", uint64_t(std::filesystem::file_size(path))}, {"sha256", sha256_file(path)}};
+    } catch (const std::exception& e) {
+      refusals.push_back(path + ": cannot be assembled from its pieces: " + e.what());
+    }
+  }
+
+  // The outputs: the pieces out, the whole files in, by path as the bake lists them.
+  const std::set<std::string> piece_set(pieces.begin(), pieces.end());
+  json outputs = json::array();
+  for (const json& out : merged["outputs"])
+    if (!piece_set.count(out.value("path", ""))) outputs.push_back(out);
+  for (auto& [whole, record] : written) outputs.push_back(std::move(record));
+  std::stable_sort(outputs.begin(), outputs.end(),
+                   [](const json& a, const json& b) { return a.value("path", "") < b.value("path", ""); });
+  merged["outputs"] = std::move(outputs);
+  return pieces;
+}
+
+}  // namespace dqskin::verify_detail
