@@ -69,3 +69,19 @@ dqskin bake models/*.glb -o whole --quiet || fail "the unsharded bake exited $?"
 diff -r out whole || fail "the merged shards differ from the unsharded bake (above)"
 dqskin verify out || fail "dqskin verify out exited $?"
 echo "8 shards merged equal the unsharded bake: $(find out -type f | wc -l) files"
+
+# The recipe with every texture format and the morph animation: the textures are cut into slices that the
+# shards write as pieces of rows (docs/DESIGN.md §6.5), which the merge splices.
+textures="--format glb,vat,bones,morph"
+recipe_textures=${recipe/ -o out / -o textures $textures }
+[[ $recipe_textures != "$recipe" ]] || fail "the recipe has no ' -o out ' to add the formats to"
+bash -c "$recipe_textures" || fail "the recipe with $textures exited $?"
+pieces=$(find textures -name '*.exr.rows-*' | wc -l)
+(( pieces >= 4 )) || fail "the 8 shards wrote $pieces pieces of texture rows, expected a texture cut in two slices at least"
+dqskin verify textures || fail "dqskin verify of the unmerged shards exited $?"
+dqskin merge textures || fail "dqskin merge textures exited $?"
+[[ -z $(find textures -name '*.exr.rows-*' -o -name '*.template') ]] || fail "dqskin merge left pieces behind"
+# shellcheck disable=SC2086
+dqskin bake models/*.glb -o textures_whole $textures --quiet || fail "the unsharded bake with $textures exited $?"
+diff -r textures textures_whole || fail "the merged texture shards differ from the unsharded bake (above)"
+echo "8 shards with $pieces pieces of texture rows merged equal the unsharded bake: $(find textures -type f | wc -l) files"

@@ -59,38 +59,54 @@ eval "$(grep '^export SLURM_CONF=' <<<"$started")"
 cd "$scratch"
 PATH="$(dirname "$dqskin"):$PATH"
 export PATH
-# shellcheck disable=SC2016  # $SLURM_ARRAY_TASK_ID is the job's to expand
-submitted=$(sbatch --output="$scratch/logs/shard-%a.out" \
-  --array=0-31 --wrap 'dqskin bake models/*.glb -o out --shard $SLURM_ARRAY_TASK_ID/32 --quiet')
-echo "$submitted"
-job=${submitted##* }
-[[ "$job" =~ ^[0-9]+$ ]] || fail "sbatch printed no job id: $submitted"
-
-started_at=$SECONDS
-while [ -n "$(squeue -h -j "$job" 2>/dev/null)" ]; do
-  if ((SECONDS - started_at > timeout)); then
-    squeue -j "$job" || true
-    scancel "$job" || true
-    fail "array job $job not done after $timeout s"
-  fi
-  sleep 2
-done
-echo "array job $job done in $((SECONDS - started_at)) s"
-
-# The controller keeps finished jobs' records for a while (MinJobAge, 300 s by default): every one of the
-# 32 tasks must have completed with exit code 0.
-records=$(scontrol -o show job "$job")
-tasks_ok=$(grep -c 'JobState=COMPLETED .*ExitCode=0:0' <<<"$records" || true)
-if [ "$tasks_ok" -ne 32 ]; then
-  grep -o 'ArrayTaskId=[0-9]* .*JobState=[A-Z_]* .*ExitCode=[0-9:]*' <<<"$records" |
-    sed 's/ .*JobState=/ JobState=/; s/ Reason.*ExitCode=/ ExitCode=/' | grep -v 'JobState=COMPLETED ExitCode=0:0$' || true
-  for f in "$scratch"/logs/shard-*.out; do
-    [ -s "$f" ] && { echo "== $f"; cat "$f"; }
+# Submits an array job of TASKS tasks running COMMAND (its messages in logs/NAME-<task>.out), waits until
+# it is done and fails unless every task completed with exit code 0.
+run_array() {  # NAME TASKS COMMAND
+  local name=$1 tasks=$2 command=$3 submitted job started_at records tasks_ok
+  submitted=$(sbatch --output="$scratch/logs/$name-%a.out" --array=0-$((tasks - 1)) --wrap "$command")
+  echo "$submitted"
+  job=${submitted##* }
+  [[ "$job" =~ ^[0-9]+$ ]] || fail "sbatch printed no job id: $submitted"
+  started_at=$SECONDS
+  while [ -n "$(squeue -h -j "$job" 2>/dev/null)" ]; do
+    if ((SECONDS - started_at > timeout)); then
+      squeue -j "$job" || true
+      scancel "$job" || true
+      fail "array job $job not done after $timeout s"
+    fi
+    sleep 2
   done
-  fail "$tasks_ok of 32 shards completed with exit code 0"
-fi
+  echo "array job $job ($name) done in $((SECONDS - started_at)) s"
+  # The controller keeps finished jobs' records for a while (MinJobAge, 300 s by default): every task must
+  # have completed with exit code 0.
+  records=$(scontrol -o show job "$job")
+  tasks_ok=$(grep -c 'JobState=COMPLETED .*ExitCode=0:0' <<<"$records" || true)
+  if [ "$tasks_ok" -ne "$tasks" ]; then
+    grep -o 'ArrayTaskId=[0-9]* .*JobState=[A-Z_]* .*ExitCode=[0-9:]*' <<<"$records" |
+      sed 's/ .*JobState=/ JobState=/; s/ Reason.*ExitCode=/ ExitCode=/' | grep -v 'JobState=COMPLETED ExitCode=0:0$' || true
+    for f in "$scratch"/logs/"$name"-*.out; do
+      [ -s "$f" ] && { echo "== $f"; cat "$f"; }
+    done
+    fail "$tasks_ok of $tasks shards completed with exit code 0"
+  fi
+}
 
+# shellcheck disable=SC2016  # $SLURM_ARRAY_TASK_ID is the job's to expand
+run_array shard 32 'dqskin bake models/*.glb -o out --shard $SLURM_ARRAY_TASK_ID/32 --quiet'
 "$dqskin" merge out || fail "dqskin merge out exited with $?"
 dqskin bake models/*.glb -o unsharded --quiet || fail "the unsharded bake exited with $?"
 diff -r out unsharded || fail "the merged shards differ from the unsharded bake"
 echo "slurm_recipe: 32 shards merged equal the unsharded bake: $(find out -type f | wc -l) files"
+
+# One long clip in every texture format, 8 tasks: the textures are cut into slices that the shards write
+# as pieces of rows (docs/DESIGN.md §6.5), which the merge splices into the unsharded bake's files.
+textures='--format glb,vat,bones,morph'
+# shellcheck disable=SC2016
+run_array textures 8 "dqskin bake models/CesiumMan.glb -o textures $textures --shard \$SLURM_ARRAY_TASK_ID/8 --quiet"
+pieces=$(find textures -name '*.exr.rows-*' | wc -l)
+[ "$pieces" -ge 4 ] || fail "the 8 shards wrote $pieces pieces of texture rows, expected the textures cut in two slices at least"
+"$dqskin" merge textures || fail "dqskin merge textures exited with $?"
+# shellcheck disable=SC2086
+dqskin bake models/CesiumMan.glb -o textures_unsharded $textures --quiet || fail "the unsharded texture bake exited with $?"
+diff -r textures textures_unsharded || fail "the merged texture shards differ from the unsharded bake"
+echo "slurm_recipe: 8 shards of one clip's textures ($pieces pieces) merged equal the unsharded bake: $(find textures -type f | wc -l) files"
