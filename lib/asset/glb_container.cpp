@@ -15,11 +15,21 @@ namespace dqskin::glb {
 
 static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian (§3.6.1)");
 
+void BinWriter::append(std::span<const char> data) {
+  if (!spill) {
+    bytes.append(data.data(), data.size());
+    return;
+  }
+  spill(data);
+  spilled += data.size();
+}
+
 int BinWriter::view(const void* data, size_t size, int target) {
-  bytes.resize((bytes.size() + 3) & ~size_t(3), '\0');
-  json v = {{"buffer", 0}, {"byteOffset", bytes.size()}, {"byteLength", size}};
+  static const char zeros[4] = {};
+  append(std::span<const char>(zeros, size_t((4 - this->size() % 4) % 4)));
+  json v = {{"buffer", 0}, {"byteOffset", this->size()}, {"byteLength", size}};
   if (target) v["target"] = target;
-  bytes.append(static_cast<const char*>(data), size);
+  append(std::span<const char>(static_cast<const char*>(data), size));
   views.push_back(std::move(v));
   return int(views.size()) - 1;
 }
@@ -67,25 +77,27 @@ void put_u32(std::string& out, size_t value) {
 }  // namespace
 
 // §4.4: 12-byte header, a JSON chunk padded with spaces, a BIN chunk padded with zeros, all little-endian.
-GlbParts glb_container_parts(const json& doc, std::string bin) {
+GlbParts glb_container_parts(const json& doc, std::string bin, uint64_t spilled) {
   std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);
   text.resize((text.size() + 3) & ~size_t(3), ' ');
-  bin.resize((bin.size() + 3) & ~size_t(3), '\0');
-  const size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size());
+  bin.resize(size_t((spilled + bin.size() + 3) & ~uint64_t(3)) - size_t(spilled), '\0');
+  const uint64_t bin_size = spilled + bin.size();
+  const uint64_t total = 12 + 8 + text.size() + (bin_size == 0 ? 0 : 8 + bin_size);
   if (total > 0xFFFFFFFFu)
     throw OutputError("the .glb would be " + byte_size(total) + ", more than the 4 GiB the format can hold");
   GlbParts out;
   out.head.reserve(12 + 8 + text.size() + 8);
   out.head += "glTF";
   put_u32(out.head, 2);
-  put_u32(out.head, total);
-  put_u32(out.head, text.size());
+  put_u32(out.head, uint32_t(total));
+  put_u32(out.head, uint32_t(text.size()));
   out.head += "JSON";
   out.head += text;
-  if (!bin.empty()) {
-    put_u32(out.head, bin.size());
+  if (bin_size != 0) {
+    put_u32(out.head, uint32_t(bin_size));
     out.head.append("BIN\0", 4);
   }
+  out.spilled = spilled;
   out.bin = std::move(bin);
   return out;
 }
@@ -117,10 +129,11 @@ void collect_extensions(const json& j, std::set<std::string>& names) {
 
 GlbParts finish_glb_parts(json doc, BinWriter bin, const std::vector<std::string>& source_required,
                           const std::vector<std::string>& own) {
-  bin.bytes.resize((bin.bytes.size() + 3) & ~size_t(3), '\0');
+  static const char zeros[4] = {};
+  bin.append(std::span<const char>(zeros, size_t((4 - bin.size() % 4) % 4)));
   doc["accessors"] = std::move(bin.accessors);
   doc["bufferViews"] = std::move(bin.views);
-  if (!bin.bytes.empty()) doc["buffers"] = json::array({{{"byteLength", bin.bytes.size()}}});
+  if (bin.size() != 0) doc["buffers"] = json::array({{{"byteLength", bin.size()}}});
   std::vector<std::string> empty;
   for (const auto& [key, value] : doc.items())
     if (value.is_array() && value.empty()) empty.push_back(key);
@@ -134,7 +147,7 @@ GlbParts finish_glb_parts(json doc, BinWriter bin, const std::vector<std::string
     if (used.count(e)) required.push_back(e);
   for (const std::string& e : own) required.push_back(e);
   if (!required.empty()) doc["extensionsRequired"] = std::move(required);
-  return glb_container_parts(doc, std::move(bin.bytes));
+  return glb_container_parts(doc, std::move(bin.bytes), bin.spilled);
 }
 
 std::string finish_glb(json doc, BinWriter bin, const std::vector<std::string>& source_required,

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,6 +28,13 @@ struct BinWriter {
   std::string bytes;
   json views = json::array();
   json accessors = json::array();
+  // When set, the bytes go here as they come instead of into `bytes` (a morph animation's gigabyte, which
+  // memory need not hold beside the frames it is made of); `spilled` counts them.
+  std::function<void(std::span<const char>)> spill;
+  uint64_t spilled = 0;
+  uint64_t size() const { return spill ? spilled : bytes.size(); }
+  // Appends bytes (no view of their own): what the writer copies from another BinWriter first.
+  void append(std::span<const char> data);
 
   // Appends `size` bytes as a bufferView of their own, starting on a 4-byte boundary (§3.6.2.4 "Data
   // alignment": every accessor offset must be a multiple of its component size). target 0 = none
@@ -50,10 +58,11 @@ std::string glb_container(const json& doc, std::string bin);
 // chunk's header, then the BIN chunk's bytes, never copied (a morph animation's run to gigabytes).
 struct GlbParts {
   std::string head;
-  std::string bin;
-  size_t size() const { return head.size() + bin.size(); }
+  uint64_t spilled = 0;  // the BIN chunk's first bytes, written to a BinWriter's spill rather than `bin`
+  std::string bin;       // the BIN chunk's (other) bytes
+  uint64_t size() const { return head.size() + spilled + bin.size(); }
 };
-GlbParts glb_container_parts(const json& doc, std::string bin);
+GlbParts glb_container_parts(const json& doc, std::string bin, uint64_t spilled = 0);
 
 // The .glb of a document whose objects are complete but for the buffer: `bin`'s accessors, views and
 // buffer go in, top-level arrays left empty are removed (§5.1 forbids empty ones), extensionsUsed lists

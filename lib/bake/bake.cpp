@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <mutex>
 #include <thread>
@@ -91,16 +92,28 @@ struct Ledger {
     record({relative, bytes.size(), digest, unchanged});
   }
 
-  // The same for a .glb in two parts (a morph animation's), written one after the other, never joined.
-  void write(const std::string& relative, const glb::GlbParts& glb, OutputJournal& journal) {
+  // The same for a .glb in parts (a morph animation's): the head, the BIN chunk's bytes read back from
+  // the temporary `spill` they went to, and the rest of the chunk; hashed as they are written.
+  void write(const std::string& relative, const glb::GlbParts& glb, const AtomicFile& spill, OutputJournal& journal) {
     const Clock::time_point start = Clock::now();
     AtomicFile file(absolute(relative), false);
-    file.write(glb.head);
-    file.write(glb.bin);
+    Sha256 digest;
+    auto put = [&](std::span<const char> bytes) {
+      file.write(bytes);
+      digest.add(bytes);
+    };
+    put(glb.head);
+    std::unique_ptr<std::FILE, decltype(&std::fclose)> in(std::fopen(spill.temporary().c_str(), "rb"), &std::fclose);
+    std::vector<char> chunk(size_t(4) << 20);
+    uint64_t copied = 0;
+    for (size_t n = 0; in && (n = std::fread(chunk.data(), 1, chunk.size(), in.get())) > 0; copied += n)
+      put(std::span<const char>(chunk.data(), n));
+    if (!in || std::ferror(in.get()) || copied != glb.spilled)
+      throw OutputError(file.path() + ": its buffer could not be read back from " + spill.temporary());
+    put(glb.bin);
     const bool unchanged = file.commit({options.overwrite, &journal}) == Committed::kUnchanged;
-    const std::string digest = sha256_hex({std::span<const char>(glb.head), std::span<const char>(glb.bin)});
     add_time(&BakeStageTimes::write, since(start));
-    record({relative, glb.size(), digest, unchanged});
+    record({relative, glb.size(), digest.hex(), unchanged});
   }
 
   // Records files another library wrote (OpenImageIO): hashed from disk.
@@ -231,7 +244,8 @@ public:
       const Clock::time_point start = Clock::now();
       MorphClipResult result = morph->finish(*appearance_, jobs_);
       ledger_.add_time(&BakeStageTimes::encode, since(start));
-      ledger_.write(morph_file(clip), result.glb, journal_);
+      ledger_.write(morph_file(clip), result.glb, *result.spill, journal_);
+      result.spill.reset();  // its temporary goes
       ledger_.record_morph(std::move(result.check));
       for (std::string& w : result.warnings) warnings_.push_back(std::move(w));
     }

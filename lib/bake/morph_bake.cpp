@@ -233,11 +233,15 @@ MorphClipResult MorphClipBake::finish(const glb::Appearance& appearance, unsigne
   a.with_normals = with_normals_;
   glb::MorphGlbStats stats;
   MorphClipResult out;
+  out.spill = std::make_unique<AtomicFile>(options_.plan.out_dir + "/" + morph_file(clip_), false);
+  AtomicFile& spill = *out.spill;
   try {
-    out.glb = glb::encode_morph_glb(*input_.asset, input_.instances, appearance, a, &stats);
+    out.glb = glb::encode_morph_glb(*input_.asset, input_.instances, appearance, a, &stats,
+                                    [&spill](std::span<const char> bytes) { spill.write(bytes); });
   } catch (const OutputError& e) {  // past 4 GiB: fewer frames (--fps, --max-error) would fit
     throw OutputError(what_ + ": " + e.what());
   }
+  spill.hand_over();  // closes the temporary: the bake reads it back into the file
   out.check = {input_.path, clip_.name, frames, keys.size(), position_error.value, normal_error.value,
                out.glb.size(), stats.sparse_accessors, a.grid.on()};
   std::vector<std::pair<size_t, bool>> primitives;

@@ -7,9 +7,11 @@
 #include "bake_plan.hpp"
 #include "../write/glb_appearance.hpp"
 
+#include "dqskin/atomic_file.hpp"
 #include "dqskin/frame_view.hpp"
 #include "../write/vertex_sharing.hpp"
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,7 +32,10 @@ std::vector<std::string> morph_viewer_warnings(const std::string& what, size_t t
                                                const std::vector<std::pair<size_t, bool>>& primitives);
 
 struct MorphClipResult {
-  glb::GlbParts glb;                  // the .glb, in two parts
+  // The .glb: the BIN chunk's bytes, but for its padding, went to `spill` (a temporary beside the file,
+  // never committed) as they were made, so that memory holds the frames and not a second copy of them.
+  glb::GlbParts glb;
+  std::unique_ptr<AtomicFile> spill;
   MorphCheck check;
   std::vector<std::string> warnings;  // viewer limits the file exceeds
 };

@@ -34,6 +34,14 @@ struct Digest {
 
 }  // namespace
 
+struct Sha256::Impl {
+  Digest digest;
+};
+Sha256::Sha256() : impl_(std::make_unique<Impl>()) {}
+Sha256::~Sha256() = default;
+void Sha256::add(std::span<const char> bytes) { impl_->digest.add(bytes.data(), bytes.size()); }
+std::string Sha256::hex() { return impl_->digest.hex(); }
+
 std::string sha256_hex(std::span<const char> bytes) {
   Digest d;
   d.add(bytes.data(), bytes.size());

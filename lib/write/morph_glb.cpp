@@ -220,17 +220,25 @@ glm::dvec3 stored_normal(const MorphGrid& grid, bool short_target, const float* 
 }
 
 GlbParts encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
-                             const Appearance& appearance, const MorphAnimation& a, MorphGlbStats* stats) {
+                             const Appearance& appearance, const MorphAnimation& a, MorphGlbStats* stats,
+                             std::function<void(std::span<const char>)> spill) {
   const size_t keys = a.positions.size();
   if (keys == 0 || a.times.size() != keys || a.normals.size() != keys || a.target_names.size() + 1 != keys)
     throw std::invalid_argument("encode_morph_glb: keys, times, normals and target names do not match");
   // The buffer at its largest from the start (every target dense float positions and normals, and the
   // weights): grown by doubling, it held the old and the new copy of a gigabyte at once.
   BinWriter bin;
-  const size_t values = a.positions[0].size() + a.normals[0].size();
-  bin.bytes.reserve(appearance.bin.bytes.size() + keys * (values * sizeof(float) + 64 * (a.with_normals.size() + 1)) +
-                    keys * keys * sizeof(float) + 64);
-  bin = appearance.bin;
+  if (spill) {
+    bin.spill = std::move(spill);
+    bin.views = appearance.bin.views;
+    bin.accessors = appearance.bin.accessors;
+    bin.append(appearance.bin.bytes);
+  } else {
+    const size_t values = a.positions[0].size() + a.normals[0].size();
+    bin.bytes.reserve(appearance.bin.bytes.size() + keys * (values * sizeof(float) + 64 * (a.with_normals.size() + 1)) +
+                      keys * keys * sizeof(float) + 64);
+    bin = appearance.bin;
+  }
   json primitives = json::array();
   // A primitive that shares an earlier one's vertex data names that one's accessors, as the source does.
   const SharedVertexLayout sharing = shared_vertex_layout(asset, instances);

@@ -71,8 +71,10 @@ struct MorphGlbStats {
 // instances). A single key writes the mesh without targets or animation. A target accessor is written
 // sparse where that takes fewer bytes. Deterministic. In two parts (glb_appearance.hpp), so that the file's
 // bytes are never copied whole.
+// `spill`: where the BIN chunk's bytes go as they are made instead of memory (BinWriter::spill); the parts
+// then count them in `spilled`.
 GlbParts encode_morph_glb(const Asset& asset, const std::vector<MeshInstance>& instances,
                              const Appearance& appearance, const MorphAnimation& animation,
-                             MorphGlbStats* stats = nullptr);
+                             MorphGlbStats* stats = nullptr, std::function<void(std::span<const char>)> spill = {});
 
 }  // namespace dqskin::glb
