@@ -28,9 +28,9 @@ if [[ ! -f "$model" ]]; then
   exit 77
 fi
 
-# Shard 0 is the one killed: BrainStem has one animation, so its whole-animation files (vat, bones, morph:
-# all 100 frames deformed, encoded and checked) are shard 0's, which keeps it running for seconds with
-# large temporaries open, while shards 1..3 write 25 frames each and are done in well under a second.
+# Shard 0 is the one killed: the shards deal the work by cost (docs/DESIGN.md §6.5), and shard 0 gets the
+# morph animation, which cannot be cut (all 100 frames deformed, encoded and checked), with glb frames;
+# it runs for seconds with large temporaries open, while shards 1..3 bake their slices of the textures.
 # 100 frames at 10 fps keep the four folders' bytes to a few hundred MB.
 flags=(--format glb,vat,bones,morph --fps 10 --frames 0:99 --quiet)
 out=$scratch/out

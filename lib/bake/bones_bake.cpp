@@ -228,7 +228,7 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
           const size_t i = only_baseline ? 0 : from + at_batch - baseline;
           const bool midpoint = i % 2 == 1;
           // Morph weights: the frames' poses were sampled for packing; only midpoints need sampling.
-          const Pose midpoint_pose = midpoint ? sample_pose(asset, clip.clip, clip_times[i]) : Pose();
+          const Pose midpoint_pose = midpoint ? sample_pose(asset, clip.clip, all_times[i]) : Pose();
           const Pose& pose = midpoint ? midpoint_pose : poses[first + i / 2];
           const FrameView view = frame_view(batch, k);
           size_t at = 0;

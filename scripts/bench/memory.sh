@@ -41,6 +41,14 @@ done
 for format in vat bones morph; do
   run "bake $format" bake "$model" -o "$scratch/bake-$format" --format "$format" --quiet "${limit[@]}"
 done
+# Every format at once, whole and as the shards that hold the most: the morph animation's (shard 0) and the
+# textures' head (shard 1) of 8.
+all=glb,ply,vat,bones,morph
+run "bake $all" bake "$model" -o "$scratch/bake-all" --format "$all" --quiet "${limit[@]}"
+rm -rf "$scratch/bake-all"
+run "bake all --shard 0/8" bake "$model" -o "$scratch/bake-all" --format "$all" --shard 0/8 --quiet "${limit[@]}"
+run "bake all --shard 1/8" bake "$model" -o "$scratch/bake-all" --format "$all" --shard 1/8 --quiet "${limit[@]}"
+rm -rf "$scratch/bake-all"
 run "verify" verify "$scratch/bake-vat" "${limit[@]}"
 run "bake --shard 0/2" bake "$model" -o "$scratch/shards" --format vat --shard 0/2 --quiet "${limit[@]}"
 run "bake --shard 1/2" bake "$model" -o "$scratch/shards" --format vat --shard 1/2 --quiet "${limit[@]}"
