@@ -193,3 +193,12 @@ add_test(NAME limits.merge_and_verify_stopped_by_signals
   COMMAND bash ${PROJECT_SOURCE_DIR}/app/tests/interrupt_merge.sh $<TARGET_FILE:dqskin_cli> ${DQSKIN_HOSTILE_DIR}
     ${limits_scratch}/interrupt_merge)
 set_tests_properties(limits.merge_and_verify_stopped_by_signals PROPERTIES TIMEOUT 300 LABELS limits)
+
+# The morph animation holds every frame until its keys are chosen: past --max-memory it is refused while
+# planning, before any other output of the bake (the vat texture here) is made, naming the frames,
+# vertices and bytes, and what would fit.
+dqskin_limit_test(bake_morph_past_max_memory_refused_before_work 2 FOLDER ${limits_scratch}/morph_refused UNCHANGED
+  ARGS bake ${PROJECT_SOURCE_DIR}/testdata/twisted_cylinder.gltf --format vat,morph --fps 240 -o ${limits_scratch}/morph_refused
+       --max-memory 2M --quiet
+  ONE_LINE
+  STDERR "^dqskin: [^ ]*/testdata/twisted_cylinder.gltf: clip twist: the morph animation holds every frame, 241 frames of 792 vertices in 4.37 MiB, more than --max-memory 2.00 MiB \\(fewer frames, with --fps or --frames, would fit\\)")

@@ -6,6 +6,7 @@
 #include "../texture/texture_output.hpp"
 #include "../base/file_kind.hpp"
 #include "../write/glb_appearance.hpp"
+#include "../base/byte_size.hpp"
 #include "../base/saturating.hpp"
 #include "../texture/bone_profiles.hpp"
 #include "dqskin/error.hpp"
@@ -116,8 +117,16 @@ BakeWork estimate_work(const InputPlan& input, const BakeOptions& options, const
   };
   const bool combine = options.textures.combine_clips;
   for (const ClipPlan& clip : input.clips) {
+    // The morph animation holds every frame until its keys are chosen: past --max-memory it cannot be
+    // made, which is known before anything else of the bake is done.
+    if ((options.formats & unsigned(BakeFormat::kMorph)) && clip.morph_mine)
+      if (const uint64_t held = morph_frames_bytes(input, clip); held > options.plan.load.max_memory)
+        throw InputError("clip " + clip.name + ": the morph animation holds every frame, " +
+                         std::to_string(clip.times.size()) + " frames of " + std::to_string(held / clip.times.size() / 24) +
+                         " vertices in " + byte_size(held) + ", more than --max-memory " +
+                         byte_size(options.plan.load.max_memory) + " (fewer frames, with --fps or --frames, would fit)");
     work.vertex_frames = add(work.vertex_frames, mul(vertices, frames_to_deform(clip, per_clip_formats(options)).size()));
-    const TextureClips one{{&clip}, clip.folder, "clip " + clip.name, clip.clip_mine};
+    const TextureClips one = clip_texture_set(clip);  // this shard's slice, whose pieces planned_files lists
     std::vector<std::pair<std::string, uint64_t>> vat;
     if ((options.formats & unsigned(BakeFormat::kVat)) && !combine) vat = planned_vat_files(input, one, options.textures);
     for (const std::string& file : planned_files(input, clip, options)) {

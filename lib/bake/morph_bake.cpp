@@ -82,6 +82,11 @@ std::vector<std::string> morph_viewer_warnings(const std::string& what, size_t t
 
 std::string morph_file(const ClipPlan& clip) { return clip.folder + "/animation.glb"; }
 
+uint64_t morph_frames_bytes(const InputPlan& input, const ClipPlan& clip) {
+  const uint64_t vertices = shared_vertex_layout(*input.asset, input.instances).vertices;
+  return saturating::mul(saturating::mul(vertices, clip.times.size()), 24);
+}
+
 uint64_t planned_morph_bytes(const InputPlan& input, const ClipPlan& clip) {
   const Asset& asset = *input.asset;
   uint64_t vertices = shared_vertex_layout(asset, input.instances).vertices, indices = 0, images = 0;

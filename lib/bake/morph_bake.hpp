@@ -21,6 +21,10 @@ namespace dqskin::bake_detail {
 // <clip folder>/animation.glb, relative to the output folder.
 std::string morph_file(const ClipPlan& clip);
 
+// What the animation holds while its keys are chosen: every frame's positions and normals, 24 bytes a
+// distinct vertex.
+uint64_t morph_frames_bytes(const InputPlan& input, const ClipPlan& clip);
+
 // An upper bound of the file's size (every frame a dense float target), for the planned bytes.
 uint64_t planned_morph_bytes(const InputPlan& input, const ClipPlan& clip);
 
