@@ -1,5 +1,6 @@
 #include "piece_assembly.hpp"
 
+#include "../bake/file_pieces.hpp"
 #include "../base/sha256.hpp"
 #include "../texture/exr_rows.hpp"
 #include "../texture/vat_check.hpp"
@@ -69,16 +70,29 @@ std::vector<std::string> assemble_pieces(const std::string& folder, const std::v
                                          json& merged, std::vector<std::string>& refusals) {
   std::map<std::string, std::vector<Listed>> wholes;  // whole file → its pieces
   std::vector<std::string> pieces;
-  for (const JobManifest* shard : shards)
-    if (shard->json.contains("pieces") && shard->json["pieces"].is_array())
-      for (const json& p : shard->json["pieces"]) {
-        if (!p.is_object() || !p.value("path", json()).is_string() || !p.value("whole", json()).is_string()) {
-          refusals.push_back(folder + "/" + shard->name + ": a piece without a path and a whole file");
-          continue;
-        }
-        wholes[p["whole"].get<std::string>()].push_back({&p, shard->name});
-        pieces.push_back(p["path"].get<std::string>());
+  for (const JobManifest* shard : shards) {
+    if (!shard->json.contains("pieces")) continue;
+    // A piece must be one of the shard's outputs (verified: inside the folder, as listed), named as the bake
+    // names pieces, of the whole file it says: the merge writes and deletes nothing else.
+    std::set<std::string> outputs;
+    for (const json& out : shard->json["outputs"])
+      if (out.is_object() && out.value("path", json()).is_string()) outputs.insert(out["path"].get<std::string>());
+    const json& listed = shard->json["pieces"];
+    for (size_t i = 0; i < (listed.is_array() ? listed.size() : 1); ++i) {
+      const json& p = listed.is_array() ? listed[i] : listed;
+      const std::string path = p.is_object() && p.value("path", json()).is_string() ? p["path"].get<std::string>() : "";
+      const std::optional<bake_detail::FilePiece> piece = bake_detail::file_piece(path);
+      if (!piece || !outputs.count(path) || p.value("whole", json()) != piece->whole ||
+          p.value("splice", json()) != bake_detail::to_string(piece->kind)) {
+        refusals.push_back(folder + "/" + shard->name + ": pieces[" + std::to_string(i) +
+                           "] is not a piece of a file among the shard's outputs");
+        continue;
       }
+      wholes[piece->whole].push_back({&p, shard->name});
+      pieces.push_back(path);
+    }
+  }
+  if (!refusals.empty()) return pieces;
 
   // Each animation's figures, from the shares of every slice.
   for (size_t i = 0; i < merged["inputs"].size(); ++i) {
@@ -110,34 +124,42 @@ std::vector<std::string> assemble_pieces(const std::string& folder, const std::v
       AtomicFile file(path);
       const std::string kind = listed.front().record->value("splice", "");
       if (kind == "exr_rows") {
-        std::vector<std::pair<size_t, std::string>> rows;
+        std::vector<std::pair<size_t, std::string>> rows;  // first row (from the piece's name), path
         for (const Listed& l : listed) {
-          const json& r = l.record->value("rows", json());
-          if (!r.is_array() || r.size() != 2 || !r[0].is_number_unsigned())
-            throw InputError(l.shard + ": piece " + l.record->value("path", "") + " has no rows");
-          rows.emplace_back(r[0].get<size_t>(), folder + "/" + (*l.record)["path"].get<std::string>());
+          const std::string piece = l.record->value("path", "");
+          rows.emplace_back(bake_detail::file_piece(piece)->first_row, folder + "/" + piece);
         }
         std::sort(rows.begin(), rows.end());
         std::vector<std::string> paths;
         for (auto& [first, p] : rows) paths.push_back(p);
         texture::splice_exr_rows(paths, [&](std::span<const char> bytes) { file.write(bytes); });
-      } else if (kind == "decode_check" && listed.size() == 1) {
+      } else if (kind == "decode_check") {
+        if (listed.size() != 1) throw InputError("more than one shard wrote its template");
         const json& r = *listed.front().record;
+        const json input = r.value("input", json()), clip = r.value("animation", json()), texture = r.value("texture", json());
         const std::optional<texture::DecodeShare> sum =
-            r["input"].is_number_unsigned() && r["animation"].is_number_unsigned() && r["texture"].is_string()
-                ? added_shares(shards, r["input"].get<size_t>(), r["animation"].get<size_t>(), r["texture"].get<std::string>())
+            input.is_number_unsigned() && clip.is_number_unsigned() && texture.is_string()
+                ? added_shares(shards, input.get<size_t>(), clip.get<size_t>(), texture.get<std::string>())
                 : std::nullopt;
         if (!sum) throw InputError("no shard recorded the figures of " + whole);
-        const std::string piece = folder + "/" + r["path"].get<std::string>();
+        const std::string piece = folder + "/" + r.value("path", "");
         file.write(texture::with_decode_check(read_text(piece), sum->figures(), piece));
       } else {
-        throw InputError("its pieces are not of one kind this version splices");
+        throw InputError("its pieces are of a kind this version does not splice");
       }
       file.commit();
       written[whole] = {{"path", whole}, {"size", uint64_t(std::filesystem::file_size(path))}, {"sha256", sha256_file(path)}};
     } catch (const std::exception& e) {
       refusals.push_back(path + ": cannot be assembled from its pieces: " + e.what());
     }
+  }
+  // A refusal leaves the folder as it was: the files assembled so far go.
+  if (!refusals.empty()) {
+    for (const auto& [whole, record] : written) {
+      std::error_code ignored;
+      std::filesystem::remove(folder + "/" + whole, ignored);
+    }
+    return pieces;
   }
 
   // The outputs: the pieces out, the whole files in, by path as the bake lists them.

@@ -275,5 +275,41 @@ TEST_F(VerifyTest, ARerunShardRemovesWhatItsKilledRunLeft) {
   EXPECT_TRUE(merge_shards(at("sharded")).ok());
 }
 
+// Textures cut into slices: the merge splices the pieces into the whole bake's files; a shard manifest whose
+// pieces name a file outside its outputs (here, outside the folder) is refused, and the folder is left as
+// it was.
+TEST_F(VerifyTest, MergeSplicesSlicesAndRefusesPiecesOutsideTheOutputs) {
+  const std::string rig = std::string(DQSKIN_TESTDATA_DIR) + "/morph_skin.gltf";
+  auto bake_shard = [&](const std::string& folder, Shard shard) {
+    BakeOptions o;
+    o.plan.out_dir = (root_ / folder).string();
+    o.formats = unsigned(BakeFormat::kVat) | unsigned(BakeFormat::kBones);
+    o.backend = Backend::kFastCpu;
+    o.plan.shard = shard;
+    ASSERT_FALSE(bake({rig}, o).any_failed());
+  };
+  bake_shard("whole", {});
+  for (const char* folder : {"sharded", "hostile"})
+    for (size_t i = 0; i < 3; ++i) bake_shard(folder, {i, 3});
+  const std::string shard0 = read_file(root_ / "sharded" / "manifest.shard-0-of-3.json");
+  ASSERT_NE(shard0.find("\"pieces\""), std::string::npos) << "the textures were cut";
+  EXPECT_TRUE(verify_folder(at("sharded")).ok()) << "pieces are outputs like any other";
+  ASSERT_TRUE(merge_shards(at("sharded")).ok());
+  EXPECT_TRUE(tree(root_ / "sharded") == tree(root_ / "whole"));
+
+  nlohmann::json hostile = nlohmann::json::parse(read_file(root_ / "hostile" / "manifest.shard-0-of-3.json"));
+  ASSERT_TRUE(hostile.contains("pieces"));
+  hostile["pieces"][0]["path"] = "../escaped.exr.rows-0-16";
+  hostile["pieces"][0]["whole"] = "../escaped.exr";
+  std::ofstream(root_ / "hostile" / "manifest.shard-0-of-3.json") << hostile.dump();
+  const auto before = tree(root_ / "hostile");
+  const MergeReport refused = merge_shards(at("hostile"));
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(testing::PrintToString(refused.refusals).find("is not a piece of a file among the shard's outputs"), std::string::npos)
+      << testing::PrintToString(refused.refusals);
+  EXPECT_TRUE(tree(root_ / "hostile") == before) << "nothing written or deleted";
+  EXPECT_FALSE(fs::exists(root_ / "escaped.exr"));
+}
+
 }  // namespace
 }  // namespace dqskin
