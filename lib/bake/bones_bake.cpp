@@ -269,7 +269,9 @@ BonesClipResult bake_bones_clip(Deformer* deformer, const InputPlan& input, cons
           share.midpoints = check.midpoints;
           share.max_normal_degrees = check.normal_degrees;
           share.max_midpoint_normal_degrees = check.midpoint_normal_degrees;
-          result.checks.back().share = share.to_json().dump();
+          nlohmann::json j = share.to_json();
+          j["slice"] = {set.first, set.end};  // the merge checks that the slices cover the clip once
+          result.checks.back().share = j.dump();
         }
         whole[s].frames.merge(check.frames);
         whole[s].midpoints.merge(check.midpoints);

@@ -36,8 +36,9 @@ std::vector<std::string> morph_viewer_warnings(const std::string& what, size_t t
                                                const std::vector<std::pair<size_t, bool>>& primitives);
 
 struct MorphClipResult {
-  // The .glb: the BIN chunk's bytes, but for its padding, went to `spill` (a temporary beside the file,
-  // never committed) as they were made, so that memory holds the frames and not a second copy of them.
+  // The .glb: the BIN chunk's bytes (glb.spilled of them, its padding included) went to `spill` (a
+  // temporary beside the file, never committed) as they were made, so that memory holds the frames and
+  // not a second copy of them.
   glb::GlbParts glb;
   std::unique_ptr<AtomicFile> spill;
   MorphCheck check;

@@ -108,8 +108,8 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
   const VatFileNames names = vat_file_names(format, safe_name(input.stem));
   // Images at their uncompressed size plus a header and an EXR offset table (an upper bound: ZIP and PNG
   // store less); the rest mesh's attributes and indices; the JSON's per-frame lines.
-  auto image = [&](TexelType type, int channels) {
-    return uint64_t(l.width) * l.height * uint64_t(channels) * channel_bytes(type) + 1024 + l.height / 16 * 8;
+  auto image = [&](TexelType type, int channels, size_t rows) {
+    return uint64_t(l.width) * rows * uint64_t(channels) * channel_bytes(type) + 1024 + rows / 16 * 8;
   };
   std::vector<std::pair<std::string, uint64_t>> files;
   const std::string folder = set.folder + "/";
@@ -121,9 +121,9 @@ std::vector<std::pair<std::string, uint64_t>> planned_vat_files(const InputPlan&
       const std::string n = page_file_name(whole, page, l.pages);
       return set.sliced() ? piece_file_name(n, rows.first, rows.end) : n;
     };
-    files.emplace_back(folder + name(names.positions), image(format.type, l.position_channels()));
+    files.emplace_back(folder + name(names.positions), image(format.type, l.position_channels(), rows.end - rows.first));
     if (const std::optional<TexelType> type = e.normal_image_type())
-      files.emplace_back(folder + name(names.normals), image(*type, normal_channels(e)));
+      files.emplace_back(folder + name(names.normals), image(*type, normal_channels(e), rows.end - rows.first));
   }
   if (!set.head) return files;
   // The rest mesh: its attributes (a third texture coordinate set at most) and indices, and the source's
@@ -189,12 +189,12 @@ VatClipBake::VatClipBake(Deformer& deformer, const InputPlan& input, TextureClip
   }
   if (planned) info.plan = {to_string(planned->format.type), planned->step, planned->error(), planned->encoding_error,
                             planned->interpolation_error, planned->bytes};
-  // A slice that is not the head skips it where the encoding does not remap (dqskin's float and half
-  // store positions as they are) and no --max-error is relative to the clip's size: the bounds then only
-  // go into vat.json, which the head writes. Every frame deformed once more costs a slice as much as
-  // about a tenth of its own work.
+  // A slice that is not the head skips it where the encoding stores positions exactly (dqskin's float) and
+  // no --max-error is relative to the clip's size: the bounds then only go into vat.json, which the head
+  // writes, and the "one pose" rule needs no encoding bound (half's depends on the stored magnitudes).
+  // Every frame deformed once more costs a slice as much as about a tenth of its own work.
   const bool measured = !set_.sliced() || set_.head || format.profile != VatProfile::kDqskin ||
-                        (o.max_error > 0 && o.max_error_relative);
+                        format.type != TexelType::kFloat32 || (o.max_error > 0 && o.max_error_relative);
   VatMeasure measure(e, info.clips);
   for (size_t c = 0; c < set_.clips.size() && measured; ++c) {
     const size_t first = info.clips[c].first_frame;
@@ -276,7 +276,11 @@ std::vector<std::pair<std::string, Committed>> VatClipBake::finish(Deformer& def
       first += t.size();
     }
     whole = checker.finish();
-    if (set_.sliced()) share_ = checker.share().to_json().dump();
+    if (set_.sliced()) {
+      nlohmann::json share = checker.share().to_json();
+      share["slice"] = {set_.first, set_.end};  // the merge checks that the slices cover the clip once
+      share_ = share.dump();
+    }
     for (size_t c = 0; c < set_.clips.size(); ++c) {
       const std::string what = "clip " + set_.clips[c]->name;
       const DecodeCheck check = checker.clip_result(c);

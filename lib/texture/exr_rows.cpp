@@ -88,7 +88,10 @@ ExrRowsPiece read_exr_rows_piece(const std::string& path) {
   if (piece.block_rows == 0) refuse(path, "its compression is unknown");
   if (piece.data[2] < piece.data[0] || piece.data[3] < piece.data[1]) refuse(path, "its data window is empty");
   const uint64_t rows = uint64_t(int64_t(piece.data[3]) - piece.data[1] + 1);
-  piece.offsets.resize((rows + piece.block_rows - 1) / piece.block_rows);
+  const uint64_t blocks = (rows + piece.block_rows - 1) / piece.block_rows;
+  // Every block takes at least its 8-byte offset and 8-byte header: a window larger than the file is a lie.
+  if (blocks > (piece.file_size - piece.header.size()) / 16) refuse(path, "its offset table is cut short");
+  piece.offsets.resize(blocks);
   if (!in.read(reinterpret_cast<char*>(piece.offsets.data()), std::streamsize(piece.offsets.size() * 8)))
     refuse(path, "its offset table is cut short");
   // Blocks in row order, one after another, the last ending the file: how OpenEXR writes increasing y.

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -136,6 +137,19 @@ TEST(ExrRows, PiecesThatDoNotFitAreRefusedNamingThePiece) {
   fs::create_directories(z);
   const std::vector<std::string> s = write_pieces(piz, z);
   EXPECT_NE(refusal({p[0], p[1], s[1]}).find(s[1] + ": its header differs"), std::string::npos);
+
+  // A data window that claims rows the file cannot hold (2^31 of them): refused before any table is read.
+  {
+    const std::string original = read_file(p[1]);
+    std::string forged = original;
+    const size_t at = forged.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(at, std::string::npos);
+    const int32_t huge = 0x7fffffff;
+    std::memcpy(forged.data() + at + 17 + 4 + 12, &huge, 4);  // yMax, after the size and xMin, yMin, xMax
+    std::ofstream(p[1], std::ios::binary | std::ios::trunc).write(forged.data(), std::streamsize(forged.size()));
+    EXPECT_NE(refusal(p).find(p[1] + ": its offset table is cut short"), std::string::npos) << refusal(p);
+    std::ofstream(p[1], std::ios::binary | std::ios::trunc).write(original.data(), std::streamsize(original.size()));
+  }
 
   // A piece cut short, and a file that is no EXR.
   const std::string bytes = read_file(p[2]);

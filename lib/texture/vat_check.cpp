@@ -58,9 +58,13 @@ ErrorHistogram ErrorHistogram::from_json(const nlohmann::json& j, const std::str
     h.max_ = j.at("max").get<double>();
     h.count_ = j.at("count").get<size_t>();
     size_t sum = 0;
+    if (!j.at("count").is_number_unsigned()) throw InputError("the count is not a whole number");
     for (const nlohmann::json& bin : j.at("bins")) {
-      const size_t i = bin.at(0).get<size_t>(), n = bin.at(1).get<size_t>();
+      if (!bin.is_array() || bin.size() != 2 || !bin[0].is_number_unsigned() || !bin[1].is_number_unsigned())
+        throw InputError("a bin is not [index, count]");
+      const size_t i = bin[0].get<size_t>(), n = bin[1].get<size_t>();
       if (i >= h.bins_.size()) throw InputError("a bin past the last");
+      if (n > h.count_ - sum) throw InputError("the bins add up to more than the count");
       h.bins_[i] += n;
       sum += n;
     }

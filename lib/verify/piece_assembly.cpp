@@ -34,24 +34,50 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
-// The figures of texture `texture` of animation (input, clip), the shares of every shard added up.
-std::optional<texture::DecodeShare> added_shares(const std::vector<const JobManifest*>& shards, size_t input, size_t clip,
-                                                 const std::string& texture) {
-  std::optional<texture::DecodeShare> sum;
+// The figures of texture `texture` of animation (input, clip): the shares of every shard added up, which
+// must cover the animation's `frames` frames once (each share names its slice's frames, "slice": [first, end]). Throws InputError
+// naming the shard whose share is malformed, or saying which frames no share covers.
+texture::DecodeShare added_shares(const std::vector<const JobManifest*>& shards, size_t input, size_t clip,
+                                  const std::string& texture, size_t frames) {
+  std::vector<std::pair<std::pair<size_t, size_t>, texture::DecodeShare>> slices;
   for (const JobManifest* shard : shards) {
     const json& inputs = shard->json["inputs"];
     if (input >= inputs.size() || !inputs[input].contains("animations")) continue;
     const json& clips = inputs[input]["animations"];
     if (clip >= clips.size() || !clips[clip].contains("decode_check_share")) continue;
+    const std::string what = shard->name + ": inputs[" + std::to_string(input) + "].animations[" + std::to_string(clip) +
+                             "].decode_check_share";
     const json& shares = clips[clip]["decode_check_share"];
+    if (!shares.is_object()) throw InputError(what + " is not an object");
     if (!shares.contains(texture)) continue;
-    const texture::DecodeShare share = texture::DecodeShare::from_json(
-        shares[texture], shard->name + ": inputs[" + std::to_string(input) + "].animations[" + std::to_string(clip) +
-                             "].decode_check_share." + texture);
-    if (!sum) sum = share;
-    else sum->merge(share);
+    const json range = shares[texture].is_object() ? shares[texture].value("slice", json()) : json();
+    if (!range.is_array() || range.size() != 2 || !range[0].is_number_unsigned() || !range[1].is_number_unsigned())
+      throw InputError(what + "." + texture + ".slice is not [first, end]");
+    slices.emplace_back(std::pair(range[0].get<size_t>(), range[1].get<size_t>()),
+                        texture::DecodeShare::from_json(shares[texture], what + "." + texture));
   }
+  std::sort(slices.begin(), slices.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  texture::DecodeShare sum;
+  size_t covered = 0;
+  for (const auto& [range, share] : slices) {
+    if (range.first != covered || range.second <= range.first) break;
+    covered = range.second;
+    sum.merge(share);
+  }
+  if (covered != frames)
+    throw InputError("the shards' figures of texture " + texture + " of inputs[" + std::to_string(input) + "].animations[" +
+                     std::to_string(clip) + "] do not cover its " + std::to_string(frames) +
+                     " frames once (from frame " + std::to_string(covered) + ")");
   return sum;
+}
+
+// Frames of animation (input, clip) in the merged manifest.
+size_t animation_frames(const json& merged, size_t input, size_t clip) {
+  const json& inputs = merged["inputs"];
+  if (input >= inputs.size() || !inputs[input].contains("animations") || clip >= inputs[input]["animations"].size())
+    return 0;
+  const json times = inputs[input]["animations"][clip].value("frame_times", json());
+  return times.is_array() ? times.size() : 0;
 }
 
 json manifest_figures(const texture::DecodeCheck& d) {
@@ -104,13 +130,15 @@ std::vector<std::string> assemble_pieces(const std::string& folder, const std::v
       for (const JobManifest* shard : shards) {
         const json& inputs = shard->json["inputs"];
         if (i < inputs.size() && inputs[i].contains("animations") && c < inputs[i]["animations"].size() &&
-            inputs[i]["animations"][c].contains("decode_check_share"))
+            inputs[i]["animations"][c].contains("decode_check_share") &&
+            inputs[i]["animations"][c]["decode_check_share"].is_object())
           for (const auto& [texture, share] : inputs[i]["animations"][c]["decode_check_share"].items()) textures.insert(texture);
       }
       clip.erase("decode_check_share");
       try {
         for (const std::string& texture : textures)
-          clip["decode_check"][texture] = manifest_figures(added_shares(shards, i, c, texture)->figures());
+          clip["decode_check"][texture] =
+              manifest_figures(added_shares(shards, i, c, texture, animation_frames(merged, i, c)).figures());
       } catch (const InputError& e) {
         refusals.push_back(folder + "/" + e.what());
       }
@@ -137,13 +165,12 @@ std::vector<std::string> assemble_pieces(const std::string& folder, const std::v
         if (listed.size() != 1) throw InputError("more than one shard wrote its template");
         const json& r = *listed.front().record;
         const json input = r.value("input", json()), clip = r.value("animation", json()), texture = r.value("texture", json());
-        const std::optional<texture::DecodeShare> sum =
-            input.is_number_unsigned() && clip.is_number_unsigned() && texture.is_string()
-                ? added_shares(shards, input.get<size_t>(), clip.get<size_t>(), texture.get<std::string>())
-                : std::nullopt;
-        if (!sum) throw InputError("no shard recorded the figures of " + whole);
+        if (!input.is_number_unsigned() || !clip.is_number_unsigned() || !texture.is_string())
+          throw InputError("its template names no animation and texture");
+        const texture::DecodeShare sum = added_shares(shards, input.get<size_t>(), clip.get<size_t>(), texture.get<std::string>(),
+                                                      animation_frames(merged, input.get<size_t>(), clip.get<size_t>()));
         const std::string piece = folder + "/" + r.value("path", "");
-        file.write(texture::with_decode_check(read_text(piece), sum->figures(), piece));
+        file.write(texture::with_decode_check(read_text(piece), sum.figures(), piece));
       } else {
         throw InputError("its pieces are of a kind this version does not splice");
       }

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 
 namespace dqskin {
@@ -289,7 +290,7 @@ TEST_F(VerifyTest, MergeSplicesSlicesAndRefusesPiecesOutsideTheOutputs) {
     ASSERT_FALSE(bake({rig}, o).any_failed());
   };
   bake_shard("whole", {});
-  for (const char* folder : {"sharded", "hostile"})
+  for (const char* folder : {"sharded", "hostile", "no_share", "bad_share"})
     for (size_t i = 0; i < 3; ++i) bake_shard(folder, {i, 3});
   const std::string shard0 = read_file(root_ / "sharded" / "manifest.shard-0-of-3.json");
   ASSERT_NE(shard0.find("\"pieces\""), std::string::npos) << "the textures were cut";
@@ -309,6 +310,33 @@ TEST_F(VerifyTest, MergeSplicesSlicesAndRefusesPiecesOutsideTheOutputs) {
       << testing::PrintToString(refused.refusals);
   EXPECT_TRUE(tree(root_ / "hostile") == before) << "nothing written or deleted";
   EXPECT_FALSE(fs::exists(root_ / "escaped.exr"));
+
+  // The figures: a shard's share missing, or not an object, would leave the merged figures short of the
+  // slices; both are refused, naming what is wrong, and the folder is left as it was.
+  auto edit_shares = [&](const std::string& folder, const std::function<void(nlohmann::json&)>& edit) {
+    for (size_t i = 3; i-- > 1;) {  // the last shard with a share (not the head's, shard 0)
+      const fs::path path = root_ / folder / ("manifest.shard-" + std::to_string(i) + "-of-3.json");
+      nlohmann::json m = nlohmann::json::parse(read_file(path));
+      nlohmann::json& clip = m["inputs"][0]["animations"][0];
+      if (clip.contains("decode_check_share")) {
+        edit(clip);
+        std::ofstream(path) << m.dump();
+        return;
+      }
+    }
+    FAIL() << "no shard but the head has a share";
+  };
+  edit_shares("no_share", [](nlohmann::json& clip) { clip.erase("decode_check_share"); });
+  edit_shares("bad_share", [](nlohmann::json& clip) { clip["decode_check_share"] = nlohmann::json::array({1, 2}); });
+  for (const char* folder : {"no_share", "bad_share"}) {
+    SCOPED_TRACE(folder);
+    const auto untouched = tree(root_ / folder);
+    const MergeReport r = merge_shards(at(folder));
+    ASSERT_FALSE(r.ok());
+    const std::string said = testing::PrintToString(r.refusals);
+    EXPECT_TRUE(said.find("do not cover its") != std::string::npos || said.find("is not an object") != std::string::npos) << said;
+    EXPECT_TRUE(tree(root_ / folder) == untouched) << "nothing written or deleted";
+  }
 }
 
 }  // namespace
