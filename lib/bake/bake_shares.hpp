@@ -1,4 +1,4 @@
-// How a sharded bake deals its work (docs/DESIGN.md §2.6): by cost, so that one long clip spreads over
+// How a sharded bake deals its work (docs/DESIGN.md §6.5): by cost, so that one long clip spreads over
 // every shard as evenly as many short ones. plan_inputs deals whole clips' files round robin, which gives
 // one shard all of a clip's textures and morph animation; here the frames of every clip, one after
 // another, are cut into N runs of equal cost, each shard taking one run: its per-frame files and, where

@@ -241,7 +241,7 @@ TEST_F(BakeTest, ShardsTogetherEqualTheWholeBake) {
     EXPECT_GT(r.outputs.size(), 0u) << "every shard gets work";
     for (const BakeOutput& out : r.outputs) EXPECT_TRUE(listed.insert(out.path).second) << out.path << " baked twice";
   }
-  // The textures were cut into slices (docs/DESIGN.md §2.6): the merge assembles their pieces.
+  // The textures were cut into slices (docs/DESIGN.md §6.5): the merge assembles their pieces.
   const size_t pieces = size_t(std::count_if(listed.begin(), listed.end(), [](const std::string& p) {
     return p.find(".exr.rows-") != std::string::npos || p.find(".json.template") != std::string::npos;
   }));

@@ -1,6 +1,6 @@
 #include "manifest.hpp"
 
-#include "file_pieces.hpp"
+#include "../job/file_pieces.hpp"
 #include "../job/job_manifest.hpp"
 #include "dqskin/version.hpp"
 

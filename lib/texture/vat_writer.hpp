@@ -19,7 +19,7 @@ namespace dqskin::texture {
 
 class VatFrameCheck;  // vat_check.hpp
 
-// A shard's share of one texture (docs/DESIGN.md §2.6): frames [first, end) of a single clip, whose rows
+// A shard's share of one texture (docs/DESIGN.md §6.5): frames [first, end) of a single clip, whose rows
 // it encodes, checks and writes as pieces that `dqskin merge` splices into the images (exr_rows.hpp); the
 // head writes the rest mesh and the side files as well (vat.json as a template, its decode_check filled in
 // by the merge when the frames are checked). The whole texture by default.

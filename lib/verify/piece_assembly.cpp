@@ -1,6 +1,6 @@
 #include "piece_assembly.hpp"
 
-#include "../bake/file_pieces.hpp"
+#include "../job/file_pieces.hpp"
 #include "../base/sha256.hpp"
 #include "../texture/exr_rows.hpp"
 #include "../texture/vat_check.hpp"
@@ -107,9 +107,9 @@ std::vector<std::string> assemble_pieces(const std::string& folder, const std::v
     for (size_t i = 0; i < (listed.is_array() ? listed.size() : 1); ++i) {
       const json& p = listed.is_array() ? listed[i] : listed;
       const std::string path = p.is_object() && p.value("path", json()).is_string() ? p["path"].get<std::string>() : "";
-      const std::optional<bake_detail::FilePiece> piece = bake_detail::file_piece(path);
+      const std::optional<FilePiece> piece = file_piece(path);
       if (!piece || !outputs.count(path) || p.value("whole", json()) != piece->whole ||
-          p.value("splice", json()) != bake_detail::to_string(piece->kind)) {
+          p.value("splice", json()) != to_string(piece->kind)) {
         refusals.push_back(folder + "/" + shard->name + ": pieces[" + std::to_string(i) +
                            "] is not a piece of a file among the shard's outputs");
         continue;
@@ -155,7 +155,7 @@ std::vector<std::string> assemble_pieces(const std::string& folder, const std::v
         std::vector<std::pair<size_t, std::string>> rows;  // first row (from the piece's name), path
         for (const Listed& l : listed) {
           const std::string piece = l.record->value("path", "");
-          rows.emplace_back(bake_detail::file_piece(piece)->first_row, folder + "/" + piece);
+          rows.emplace_back(file_piece(piece)->first_row, folder + "/" + piece);
         }
         std::sort(rows.begin(), rows.end());
         std::vector<std::string> paths;

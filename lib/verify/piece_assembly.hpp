@@ -1,5 +1,5 @@
-// The files a sharded bake wrote in pieces (bake/file_pieces.hpp), assembled by `dqskin merge` into the
-// files one process writes (docs/DESIGN.md §2.6): each EXR image spliced from its shards' rows
+// The files a sharded bake wrote in pieces (job/file_pieces.hpp), assembled by `dqskin merge` into the
+// files one process writes (docs/DESIGN.md §6.5): each EXR image spliced from its shards' rows
 // (texture/exr_rows.hpp), each side file's template filled with the decode-back figures of every slice,
 // which add up (texture::DecodeShare). Runs after the folder was verified against the shards' manifests.
 #pragma once

@@ -3,7 +3,7 @@
 #include <cctype>
 #include <cstdlib>
 
-namespace dqskin::bake_detail {
+namespace dqskin {
 namespace {
 
 bool ends_with(const std::string& s, const std::string& tail) {
@@ -50,4 +50,4 @@ std::optional<FilePiece> file_piece(const std::string& path) {
 
 const char* to_string(FilePiece::Kind kind) { return kind == FilePiece::Kind::kExrRows ? "exr_rows" : "decode_check"; }
 
-}  // namespace dqskin::bake_detail
+}  // namespace dqskin

@@ -1,4 +1,4 @@
-// The pieces a shard writes of files that `dqskin merge` assembles (docs/DESIGN.md §2.6), named as the
+// The pieces a shard writes of files that `dqskin merge` assembles (docs/DESIGN.md §6.5), named as the
 // texture writers name them: rows of an EXR image ("vat_positions.exr.rows-144-288", texture::
 // piece_file_name) and a side file awaiting the figures of every slice ("vat.json.template",
 // texture::template_file_name). The bake lists them in its shard manifest; the merge reads that list.
@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace dqskin::bake_detail {
+namespace dqskin {
 
 struct FilePiece {
   enum class Kind { kExrRows, kDecodeCheck };
@@ -24,4 +24,4 @@ std::optional<FilePiece> file_piece(const std::string& path);
 // How the manifest names a kind: "exr_rows", "decode_check".
 const char* to_string(FilePiece::Kind kind);
 
-}  // namespace dqskin::bake_detail
+}  // namespace dqskin
