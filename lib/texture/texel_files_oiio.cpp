@@ -3,6 +3,8 @@
 // module (base/image_module.hpp).
 #include "texel_files.hpp"
 
+#include "exr_rows.hpp"
+
 #include "../base/image_file_oiio.hpp"
 #include "../base/oiio_message.hpp"
 #include "dqskin/error.hpp"
@@ -10,11 +12,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <bit>
 #include <cassert>
 #include <climits>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -29,47 +29,6 @@ OIIO::TypeDesc oiio_type(TexelType type) {
     case TexelType::kUnorm8: return OIIO::TypeDesc::UINT8;
   }
   return OIIO::TypeDesc::UNKNOWN;
-}
-
-// Scanlines per block in an OpenEXR file (the OpenEXR file layout, "Scan Line Blocks"): 1 for NONE, RLE
-// and ZIPS, 16 for ZIP, 32 for PIZ.
-size_t rows_per_block(const std::string& compression) {
-  if (compression == "zip") return 16;
-  if (compression == "piz") return 32;
-  return 1;
-}
-
-// Whether the EXR at `path` is whole, as OpenEXR lays out a single-part scanline image: magic and version,
-// the header's attributes up to an empty name, one offset per block of rows, then the blocks, each an
-// int32 row and an int32 byte count before its data. Complete when every offset lies in the file and the
-// last block (rows increase) ends where the file ends.
-bool exr_is_whole(const std::string& path, size_t height, size_t block_rows) {
-  static_assert(std::endian::native == std::endian::little, "EXR files are little-endian");
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const auto size = uint64_t(std::streamoff(in.tellg()));
-  in.seekg(8);
-  std::string word;
-  auto skip_attribute = [&in, &word]() {
-    std::getline(in, word, '\0');  // name; empty after the last attribute
-    if (!in || word.empty()) return false;
-    std::getline(in, word, '\0');  // type
-    int32_t bytes = 0;
-    in.read(reinterpret_cast<char*>(&bytes), 4);
-    in.seekg(bytes, std::ios::cur);
-    return bool(in);
-  };
-  while (skip_attribute()) {
-  }
-  std::vector<uint64_t> offsets((height + block_rows - 1) / block_rows);
-  in.read(reinterpret_cast<char*>(offsets.data()), std::streamsize(offsets.size() * 8));
-  bool whole = bool(in);
-  for (uint64_t at : offsets) whole = whole && at > 0 && at + 8 <= size;
-  int32_t block[2] = {0, 0};  // first row, bytes
-  if (whole) {
-    in.seekg(std::streamoff(offsets.back()));
-    in.read(reinterpret_cast<char*>(block), 8);
-  }
-  return whole && in && block[1] >= 0 && offsets.back() + 8 + uint64_t(block[1]) == size;
 }
 
 class OiioTexelWriter final : public TexelFileWriter::Impl {
@@ -153,7 +112,7 @@ public:
     // at least 8 MiB and 4 blocks per core, so that every core of OpenEXR's pool has blocks to compress,
     // and at most 64 MiB (one block when a block is larger).
     if (!exr->open(temporary_path, spec)) fail(oiio_message(exr->geterror()));
-    const size_t block = rows_per_block(compression), block_bytes = block * row_bytes;
+    const size_t block = exr_block_rows(compression), block_bytes = block * row_bytes;
     const size_t cores = std::max(1u, std::thread::hardware_concurrency());
     size_t blocks = std::max(4 * cores, ((size_t(8) << 20) + block_bytes - 1) / block_bytes);
     blocks = std::max<size_t>(1, std::min(blocks, (size_t(64) << 20) / block_bytes));
@@ -180,8 +139,15 @@ public:
       chunk = std::vector<uint8_t>();
       if (!exr->close()) fail(oiio_message(exr->geterror()));
       exr.reset();
-      if (!exr_is_whole(temporary_path, end_row - first_row, rows_per_block(compression)))
-        fail("the image is incomplete after writing (is the disk full?)");
+      // Whole as OpenEXR lays it out (exr_rows.hpp), which a full disk can cut short while OpenImageIO
+      // reports nothing: every block of the rows written, one after another, the last ending the file.
+      bool whole = false;
+      try {
+        const ExrRowsPiece written = read_exr_rows_piece(temporary_path);
+        whole = size_t(written.data[1]) == first_row && size_t(written.data[3]) + 1 == end_row;
+      } catch (const InputError&) {
+      }
+      if (!whole) fail("the image is incomplete after writing (is the disk full?)");
       return;
     }
     OIIO::ImageSpec spec(int(width), int(height), channels, oiio_type(type));
