@@ -133,8 +133,9 @@ void deal_bake_shares(std::vector<InputPlan>& plans, const BakeOptions& options)
   for (size_t s = 0; s < shard.count; ++s)
     if (free_shards == 0 || load[s] == 0) room[s] = 1;
   const std::vector<size_t> texture_cuts = cut_runs(work, &ClipWork::slice_per_frame, room, total_frames, true);
+  const double texture_shards = double(std::count(room.begin(), room.end(), 1.0));
   for (size_t s = 0; s < shard.count; ++s) {
-    if (room[s] > 0) load[s] += texture_cost / double(std::count(room.begin(), room.end(), 1.0));
+    if (room[s] > 0) load[s] += texture_cost / texture_shards;
     room[s] = std::max(0.0, mean - load[s]);
   }
   const std::vector<size_t> file_cuts = cut_runs(work, &ClipWork::per_frame, room, total_frames, false);
